@@ -1,0 +1,48 @@
+// The BxDF interface: scattering in the local shading frame (normal = +z).
+// f() excludes the cosine factor; sample() returns f and the solid-angle pdf of wi.
+// Specular lobes return f = (weight / |cos wi|) with pdf = the discrete probability
+// of the lobe, and the Specular flag, so integrators treat every lobe alike.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include "math/frame.h"
+#include "math/spectrum.h"
+
+namespace ps {
+
+// Radiance: the path carries radiance from lights to the camera (path tracing).
+// Importance: it carries importance from the camera (light tracing) and the BSDF must be
+// the adjoint (thesis ch. 5: the 1/eta^2 radiance scaling applies only to Radiance).
+enum class TransportMode { Radiance, Importance };
+
+enum BxDFFlags : uint8_t {
+    kReflection = 1,
+    kTransmission = 2,
+    kDiffuse = 4,
+    kGlossy = 8,
+    kSpecular = 16,
+};
+
+struct BSDFSample {
+    Spectrum f;
+    Vec3 wi;
+    float pdf = 0;
+    uint8_t flags = 0;
+    float eta = 1;  // relative index of refraction across the sampled transmission, 1 otherwise
+    bool isSpecular() const { return flags & kSpecular; }
+    bool isTransmission() const { return flags & kTransmission; }
+    bool isReflection() const { return flags & kReflection; }
+};
+
+class BxDF {
+public:
+    virtual ~BxDF() = default;
+    virtual uint8_t flags() const = 0;
+    virtual Spectrum f(Vec3 wo, Vec3 wi, TransportMode mode) const = 0;
+    // uc picks among lobes, u picks the direction within a lobe.
+    virtual std::optional<BSDFSample> sample(Vec3 wo, float uc, Vec2 u, TransportMode mode) const = 0;
+    virtual float pdf(Vec3 wo, Vec3 wi, TransportMode mode) const = 0;
+    bool isSpecular() const { return (flags() & (kDiffuse | kGlossy)) == 0 && (flags() & kSpecular); }
+};
+
+}  // namespace ps

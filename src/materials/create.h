@@ -1,0 +1,28 @@
+// Factories: materials and textures from the scene's parameter lists.
+#pragma once
+#include <map>
+#include <memory>
+#include <string>
+#include "materials/material.h"
+#include "scene/scene_description.h"
+
+namespace ps {
+
+struct TextureRegistry {
+    std::map<std::string, std::shared_ptr<FloatTexture>> floats;
+    std::map<std::string, std::shared_ptr<SpectrumTexture>> spectra;
+};
+
+// Unknown classes or parameters warn (and fall back to a sensible default);
+// bad values throw InputError naming the parameter's location.
+std::shared_ptr<FloatTexture> createFloatTexture(const TextureEntity& e, const TextureRegistry& reg,
+                                                 const std::string& baseDirectory);
+std::shared_ptr<SpectrumTexture> createSpectrumTexture(const TextureEntity& e, const TextureRegistry& reg,
+                                                       const std::string& baseDirectory);
+// `named` holds the named materials created so far (mix refers to them).
+std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet& params,
+                                         const TextureRegistry& reg,
+                                         const std::map<std::string, std::shared_ptr<Material>>& named,
+                                         const std::string& baseDirectory);
+
+}  // namespace ps

@@ -1,0 +1,25 @@
+// Materials turn textures at a shading point into a BxDF. The BxDF is built in the
+// caller's ScratchBuffer (no heap traffic in the render loop).
+#pragma once
+#include "materials/bxdf.h"
+#include "materials/texture.h"
+#include "util/scratch.h"
+
+namespace ps {
+
+struct MaterialEvalContext : TextureEvalContext {
+    Vec3 wo;     // world-space direction towards the previous vertex
+    Vec3 dpdu;   // world-space tangent along u (anisotropic frames follow it)
+};
+
+class Material {
+public:
+    virtual ~Material() = default;
+    // nullptr for `interface` (no scattering: the ray passes through, not a bounce).
+    virtual const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& scratch) const = 0;
+    // `mix` resolves to one of its members; everything else returns itself.
+    virtual const Material* resolve(const MaterialEvalContext& ctx) const { (void)ctx; return this; }
+    virtual bool isInterface() const { return false; }
+};
+
+}  // namespace ps

@@ -1,0 +1,26 @@
+// Textures: functions of the surface point evaluated per shading point.
+#pragma once
+#include "math/spectrum.h"
+#include "math/vec.h"
+
+namespace ps {
+
+struct TextureEvalContext {
+    Vec3 p;   // world-space position
+    Vec3 n;   // shading normal
+    Vec2 uv;  // surface parameterisation
+};
+
+class FloatTexture {
+public:
+    virtual ~FloatTexture() = default;
+    virtual float evaluate(const TextureEvalContext& ctx) const = 0;
+};
+
+class SpectrumTexture {
+public:
+    virtual ~SpectrumTexture() = default;
+    virtual Spectrum evaluate(const TextureEvalContext& ctx) const = 0;
+};
+
+}  // namespace ps

@@ -1,0 +1,74 @@
+// Warps from the unit square to directions and points, with their densities
+// (thesis §2.4.1: sampling by inversion of the cumulative distribution).
+#pragma once
+#include "math/vec.h"
+
+namespace ps {
+
+// Shirley-Chiu concentric map: square [0,1)^2 -> unit disk, area preserving.
+inline Vec2 sampleConcentricDisk(Vec2 u) {
+    float ox = 2 * u.x - 1, oy = 2 * u.y - 1;
+    if (ox == 0 && oy == 0) return {0, 0};
+    float r, theta;
+    if (std::fabs(ox) > std::fabs(oy)) {
+        r = ox;
+        theta = (kPi / 4) * (oy / ox);
+    } else {
+        r = oy;
+        theta = kPi / 2 - (kPi / 4) * (ox / oy);
+    }
+    return {r * std::cos(theta), r * std::sin(theta)};
+}
+
+// Cosine-weighted hemisphere around +z; pdf (solid angle) = cos(theta)/pi.
+inline Vec3 sampleCosineHemisphere(Vec2 u) {
+    Vec2 d = sampleConcentricDisk(u);
+    float z = safeSqrt(1 - d.x * d.x - d.y * d.y);
+    return {d.x, d.y, z};
+}
+inline float cosineHemispherePdf(float cosTheta) { return std::max(0.0f, cosTheta) * kInvPi; }
+
+inline Vec3 sampleUniformSphere(Vec2 u) {
+    float z = 1 - 2 * u.x;
+    float r = safeSqrt(1 - z * z);
+    float phi = 2 * kPi * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+constexpr float uniformSpherePdf() { return kInv4Pi; }
+
+inline Vec3 sampleUniformHemisphere(Vec2 u) {
+    float z = u.x;
+    float r = safeSqrt(1 - z * z);
+    float phi = 2 * kPi * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+constexpr float uniformHemispherePdf() { return kInv2Pi; }
+
+// Uniform over the cone of directions within acos(cosMax) of +z.
+inline Vec3 sampleUniformCone(Vec2 u, float cosMax) {
+    float cosT = (1 - u.x) + u.x * cosMax;
+    float sinT = safeSqrt(1 - cosT * cosT);
+    float phi = 2 * kPi * u.y;
+    return {sinT * std::cos(phi), sinT * std::sin(phi), cosT};
+}
+inline float uniformConePdf(float cosMax) { return 1 / (2 * kPi * (1 - cosMax)); }
+
+// Uniform barycentrics (b0, b1) on a triangle; b2 = 1 - b0 - b1 (Heitz's low-distortion map).
+inline Vec2 sampleUniformTriangle(Vec2 u) {
+    float b0, b1;
+    if (u.x < u.y) {
+        b0 = u.x / 2;
+        b1 = u.y - b0;
+    } else {
+        b1 = u.y / 2;
+        b0 = u.x - b1;
+    }
+    return {b0, b1};
+}
+
+// Solid-angle density from an area density: p_omega = p_A * d^2 / |cos theta_light| (thesis eq. 8.10).
+inline float areaToSolidAngle(float pdfArea, float dist2, float absCosLight) {
+    return absCosLight > 0 ? pdfArea * dist2 / absCosLight : 0.0f;
+}
+
+}  // namespace ps

@@ -1,0 +1,71 @@
+// Typed parameter lists of pbrt-v4 directives ("float fov" [45] ...). Every lookup marks
+// the parameter used, so parameters nobody asked for can be reported by name.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+#include "math/spectrum.h"
+#include "math/vec.h"
+#include "util/error.h"
+
+namespace ps {
+
+enum class ParamType { Float, Integer, Bool, String, Point2, Vector2, Point3, Vector3, Normal, RGB, Blackbody, Spectrum, Texture };
+
+// How a spectrum-valued parameter is used; decides clamping and normalisation
+// (PBRT-CONVENTIONS §3, §6): albedos are clamped to [0,1]; illuminant spectra given as
+// `spectrum`/`blackbody` are normalised to luminance 1; RGB illuminants keep their magnitude.
+enum class SpectrumKind { Albedo, Unbounded, Illuminant };
+
+struct Param {
+    ParamType type = ParamType::Float;
+    std::string typeName, name;
+    std::vector<double> numbers;       // float, integer, point*, vector*, normal, rgb, blackbody, numeric spectrum
+    std::vector<std::string> strings;  // string, texture, named spectrum
+    std::vector<bool> bools;
+    SourceLoc loc;
+    bool fromAttribute = false;  // supplied by an Attribute directive: never reported unused
+    mutable bool used = false;
+};
+
+class ParamSet {
+public:
+    // A repeated name replaces the earlier value (last occurrence wins, as in pbrt-v4).
+    void add(Param p);
+    // Adds p only if no parameter of that name exists (Attribute defaults).
+    void addDefault(Param p);
+
+    bool has(const std::string& name) const { return find(name) != nullptr; }
+    const Param* find(const std::string& name) const;
+
+    // Single values: the default when absent; an InputError naming the location when the
+    // parameter exists with the wrong type or the wrong number of values.
+    float getFloat(const std::string& name, float def) const;
+    int getInt(const std::string& name, int def) const;
+    bool getBool(const std::string& name, bool def) const;
+    std::string getString(const std::string& name, const std::string& def) const;
+    Vec3 getPoint3(const std::string& name, Vec3 def) const;
+    Vec3 getVector3(const std::string& name, Vec3 def) const;
+
+    // Arrays: empty when absent.
+    std::vector<float> getFloats(const std::string& name) const;
+    std::vector<int> getInts(const std::string& name) const;
+    std::vector<std::string> getStrings(const std::string& name) const;
+    std::vector<Vec2> getPoint2s(const std::string& name) const;
+    std::vector<Vec3> getPoint3s(const std::string& name) const;
+    std::vector<Vec3> getNormals(const std::string& name) const;
+
+    // rgb / spectrum (inline pairs, named, or file) / blackbody, converted to RGB.
+    std::optional<Spectrum> getSpectrum(const std::string& name, SpectrumKind kind) const;
+    // Name of the texture bound by `"texture name" "texname"`, or "" when absent.
+    std::string getTexture(const std::string& name) const;
+
+    // Warn once for each parameter never looked up, naming it and where it was given.
+    void reportUnused(const std::string& context) const;
+
+    SourceLoc loc;               // the directive's location
+    std::string baseDirectory;   // for resolving relative file names (spectrum files)
+    std::vector<Param> params;
+};
+
+}  // namespace ps

@@ -1,0 +1,85 @@
+// The parsed scene: plain data straight from the file, before anything is built.
+// The parser fills it; the renderer's scene builder turns it into geometry, lights and
+// materials. Knows nothing of Embree.
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+#include "math/transform.h"
+#include "scene/params.h"
+
+namespace ps {
+
+struct SceneEntity {
+    std::string type;  // class name: "perspective", "diffuse", "trianglemesh", ...
+    ParamSet params;
+    SourceLoc loc;
+};
+
+struct CameraEntity : SceneEntity {
+    Transform worldFromCamera;  // inverse of the CTM at the Camera directive
+};
+
+struct MaterialEntity : SceneEntity {
+    std::string name;  // empty for anonymous `Material`
+};
+
+struct TextureEntity : SceneEntity {
+    std::string name;
+    bool isFloat = false;       // "float" or "spectrum"
+    Transform worldFromTexture;
+};
+
+struct LightEntity : SceneEntity {
+    Transform worldFromLight;
+};
+
+// Which material a shape uses: an anonymous material by index, or a name resolved after
+// parsing (pbrt-v4 allows NamedMaterial before MakeNamedMaterial).
+struct MaterialRef {
+    int index = -1;
+    std::string name;
+};
+
+struct ShapeEntity : SceneEntity {
+    Transform worldFromObject;
+    bool reverseOrientation = false;
+    MaterialRef material;
+    int areaLight = -1;  // index into SceneDescription::areaLights, -1 when not emissive
+};
+
+struct InstanceDefinition {
+    std::string name;
+    std::vector<ShapeEntity> shapes;  // transforms include the CTM inside ObjectBegin
+    SourceLoc loc;
+};
+
+struct InstanceUse {
+    std::string name;
+    Transform worldFromInstance;
+    SourceLoc loc;
+};
+
+struct SceneDescription {
+    std::string sceneFile;      // the file named on the command line
+    std::string baseDirectory;  // its directory: every relative path resolves here
+
+    CameraEntity camera;        // type "perspective" by default
+    SceneEntity film;           // "rgb"
+    SceneEntity sampler;        // "zsobol"
+    SceneEntity integrator;     // "volpath"
+    SceneEntity filter;         // "gaussian"
+    bool cameraGiven = false;
+
+    std::vector<MaterialEntity> materials;                 // anonymous, by index
+    std::map<std::string, MaterialEntity> namedMaterials;
+    std::vector<TextureEntity> floatTextures, spectrumTextures;  // in definition order
+    std::vector<ShapeEntity> shapes;
+    std::vector<LightEntity> lights;
+    std::vector<SceneEntity> areaLights;  // AreaLightSource entities referenced by shapes
+    std::map<std::string, InstanceDefinition> instances;
+    std::vector<InstanceUse> instanceUses;
+    std::map<std::string, std::string> options;  // Option "name" value, raw text
+};
+
+}  // namespace ps

@@ -1,0 +1,34 @@
+// Errors and warnings shared by every module. Input errors (bad scene, missing file) are
+// distinct from internal errors so the command line can exit with distinct codes.
+#pragma once
+#include <stdexcept>
+#include <string>
+
+namespace ps {
+
+// Where in an input file something is: "file:line:column".
+struct SourceLoc {
+    std::string file;
+    int line = 0, column = 0;
+    std::string str() const {
+        if (file.empty()) return "<input>";
+        if (line <= 0) return file;
+        return file + ":" + std::to_string(line) + ":" + std::to_string(column);
+    }
+};
+
+// A problem with the user's input: message already names the file and place.
+class InputError : public std::runtime_error {
+public:
+    explicit InputError(const std::string& msg) : std::runtime_error(msg) {}
+    InputError(const SourceLoc& loc, const std::string& msg) : std::runtime_error(loc.str() + ": error: " + msg) {}
+};
+
+// Warnings go to stderr once per distinct message; collected for the statistics.
+void warning(const std::string& msg);
+void warning(const SourceLoc& loc, const std::string& msg);
+int warningCount();
+// Silence stderr output of warnings (they are still counted), e.g. in tests.
+void setWarningsQuiet(bool quiet);
+
+}  // namespace ps
