@@ -14,6 +14,8 @@ public:
     explicit ScratchBuffer(size_t bytes = 64 * 1024) : size_(bytes), data_(new std::byte[bytes]) {}
     ScratchBuffer(const ScratchBuffer&) = delete;
     ScratchBuffer& operator=(const ScratchBuffer&) = delete;
+    ScratchBuffer(ScratchBuffer&&) = default;
+    ScratchBuffer& operator=(ScratchBuffer&&) = default;
 
     // Objects built here must be trivially destructible or not need destruction.
     template <typename T, typename... Args>

@@ -1,0 +1,145 @@
+#include "app/render_command.h"
+
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "app/exit_codes.h"
+#include "image/image.h"
+#include "render/scene_builder.h"
+#include "scene/parser.h"
+#include "transport/renderer.h"
+#include "util/error.h"
+
+namespace ps {
+
+namespace {
+
+std::atomic<bool> gInterrupt{false};
+
+// First signal: stop and write what we have. Second: leave at once.
+extern "C" void onSignal(int) {
+    if (gInterrupt.exchange(true)) _exit(kExitInterrupted);
+}
+
+// Fail before rendering if an output cannot be written: create and remove a probe file.
+void checkWritable(const std::string& path) {
+    if (!isWritableImageExtension(path))
+        throw InputError("output \"" + path + "\": unsupported extension (use .exr, .png or .pfm)");
+    std::filesystem::path p(path);
+    std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+    std::filesystem::path probe = dir / (".pathspace-probe-" + std::to_string(getpid()));
+    std::FILE* f = std::fopen(probe.c_str(), "wb");
+    if (!f) throw InputError("output \"" + path + "\": cannot write to directory \"" + dir.string() + "\"");
+    std::fclose(f);
+    std::filesystem::remove(probe);
+}
+
+}  // namespace
+
+void RenderCommand::attach(CLI::App& app) {
+    cmd_ = app.add_subcommand("render", "Render a pbrt-v4 scene file");
+    cmd_->add_option("scene", scene_, "pbrt-v4 scene file")->required()->check(CLI::ExistingFile);
+    cmd_->add_option("--spp", spp_, "Samples per pixel (overrides the scene's Sampler pixelsamples)")->check(CLI::PositiveNumber);
+    cmd_->add_option("--time", time_, "Time budget in seconds; the image so far is written when it runs out")
+        ->check(CLI::PositiveNumber);
+    cmd_->add_option("--threads", threads_, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+    cmd_->add_option("--seed", seed_, "Random seed (overrides the scene's; same seed and thread count = same image)")
+        ->check(CLI::NonNegativeNumber);
+    cmd_->add_option("--maxdepth", maxDepth_, "Maximum number of scattering events (overrides the scene's)")
+        ->check(CLI::NonNegativeNumber);
+    cmd_->add_option("--integrator", integrator_, "Integrator: path (pbrt names path/volpath map to it)");
+    cmd_->add_option("-o,--output", outputs_,
+                     "Output image(s): .exr (float32), .png (sRGB 8-bit, clamped), .pfm; may be repeated. "
+                     "Default: the scene's Film filename, relative to the current directory");
+    cmd_->add_option("--crop", crop_, "Crop window x0 x1 y0 y1 in [0,1] (y down), as pbrt's cropwindow")->expected(4);
+    cmd_->add_option("--stats", statsFile_, "Write render statistics as JSON to this file");
+    cmd_->add_flag("--quiet", quiet_, "No progress bar or statistics on the terminal");
+}
+
+int RenderCommand::run() {
+    SceneDescription desc = parseSceneFile(scene_);
+    std::unique_ptr<Scene> scene = buildScene(desc);
+    RenderSettings& settings = scene->settings();
+    if (spp_ > 0) settings.spp = spp_;
+    if (seed_ >= 0) settings.seed = uint64_t(seed_);
+    if (maxDepth_ >= 0) settings.maxDepth = maxDepth_;
+    if (!integrator_.empty()) settings.integrator = integrator_ == "volpath" ? "path" : integrator_;
+    if (!crop_.empty()) {
+        int W = scene->camera().params().xRes, H = scene->camera().params().yRes;
+        auto c = [](float v) { return clampf(v, 0, 1); };
+        PixelBounds b{int(std::ceil(W * c(std::min(crop_[0], crop_[1])))), int(std::ceil(W * c(std::max(crop_[0], crop_[1])))),
+                      int(std::ceil(H * c(std::min(crop_[2], crop_[3])))), int(std::ceil(H * c(std::max(crop_[2], crop_[3]))))};
+        if (b.width() <= 0 || b.height() <= 0) throw InputError("--crop: the crop window is empty");
+        scene->setPixelBounds(b);
+    }
+    std::vector<std::string> outputs = outputs_;
+    if (outputs.empty()) outputs.push_back(std::filesystem::path(settings.outputFile).filename().string());
+    for (const std::string& o : outputs) checkWritable(o);
+    std::unique_ptr<Integrator> integrator = createIntegrator(settings.integrator, *scene);
+
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+
+    RenderOptions opts;
+    opts.spp = settings.spp;
+    opts.timeLimit = time_;
+    opts.threads = threads_;
+    opts.seed = settings.seed;
+    opts.progress = !quiet_;
+    opts.cancel = &gInterrupt;
+    RenderResult r = render(*scene, *integrator, opts);
+
+    for (const std::string& o : outputs) writeImage(o, r.image);
+
+    double secs = std::max(r.seconds, 1e-9);
+    uint64_t rays = r.stats.rays + r.stats.shadowRays;
+    nlohmann::json stats = {
+        {"scene", scene_},
+        {"outputs", outputs},
+        {"integrator", settings.integrator},
+        {"resolution", {scene->camera().params().xRes, scene->camera().params().yRes}},
+        {"pixels", scene->pixelBounds().area()},
+        {"threads", threads_},
+        {"seed", settings.seed},
+        {"maxdepth", settings.maxDepth},
+        {"wall_time_s", r.seconds},
+        {"spp_target", r.targetSpp},
+        {"spp_mean", r.meanSpp},
+        {"stopped_early", r.stoppedEarly},
+        {"interrupted", gInterrupt.load()},
+        {"camera_paths", r.stats.cameraPaths},
+        {"camera_paths_per_s", double(r.stats.cameraPaths) / secs},
+        {"rays", rays},
+        {"closest_hit_rays", r.stats.rays},
+        {"shadow_rays", r.stats.shadowRays},
+        {"rays_per_s", double(rays) / secs},
+        {"nonfinite_guarded", r.stats.guarded},
+        {"nonfinite_samples_rejected", r.rejectedSamples},
+        {"warnings", warningCount()},
+    };
+    if (!statsFile_.empty()) {
+        std::ofstream f(statsFile_);
+        if (!f) throw InputError("--stats: cannot write \"" + statsFile_ + "\"");
+        f << stats.dump(2) << "\n";
+    }
+    if (!quiet_) {
+        std::printf("wrote %s", outputs[0].c_str());
+        for (size_t i = 1; i < outputs.size(); ++i) std::printf(", %s", outputs[i].c_str());
+        std::printf("\n");
+        std::printf("time %.3f s | %.1f spp (target %d) | %.3g camera paths/s | %.3g rays (%.3g closest, %.3g shadow) | "
+                    "%.3g rays/s | non-finite: %llu guarded, %lld rejected\n",
+                    r.seconds, r.meanSpp, r.targetSpp, double(r.stats.cameraPaths) / secs, double(rays),
+                    double(r.stats.rays), double(r.stats.shadowRays), double(rays) / secs,
+                    (unsigned long long)r.stats.guarded, r.rejectedSamples);
+        if (r.stoppedEarly) std::printf("stopped early: %s\n", gInterrupt.load() ? "interrupted" : "time budget reached");
+    }
+    return gInterrupt.load() ? kExitInterrupted : kExitOk;
+}
+
+}  // namespace ps

@@ -1,0 +1,29 @@
+// `pathspace render SCENE [options]`.
+#pragma once
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+namespace ps {
+
+class RenderCommand {
+public:
+    void attach(CLI::App& app);
+    int run();  // exit status
+
+private:
+    CLI::App* cmd_ = nullptr;
+    std::string scene_;
+    int spp_ = 0;
+    double time_ = 0;
+    int threads_ = 0;
+    long long seed_ = -1;
+    int maxDepth_ = -1;
+    std::string integrator_;
+    std::vector<std::string> outputs_;
+    std::vector<float> crop_;
+    std::string statsFile_;
+    bool quiet_ = false;
+};
+
+}  // namespace ps

@@ -1,0 +1,30 @@
+#include "film/film.h"
+
+#include <cmath>
+
+namespace ps {
+
+Film::Film(int xRes, int yRes, PixelBounds bounds)
+    : xRes_(xRes), yRes_(yRes), bounds_(bounds), pixels_(size_t(bounds.area())) {}
+
+Image Film::image() const {
+    Image img(bounds_.width(), bounds_.height());
+    for (int y = 0; y < bounds_.height(); ++y)
+        for (int x = 0; x < bounds_.width(); ++x) {
+            const Pixel& p = pixels_[size_t(y) * bounds_.width() + x];
+            Spectrum v;
+            if (p.weight != 0)
+                v = Spectrum(float(p.sum[0] / p.weight), float(p.sum[1] / p.weight), float(p.sum[2] / p.weight));
+            if (!v.isFinite()) v = Spectrum();
+            img.set(x, y, v);
+        }
+    return img;
+}
+
+double Film::meanSamplesPerPixel() const {
+    long double total = 0;
+    for (const Pixel& p : pixels_) total += p.samples;
+    return pixels_.empty() ? 0.0 : double(total / pixels_.size());
+}
+
+}  // namespace ps

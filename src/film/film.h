@@ -1,0 +1,62 @@
+// The film accumulates weighted camera samples per pixel (sum of w*L and of w) and counts
+// what it had to reject, so no NaN or infinity ever reaches an image.
+#pragma once
+#include <atomic>
+#include <vector>
+#include "image/image.h"
+#include "math/spectrum.h"
+
+namespace ps {
+
+struct PixelBounds {
+    int x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // half-open [x0,x1) x [y0,y1) in full-resolution raster
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+    long long area() const { return (long long)width() * height(); }
+};
+
+class Film {
+public:
+    Film(int xRes, int yRes, PixelBounds bounds);
+
+    int xRes() const { return xRes_; }
+    int yRes() const { return yRes_; }
+    const PixelBounds& bounds() const { return bounds_; }
+
+    // Not thread-safe per pixel: callers own disjoint pixels (tiles). A non-finite L
+    // counts as a black sample with its weight (as pbrt-v4 does) and is tallied.
+    void addSample(int px, int py, Spectrum L, float weight) {
+        size_t i = index(px, py);
+        if (!L.isFinite()) {
+            L = Spectrum();
+            rejected_.fetch_add(1, std::memory_order_relaxed);
+        }
+        Pixel& p = pixels_[i];
+        p.sum[0] += double(L.r) * weight;
+        p.sum[1] += double(L.g) * weight;
+        p.sum[2] += double(L.b) * weight;
+        p.weight += weight;
+        p.samples += 1;
+    }
+
+    // The image of the crop region: each pixel the weighted mean of its samples.
+    Image image() const;
+    long long rejectedSamples() const { return rejected_.load(); }
+    // Mean number of samples per pixel so far.
+    double meanSamplesPerPixel() const;
+
+private:
+    struct Pixel {
+        double sum[3] = {0, 0, 0};
+        double weight = 0;
+        long long samples = 0;
+    };
+    size_t index(int px, int py) const { return size_t(py - bounds_.y0) * bounds_.width() + (px - bounds_.x0); }
+
+    int xRes_, yRes_;
+    PixelBounds bounds_;
+    std::vector<Pixel> pixels_;
+    std::atomic<long long> rejected_{0};
+};
+
+}  // namespace ps

@@ -1,0 +1,256 @@
+#include "geometry/quadric.h"
+
+#include "math/warp.h"
+
+namespace ps {
+
+namespace {
+
+void boundsCallback(const RTCBoundsFunctionArguments* args) {
+    auto* q = static_cast<const Quadric*>(args->geometryUserPtr);
+    Vec3 lo, hi;
+    q->objectBounds(lo, hi);
+    Vec3 blo(1e30f, 1e30f, 1e30f), bhi(-1e30f, -1e30f, -1e30f);
+    for (int i = 0; i < 8; ++i) {
+        Vec3 c((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
+        Vec3 w = q->toScene().point(c);
+        blo = vmin(blo, w);
+        bhi = vmax(bhi, w);
+    }
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = blo.x; b->lower_y = blo.y; b->lower_z = blo.z;
+    b->upper_x = bhi.x; b->upper_y = bhi.y; b->upper_z = bhi.z;
+}
+
+// Only single rays are traced (rtcIntersect1 / rtcOccluded1), so N is 1.
+void intersectCallback(const RTCIntersectFunctionNArguments* args) {
+    if (!args->valid[0]) return;
+    auto* q = static_cast<const Quadric*>(args->geometryUserPtr);
+    RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
+    const Transform inv = q->toScene().inverse();
+    Vec3 o = inv.point({rh->ray.org_x, rh->ray.org_y, rh->ray.org_z});
+    Vec3 d = inv.vector({rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z});
+    float t = q->intersectObject(o, d, rh->ray.tfar);
+    if (t > rh->ray.tnear && t < rh->ray.tfar) {
+        rh->ray.tfar = t;
+        rh->hit.u = rh->hit.v = 0;
+        rh->hit.Ng_x = rh->hit.Ng_y = 0;
+        rh->hit.Ng_z = 1;
+        rh->hit.primID = args->primID;
+        rh->hit.geomID = args->geomID;
+        rh->hit.instID[0] = args->context->instID[0];
+    }
+}
+
+void occludedCallback(const RTCOccludedFunctionNArguments* args) {
+    if (!args->valid[0]) return;
+    auto* q = static_cast<const Quadric*>(args->geometryUserPtr);
+    RTCRay* ray = reinterpret_cast<RTCRay*>(args->ray);
+    const Transform inv = q->toScene().inverse();
+    Vec3 o = inv.point({ray->org_x, ray->org_y, ray->org_z});
+    Vec3 d = inv.vector({ray->dir_x, ray->dir_y, ray->dir_z});
+    float t = q->intersectObject(o, d, ray->tfar);
+    if (t > ray->tnear && t < ray->tfar) ray->tfar = -std::numeric_limits<float>::infinity();
+}
+
+float phiOf(Vec3 p) {
+    float phi = std::atan2(p.y, p.x);
+    return phi < 0 ? phi + 2 * kPi : phi;
+}
+
+}  // namespace
+
+RTCGeometry Quadric::buildGeometry(RTCDevice device) const {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(g, 1);
+    rtcSetGeometryUserData(g, const_cast<Quadric*>(this));
+    rtcSetGeometryBoundsFunction(g, boundsCallback, nullptr);
+    rtcSetGeometryIntersectFunction(g, intersectCallback);
+    rtcSetGeometryOccludedFunction(g, occludedCallback);
+    rtcCommitGeometry(g);
+    return g;
+}
+
+// ---- Sphere ----
+
+Sphere::Sphere(const Transform& toScene, bool reverseOrientation, float radius, float zMin, float zMax, float phiMaxDeg)
+    : Quadric(toScene, reverseOrientation), radius_(radius) {
+    zMin_ = clampf(std::min(zMin, zMax), -radius, radius);
+    zMax_ = clampf(std::max(zMin, zMax), -radius, radius);
+    thetaZMin_ = std::acos(clampf(zMin_ / radius, -1, 1));
+    thetaZMax_ = std::acos(clampf(zMax_ / radius, -1, 1));
+    phiMax_ = radians(clampf(phiMaxDeg, 0, 360));
+    full_ = zMin_ <= -radius && zMax_ >= radius && phiMaxDeg >= 360;
+    center_ = toScene.point({0, 0, 0});
+    sceneRadius_ = radius * length(toScene.vector({1, 0, 0}));
+}
+
+void Sphere::objectBounds(Vec3& lo, Vec3& hi) const {
+    lo = {-radius_, -radius_, zMin_};
+    hi = {radius_, radius_, zMax_};
+}
+
+bool Sphere::inRange(Vec3 p) const {
+    if (full_) return true;
+    if (p.z < zMin_ || p.z > zMax_) return false;
+    return phiOf(p) <= phiMax_;
+}
+
+float Sphere::intersectObject(Vec3 o, Vec3 d, float tMax) const {
+    // Quadratic in double precision: |o + t d|^2 = r^2.
+    double a = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
+    double b = 2 * (double(d.x) * o.x + double(d.y) * o.y + double(d.z) * o.z);
+    double c = double(o.x) * o.x + double(o.y) * o.y + double(o.z) * o.z - double(radius_) * radius_;
+    double disc = b * b - 4 * a * c;
+    if (disc < 0 || a == 0) return -1;
+    double root = std::sqrt(disc);
+    double q = b < 0 ? -0.5 * (b - root) : -0.5 * (b + root);
+    double t0 = q / a, t1 = c / q;
+    if (t0 > t1) std::swap(t0, t1);
+    for (double t : {t0, t1}) {
+        if (!(t > 0) || t >= tMax) continue;
+        Vec3 p = o + d * float(t);
+        if (inRange(p)) return float(t);
+    }
+    return -1;
+}
+
+void Sphere::interaction(const Ray& r, float t, int, float, float, SurfaceInteraction& si) const {
+    Vec3 pObj = toScene_.inverse().point(r.o + r.d * t);
+    float l = length(pObj);
+    if (l > 0) pObj = pObj * (radius_ / l);  // reproject onto the surface
+    float phi = phiOf(pObj);
+    float theta = safeAcos(pObj.z / radius_);
+    si.uv = {phi / phiMax_, (theta - thetaZMin_) / (thetaZMax_ - thetaZMin_)};
+    si.p = toScene_.point(pObj);
+    si.t = t;
+    Vec3 n = normalize(toScene_.normal(pObj));
+    if (flip_) n = -n;
+    si.ng = si.ns = n;
+    si.dpdu = toScene_.vector({-phiMax_ * pObj.y, phiMax_ * pObj.x, 0});
+}
+
+float Sphere::area(int) const {
+    float s = sceneRadius_ / radius_;
+    return phiMax_ * radius_ * (zMax_ - zMin_) * s * s;
+}
+
+// Uniform over the whole sphere; points outside a partial sphere get pdf 0 (rejected).
+ShapeSample Sphere::sampleArea(int, Vec2 u) const {
+    Vec3 pObj = sampleUniformSphere(u) * radius_;
+    ShapeSample s;
+    s.p = toScene_.point(pObj);
+    Vec3 n = normalize(toScene_.normal(pObj));
+    s.n = flip_ ? -n : n;
+    float phi = phiOf(pObj);
+    s.uv = {phi / phiMax_, (safeAcos(pObj.z / radius_) - thetaZMin_) / (thetaZMax_ - thetaZMin_)};
+    s.pdf = inRange(pObj) ? 1.0f / (4 * kPi * sceneRadius_ * sceneRadius_) : 0.0f;
+    return s;
+}
+
+// Outside a full sphere: sample the cone of directions it subtends (uniform in solid angle).
+std::optional<ShapeSample> Sphere::sampleToward(int prim, Vec3 ref, Vec2 u) const {
+    Vec3 toC = center_ - ref;
+    float dc2 = lengthSquared(toC);
+    float r2 = sceneRadius_ * sceneRadius_;
+    if (!full_ || dc2 <= r2 * 1.0001f) return Shape::sampleToward(prim, ref, u);
+    float dc = std::sqrt(dc2);
+    float sin2Max = r2 / dc2;
+    float cosMax = safeSqrt(1 - sin2Max);
+    float oneMinusCosMax = sin2Max / (1 + cosMax);  // stable for tiny cones
+    float omc = u.x * oneMinusCosMax;
+    float cosT = 1 - omc;
+    float sinT = safeSqrt(omc * (2 - omc));
+    float phi = 2 * kPi * u.y;
+    Frame f = Frame::fromNormal(toC / dc);
+    Vec3 w = f.toWorld({sinT * std::cos(phi), sinT * std::sin(phi), cosT});
+    // Nearest intersection along w (clamped for rays grazing the silhouette).
+    float b = dot(toC, w);
+    float disc = r2 - (dc2 - b * b);
+    float t = b - safeSqrt(disc);
+    ShapeSample s;
+    s.p = ref + w * t;
+    Vec3 n = normalize(s.p - center_);
+    s.n = flip_ ? -n : n;
+    Vec3 pObj = toScene_.inverse().point(s.p);
+    s.uv = {phiOf(pObj) / phiMax_, (safeAcos(pObj.z / radius_) - thetaZMin_) / (thetaZMax_ - thetaZMin_)};
+    s.pdf = 1 / (2 * kPi * oneMinusCosMax);
+    if (!std::isfinite(s.pdf)) return std::nullopt;
+    return s;
+}
+
+float Sphere::pdfToward(int prim, Vec3 ref, Vec3 hitP, Vec3 hitN) const {
+    Vec3 toC = center_ - ref;
+    float dc2 = lengthSquared(toC);
+    float r2 = sceneRadius_ * sceneRadius_;
+    if (!full_ || dc2 <= r2 * 1.0001f) {
+        Vec3 d = hitP - ref;
+        float dist2 = lengthSquared(d);
+        if (!(dist2 > 0)) return 0;
+        float pdf = areaToSolidAngle(1 / (4 * kPi * r2), dist2, absDot(hitN, d) / std::sqrt(dist2));
+        return std::isfinite(pdf) ? pdf : 0.0f;
+    }
+    (void)prim;
+    float sin2Max = r2 / dc2;
+    float cosMax = safeSqrt(1 - sin2Max);
+    return 1 / (2 * kPi * (sin2Max / (1 + cosMax)));
+}
+
+// ---- Disk ----
+
+Disk::Disk(const Transform& toScene, bool reverseOrientation, float height, float radius, float innerRadius, float phiMaxDeg)
+    : Quadric(toScene, reverseOrientation), height_(height), radius_(radius),
+      innerRadius_(clampf(innerRadius, 0, radius)), phiMax_(radians(clampf(phiMaxDeg, 0, 360))) {}
+
+void Disk::objectBounds(Vec3& lo, Vec3& hi) const {
+    lo = {-radius_, -radius_, height_};
+    hi = {radius_, radius_, height_};
+}
+
+float Disk::intersectObject(Vec3 o, Vec3 d, float tMax) const {
+    if (d.z == 0) return -1;
+    float t = (height_ - o.z) / d.z;
+    if (!(t > 0) || t >= tMax) return -1;
+    Vec3 p = o + d * t;
+    float rho2 = p.x * p.x + p.y * p.y;
+    if (rho2 > radius_ * radius_ || rho2 < innerRadius_ * innerRadius_) return -1;
+    if (phiMax_ < 2 * kPi && phiOf(p) > phiMax_) return -1;
+    return t;
+}
+
+void Disk::interaction(const Ray& r, float t, int, float, float, SurfaceInteraction& si) const {
+    Vec3 pObj = toScene_.inverse().point(r.o + r.d * t);
+    pObj.z = height_;
+    float rho = std::sqrt(pObj.x * pObj.x + pObj.y * pObj.y);
+    float denom = radius_ - innerRadius_;
+    si.uv = {phiOf(pObj) / phiMax_, denom > 0 ? (radius_ - rho) / denom : 0.0f};
+    si.p = toScene_.point(pObj);
+    si.t = t;
+    Vec3 n = normalize(toScene_.normal({0, 0, 1}));
+    if (flip_) n = -n;
+    si.ng = si.ns = n;
+    si.dpdu = toScene_.vector({-phiMax_ * pObj.y, phiMax_ * pObj.x, 0});
+}
+
+float Disk::area(int) const {
+    float sx = length(toScene_.vector({1, 0, 0})), sy = length(toScene_.vector({0, 1, 0}));
+    return 0.5f * phiMax_ * (radius_ * radius_ - innerRadius_ * innerRadius_) * sx * sy;
+}
+
+ShapeSample Disk::sampleArea(int, Vec2 u) const {
+    // Uniform on the annulus sector: r^2 uniform between inner^2 and outer^2.
+    float r = std::sqrt(lerp(u.x, innerRadius_ * innerRadius_, radius_ * radius_));
+    float phi = u.y * phiMax_;
+    Vec3 pObj(r * std::cos(phi), r * std::sin(phi), height_);
+    ShapeSample s;
+    s.p = toScene_.point(pObj);
+    Vec3 n = normalize(toScene_.normal({0, 0, 1}));
+    s.n = flip_ ? -n : n;
+    float denom = radius_ - innerRadius_;
+    s.uv = {phi / phiMax_, denom > 0 ? (radius_ - r) / denom : 0.0f};
+    float a = area(0);
+    s.pdf = a > 0 ? 1 / a : 0;
+    return s;
+}
+
+}  // namespace ps

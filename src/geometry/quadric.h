@@ -1,0 +1,58 @@
+// Spheres and disks as exact implicit surfaces, intersected in object space through
+// Embree's user-geometry callbacks.
+#pragma once
+#include "geometry/shape.h"
+#include "math/transform.h"
+
+namespace ps {
+
+class Quadric : public Shape {
+public:
+    Quadric(const Transform& toScene, bool reverseOrientation)
+        : toScene_(toScene), flip_(reverseOrientation ^ toScene.swapsHandedness()) {}
+    RTCGeometry buildGeometry(RTCDevice device) const override;
+    int primitiveCount() const override { return 1; }
+    // Object-space ray-surface test: nearest t in (0, tMax), or a negative value.
+    virtual float intersectObject(Vec3 o, Vec3 d, float tMax) const = 0;
+    virtual void objectBounds(Vec3& lo, Vec3& hi) const = 0;
+    const Transform& toScene() const { return toScene_; }
+
+protected:
+    Transform toScene_;
+    bool flip_;
+};
+
+class Sphere final : public Quadric {
+public:
+    Sphere(const Transform& toScene, bool reverseOrientation, float radius, float zMin, float zMax, float phiMaxDeg);
+    float intersectObject(Vec3 o, Vec3 d, float tMax) const override;
+    void objectBounds(Vec3& lo, Vec3& hi) const override;
+    void interaction(const Ray& r, float t, int prim, float u, float v, SurfaceInteraction& si) const override;
+    float area(int prim) const override;
+    ShapeSample sampleArea(int prim, Vec2 u) const override;
+    std::optional<ShapeSample> sampleToward(int prim, Vec3 ref, Vec2 u) const override;
+    float pdfToward(int prim, Vec3 ref, Vec3 hitP, Vec3 hitN) const override;
+
+private:
+    bool inRange(Vec3 pObj) const;
+    bool isFull() const { return full_; }
+    float radius_, zMin_, zMax_, thetaZMin_, thetaZMax_, phiMax_;
+    bool full_;
+    Vec3 center_;        // scene-space centre
+    float sceneRadius_;  // radius in scene space (uniform scale assumed for sampling)
+};
+
+class Disk final : public Quadric {
+public:
+    Disk(const Transform& toScene, bool reverseOrientation, float height, float radius, float innerRadius, float phiMaxDeg);
+    float intersectObject(Vec3 o, Vec3 d, float tMax) const override;
+    void objectBounds(Vec3& lo, Vec3& hi) const override;
+    void interaction(const Ray& r, float t, int prim, float u, float v, SurfaceInteraction& si) const override;
+    float area(int prim) const override;
+    ShapeSample sampleArea(int prim, Vec2 u) const override;
+
+private:
+    float height_, radius_, innerRadius_, phiMax_;
+};
+
+}  // namespace ps

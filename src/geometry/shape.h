@@ -1,0 +1,40 @@
+// A shape is one Embree geometry made of primitives (triangles, or a single quadric).
+// Area lights sample shapes by primitive; integrators only see SurfaceInteraction.
+#pragma once
+#include <embree3/rtcore.h>
+#include <optional>
+#include <vector>
+#include "geometry/interaction.h"
+#include "geometry/ray.h"
+
+namespace ps {
+
+struct ShapeSample {
+    Vec3 p, n;          // point and its oriented geometric normal
+    Vec2 uv;
+    float pdf = 0;      // area measure for sampleArea, solid angle for sampleToward
+};
+
+class Shape {
+public:
+    virtual ~Shape() = default;
+    // Creates the committed Embree geometry (not attached to a scene).
+    virtual RTCGeometry buildGeometry(RTCDevice device) const = 0;
+    virtual int primitiveCount() const = 0;
+    // Fills geometry fields of si (p, ng, ns, dpdu, uv) for a hit of primitive prim at
+    // barycentrics (u, v) by ray r at distance t.
+    virtual void interaction(const Ray& r, float t, int prim, float u, float v, SurfaceInteraction& si) const = 0;
+    virtual float area(int prim) const = 0;
+    // Uniform by area over the primitive.
+    virtual ShapeSample sampleArea(int prim, Vec2 u) const = 0;
+    // Sample a point as seen from ref; pdf in solid angle at ref. Default: area sampling.
+    virtual std::optional<ShapeSample> sampleToward(int prim, Vec3 ref, Vec2 u) const;
+    // Solid-angle pdf at ref of sampleToward producing the point hit (dist2 = |hit - ref|^2).
+    virtual float pdfToward(int prim, Vec3 ref, Vec3 hitP, Vec3 hitN) const;
+
+    const Material* material = nullptr;
+    // Per-primitive emitters (empty when the shape does not emit).
+    std::vector<const Light*> areaLights;
+};
+
+}  // namespace ps

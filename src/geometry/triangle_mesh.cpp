@@ -1,0 +1,128 @@
+#include "geometry/triangle_mesh.h"
+
+#include "math/warp.h"
+
+namespace ps {
+
+TriangleMesh::TriangleMesh(TriangleMeshData data, const Transform& toScene, bool reverseOrientation) {
+    positions_.resize(data.P.size() * 3 + 1);  // +1 float: Embree reads 16 bytes per vertex
+    for (size_t i = 0; i < data.P.size(); ++i) {
+        Vec3 p = toScene.point(data.P[i]);
+        positions_[3 * i] = p.x;
+        positions_[3 * i + 1] = p.y;
+        positions_[3 * i + 2] = p.z;
+    }
+    if (data.N.size() == data.P.size()) {
+        normals_.resize(data.N.size());
+        for (size_t i = 0; i < data.N.size(); ++i) {
+            Vec3 n = toScene.normal(data.N[i]);
+            float l = length(n);
+            normals_[i] = l > 0 ? n / l : Vec3(0, 0, 0);
+            if (reverseOrientation) normals_[i] = -normals_[i];
+        }
+    }
+    if (data.uv.size() == data.P.size()) uv_ = std::move(data.uv);
+    indices_.assign(data.indices.begin(), data.indices.end());
+    flipNormal_ = reverseOrientation ^ toScene.swapsHandedness();
+}
+
+RTCGeometry TriangleMesh::buildGeometry(RTCDevice device) const {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, positions_.data(), 0,
+                               3 * sizeof(float), (positions_.size() - 1) / 3);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices_.data(), 0,
+                               3 * sizeof(unsigned), indices_.size() / 3);
+    rtcCommitGeometry(g);
+    return g;
+}
+
+static inline Vec3 loadP(const std::vector<float>& p, unsigned i) { return {p[3 * i], p[3 * i + 1], p[3 * i + 2]}; }
+
+Vec3 TriangleMesh::geometricNormal(int prim) const {
+    const unsigned* v = &indices_[3 * prim];
+    Vec3 p0 = loadP(positions_, v[0]), p1 = loadP(positions_, v[1]), p2 = loadP(positions_, v[2]);
+    Vec3 n = cross(p1 - p0, p2 - p0);
+    float l = length(n);
+    n = l > 0 ? n / l : Vec3(0, 0, 1);
+    return flipNormal_ ? -n : n;
+}
+
+// pbrt's default per-triangle parameterisation when a mesh has no uv.
+Vec2 TriangleMesh::uvAt(int vertex, int corner) const {
+    if (!uv_.empty()) return uv_[vertex];
+    return corner == 0 ? Vec2(0, 0) : (corner == 1 ? Vec2(1, 0) : Vec2(1, 1));
+}
+
+void TriangleMesh::interaction(const Ray& r, float t, int prim, float u, float v, SurfaceInteraction& si) const {
+    const unsigned* vi = &indices_[3 * prim];
+    Vec3 p0 = loadP(positions_, vi[0]), p1 = loadP(positions_, vi[1]), p2 = loadP(positions_, vi[2]);
+    float b0 = 1 - u - v;
+    si.p = p0 * b0 + p1 * u + p2 * v;
+    si.t = t;
+    (void)r;
+    Vec3 ng = cross(p1 - p0, p2 - p0);
+    float l = length(ng);
+    ng = l > 0 ? ng / l : Vec3(0, 0, 1);
+    if (flipNormal_) ng = -ng;
+
+    Vec2 uv0 = uvAt(vi[0], 0), uv1 = uvAt(vi[1], 1), uv2 = uvAt(vi[2], 2);
+    si.uv = uv0 * b0 + uv1 * u + uv2 * v;
+    // dp/du from the uv parameterisation (degenerate uv: any tangent).
+    Vec2 duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+    Vec3 dp02 = p0 - p2, dp12 = p1 - p2;
+    float det = duv02.x * duv12.y - duv02.y * duv12.x;
+    Vec3 dpdu;
+    bool ok = false;
+    if (std::fabs(det) > 1e-9f) {
+        dpdu = (dp02 * duv12.y - dp12 * duv02.y) / det;
+        ok = lengthSquared(cross(dpdu, ng)) > 0 && isFinite(dpdu);
+    }
+    if (!ok) {
+        Vec3 s, tt;
+        coordinateSystem(ng, s, tt);
+        dpdu = s;
+    }
+
+    if (!normals_.empty()) {
+        Vec3 ns = normals_[vi[0]] * b0 + normals_[vi[1]] * u + normals_[vi[2]] * v;
+        float ln = length(ns);
+        if (ln > 0) {
+            ns = ns / ln;
+            ng = faceForward(ng, ns);  // N decides the outside (PBRT-CONVENTIONS §4)
+        } else {
+            ns = ng;
+        }
+        si.ns = ns;
+    } else {
+        si.ns = ng;
+    }
+    si.ng = ng;
+    si.dpdu = dpdu;
+}
+
+float TriangleMesh::area(int prim) const {
+    const unsigned* v = &indices_[3 * prim];
+    Vec3 p0 = loadP(positions_, v[0]), p1 = loadP(positions_, v[1]), p2 = loadP(positions_, v[2]);
+    return 0.5f * length(cross(p1 - p0, p2 - p0));
+}
+
+ShapeSample TriangleMesh::sampleArea(int prim, Vec2 u) const {
+    const unsigned* vi = &indices_[3 * prim];
+    Vec3 p0 = loadP(positions_, vi[0]), p1 = loadP(positions_, vi[1]), p2 = loadP(positions_, vi[2]);
+    Vec2 b = sampleUniformTriangle(u);
+    float b2 = 1 - b.x - b.y;
+    ShapeSample s;
+    s.p = p0 * b.x + p1 * b.y + p2 * b2;
+    Vec3 n = geometricNormal(prim);
+    if (!normals_.empty()) {
+        Vec3 ns = normals_[vi[0]] * b.x + normals_[vi[1]] * b.y + normals_[vi[2]] * b2;
+        if (lengthSquared(ns) > 0) n = faceForward(n, ns);
+    }
+    s.n = n;
+    s.uv = uvAt(vi[0], 0) * b.x + uvAt(vi[1], 1) * b.y + uvAt(vi[2], 2) * b2;
+    float a = area(prim);
+    s.pdf = a > 0 ? 1.0f / a : 0.0f;
+    return s;
+}
+
+}  // namespace ps

@@ -1,0 +1,42 @@
+// Triangle meshes (trianglemesh, plymesh, triangulated bilinear patches), stored in the
+// space of the scene that holds them (world, or an instance prototype's space).
+#pragma once
+#include <vector>
+#include "geometry/shape.h"
+#include "math/transform.h"
+
+namespace ps {
+
+struct TriangleMeshData {
+    std::vector<Vec3> P;       // object space
+    std::vector<Vec3> N;       // optional, object space
+    std::vector<Vec2> uv;      // optional
+    std::vector<int> indices;  // 3 per triangle
+};
+
+class TriangleMesh final : public Shape {
+public:
+    // Transforms the data by `toScene`; orientation follows PBRT-CONVENTIONS §4: the
+    // winding normal carried through the transform, flipped by ReverseOrientation; with N,
+    // the shading normal decides and the geometric normal follows it.
+    TriangleMesh(TriangleMeshData data, const Transform& toScene, bool reverseOrientation);
+
+    RTCGeometry buildGeometry(RTCDevice device) const override;
+    int primitiveCount() const override { return int(indices_.size() / 3); }
+    void interaction(const Ray& r, float t, int prim, float u, float v, SurfaceInteraction& si) const override;
+    float area(int prim) const override;
+    ShapeSample sampleArea(int prim, Vec2 u) const override;
+
+private:
+    Vec3 geometricNormal(int prim) const;
+    Vec2 uvAt(int vertex, int corner) const;
+
+    std::vector<float> positions_;  // xyz per vertex plus padding for Embree's SSE loads
+    std::vector<Vec3> normals_;
+    std::vector<Vec2> uv_;
+    std::vector<unsigned> indices_;
+    bool flipNormal_ = false;  // ReverseOrientation XOR transform swaps handedness
+    bool reverseShadingNormals_ = false;
+};
+
+}  // namespace ps

@@ -1,0 +1,53 @@
+// Lights described by a delta distribution: point and spot (one position), distant (one
+// direction). Only light sampling can find them, so no MIS weight applies.
+#pragma once
+#include "lights/light.h"
+#include "math/frame.h"
+
+namespace ps {
+
+class PointLight final : public Light {
+public:
+    PointLight(Vec3 pos, Spectrum I) : Light(LightType::DeltaPosition), pos_(pos), I_(I) {}
+    std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
+    Spectrum phi() const override { return I_ * (4 * kPi); }
+
+private:
+    Vec3 pos_;
+    Spectrum I_;
+};
+
+class SpotLight final : public Light {
+public:
+    // cosFalloffEnd = cos(coneangle), cosFalloffStart = cos(coneangle - conedelta).
+    SpotLight(Vec3 pos, Vec3 axis, Spectrum I, float cosFalloffStart, float cosFalloffEnd)
+        : Light(LightType::DeltaPosition), pos_(pos), frame_(Frame::fromNormal(normalize(axis))), I_(I),
+          cosStart_(cosFalloffStart), cosEnd_(cosFalloffEnd) {}
+    std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
+    Spectrum phi() const override;
+    // Intensity towards world direction w leaving the light.
+    Spectrum intensity(Vec3 w) const;
+
+private:
+    Vec3 pos_;
+    Frame frame_;
+    Spectrum I_;
+    float cosStart_, cosEnd_;
+};
+
+class DistantLight final : public Light {
+public:
+    // wLight: unit direction towards the light (light travels along -wLight).
+    DistantLight(Vec3 wLight, Spectrum L) : Light(LightType::DeltaDirection), w_(wLight), L_(L) {}
+    std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
+    Spectrum phi() const override { return L_ * (kPi * sceneRadius_ * sceneRadius_); }
+    void preprocess(Vec3 c, float r) override { sceneCenter_ = c; sceneRadius_ = r; }
+
+private:
+    Vec3 w_;
+    Spectrum L_;
+    Vec3 sceneCenter_;
+    float sceneRadius_ = 1;
+};
+
+}  // namespace ps

@@ -1,0 +1,85 @@
+#include "lights/infinite_lights.h"
+
+#include "math/equal_area.h"
+#include "math/warp.h"
+
+namespace ps {
+
+std::optional<LightLiSample> UniformInfiniteLight::sampleLi(const LightSampleContext& ctx, Vec2 u) const {
+    Vec3 wi = sampleUniformSphere(u);
+    return LightLiSample{L_, wi, uniformSpherePdf(), ctx.p + wi * (2 * sceneRadius_ + length(ctx.p - sceneCenter_)), {}};
+}
+
+float UniformInfiniteLight::pdfLi(const LightSampleContext&, Vec3, const SurfaceInteraction*) const {
+    return uniformSpherePdf();
+}
+
+ImageInfiniteLight::ImageInfiniteLight(Image image, float scale, const Transform& worldFromLight, Layout layout)
+    : Light(LightType::Infinite), image_(std::move(image)), scale_(scale), worldFromLight_(worldFromLight),
+      layout_(layout) {
+    int w = image_.width, h = image_.height;
+    std::vector<float> weights(size_t(w) * h);
+    for (int y = 0; y < h; ++y) {
+        // Latitude-longitude rows shrink towards the poles by sin(theta).
+        float rowScale = layout_ == Layout::LatLong ? std::sin(kPi * (y + 0.5f) / h) : 1.0f;
+        for (int x = 0; x < w; ++x) weights[size_t(y) * w + x] = image_.get(x, y).luminance() * rowScale;
+    }
+    distribution_ = Distribution2D(weights, w, h);
+}
+
+Vec2 ImageInfiniteLight::directionToUV(Vec3 w) const {
+    if (layout_ == Layout::EqualArea) return equalAreaSphereToSquare(w);
+    // z up: theta from +z along rows, phi around z along columns.
+    float theta = safeAcos(w.z);
+    float phi = std::atan2(w.y, w.x);
+    if (phi < 0) phi += 2 * kPi;
+    return {phi * kInv2Pi, theta * kInvPi};
+}
+
+Vec3 ImageInfiniteLight::uvToDirection(Vec2 uv) const {
+    if (layout_ == Layout::EqualArea) return equalAreaSquareToSphere(uv);
+    float theta = uv.y * kPi, phi = uv.x * 2 * kPi;
+    float st = std::sin(theta);
+    return {st * std::cos(phi), st * std::sin(phi), std::cos(theta)};
+}
+
+float ImageInfiniteLight::uvPdfToSolidAngle(float pdfUV, Vec2 uv) const {
+    if (layout_ == Layout::EqualArea) return pdfUV / (4 * kPi);
+    float st = std::sin(uv.y * kPi);
+    return st > 0 ? pdfUV / (2 * kPi * kPi * st) : 0.0f;
+}
+
+// Nearest texel, as pbrt-v4 does for environment maps.
+Spectrum ImageInfiniteLight::lookup(Vec3 wWorld) const {
+    Vec3 w = normalize(worldFromLight_.inverse().vector(wWorld));
+    Vec2 uv = directionToUV(w);
+    int x = std::clamp(int(uv.x * image_.width), 0, image_.width - 1);
+    int y = std::clamp(int(uv.y * image_.height), 0, image_.height - 1);
+    return image_.get(x, y) * scale_;
+}
+
+std::optional<LightLiSample> ImageInfiniteLight::sampleLi(const LightSampleContext& ctx, Vec2 u) const {
+    float pdfUV;
+    Vec2 uv = distribution_.sampleContinuous(u, &pdfUV);
+    if (!(pdfUV > 0)) return std::nullopt;
+    Vec3 wi = normalize(worldFromLight_.vector(uvToDirection(uv)));
+    float pdf = uvPdfToSolidAngle(pdfUV, uv);
+    if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
+    return LightLiSample{lookup(wi), wi, pdf, ctx.p + wi * (2 * sceneRadius_ + length(ctx.p - sceneCenter_)), {}};
+}
+
+float ImageInfiniteLight::pdfLi(const LightSampleContext&, Vec3 wi, const SurfaceInteraction*) const {
+    Vec3 w = normalize(worldFromLight_.inverse().vector(wi));
+    Vec2 uv = directionToUV(w);
+    return uvPdfToSolidAngle(distribution_.pdf(uv), uv);
+}
+
+Spectrum ImageInfiniteLight::phi() const {
+    Spectrum sum;
+    for (int y = 0; y < image_.height; ++y)
+        for (int x = 0; x < image_.width; ++x) sum += image_.get(x, y);
+    float n = float(image_.width) * float(image_.height);
+    return sum * (scale_ / n) * (4 * kPi * kPi * sceneRadius_ * sceneRadius_);
+}
+
+}  // namespace ps

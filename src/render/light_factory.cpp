@@ -1,0 +1,99 @@
+#include "image/image.h"
+#include "lights/delta_lights.h"
+#include "lights/infinite_lights.h"
+#include "math/equal_area.h"
+#include "render/scene_builder.h"
+
+namespace ps {
+
+namespace {
+
+Spectrum emission(const ParamSet& ps, const char* name) {
+    return ps.getSpectrum(name, SpectrumKind::Illuminant).value_or(Spectrum(1.0f));
+}
+
+std::unique_ptr<Light> createInfinite(const LightEntity& e, const std::string& base) {
+    const ParamSet& ps = e.params;
+    float scale = ps.getFloat("scale", 1);
+    float E = ps.getFloat("illuminance", -1);
+    std::string file = ps.getString("filename", "");
+    if (ps.has("portal")) {
+        ps.getPoint3s("portal");
+        warning(e.loc, "infinite light: \"portal\" is not supported; the light is rendered without it");
+    }
+    if (file.empty()) {
+        Spectrum L = emission(ps, "L");
+        if (E > 0) scale *= E / kPi;  // uniform radiance L gives illuminance pi*L
+        return std::make_unique<UniformInfiniteLight>(L * scale);
+    }
+    if (ps.has("L")) throw InputError(e.loc, "infinite light: cannot have both \"L\" and \"filename\"");
+    Image img = readImage(resolvePath(base, file));
+    ImageInfiniteLight::Layout layout;
+    if (img.width == img.height) {
+        layout = ImageInfiniteLight::Layout::EqualArea;
+    } else if (img.width == 2 * img.height) {
+        layout = ImageInfiniteLight::Layout::LatLong;
+        warning(e.loc, "infinite light \"" + file +
+                           "\": 2:1 latitude-longitude map (z up) accepted; pbrt-v4 itself requires square equal-area maps");
+    } else {
+        throw InputError(e.loc, "infinite light \"" + file + "\": image is " + std::to_string(img.width) + "x" +
+                                    std::to_string(img.height) + "; expected a square equal-area map or a 2:1 latitude-longitude map");
+    }
+    if (E > 0 && layout == ImageInfiniteLight::Layout::EqualArea) {
+        // pbrt-v4's normalisation, reproduced exactly (it delivers about 2E; PBRT-CONVENTIONS §3).
+        double sum = 0;
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x) {
+                Vec2 uv((x + 0.5f) / img.width, (y + 0.5f) / img.height);
+                Vec3 w = equalAreaSquareToSphere(uv);
+                if (w.z > 0) sum += img.get(x, y).luminance() * w.z;
+            }
+        double k = 2 * kPi / (double(img.width) * img.height) * sum;
+        if (k > 0) scale *= float(E / k);
+    }
+    return std::make_unique<ImageInfiniteLight>(std::move(img), scale, e.worldFromLight, layout);
+}
+
+}  // namespace
+
+std::unique_ptr<Light> createLight(const LightEntity& e, const std::string& base) {
+    const ParamSet& ps = e.params;
+    const Transform& T = e.worldFromLight;
+    std::unique_ptr<Light> light;
+    if (e.type == "point") {
+        Spectrum I = emission(ps, "I");
+        float scale = ps.getFloat("scale", 1);
+        float P = ps.getFloat("power", -1);
+        if (P > 0) scale *= P / (4 * kPi);
+        light = std::make_unique<PointLight>(T.point(ps.getPoint3("from", {0, 0, 0})), I * scale);
+    } else if (e.type == "spot") {
+        Spectrum I = emission(ps, "I");
+        float scale = ps.getFloat("scale", 1);
+        float P = ps.getFloat("power", -1);
+        float cone = ps.getFloat("coneangle", 30), delta = ps.getFloat("conedeltaangle", 5);
+        float cosEnd = std::cos(radians(cone)), cosStart = std::cos(radians(cone - delta));
+        if (P > 0) scale *= P / (2 * kPi * ((1 - cosStart) + (cosStart - cosEnd) / 2));
+        Vec3 from = ps.getPoint3("from", {0, 0, 0}), to = ps.getPoint3("to", {0, 0, 1});
+        Vec3 axis = T.vector(to - from);
+        if (!(lengthSquared(axis) > 0)) throw InputError(e.loc, "spot light: \"from\" and \"to\" coincide");
+        light = std::make_unique<SpotLight>(T.point(from), axis, I * scale, cosStart, cosEnd);
+    } else if (e.type == "distant") {
+        Spectrum L = emission(ps, "L");
+        float scale = ps.getFloat("scale", 1);
+        float E = ps.getFloat("illuminance", -1);
+        if (E > 0) scale *= E;
+        Vec3 from = ps.getPoint3("from", {0, 0, 0}), to = ps.getPoint3("to", {0, 0, 1});
+        Vec3 w = T.vector(from - to);
+        if (!(lengthSquared(w) > 0)) throw InputError(e.loc, "distant light: \"from\" and \"to\" coincide");
+        light = std::make_unique<DistantLight>(normalize(w), L * scale);
+    } else if (e.type == "infinite") {
+        light = createInfinite(e, base);
+    } else {
+        warning(e.loc, "LightSource \"" + e.type + "\" is not supported; it is ignored");
+        return nullptr;
+    }
+    ps.reportUnused("LightSource \"" + e.type + "\"");
+    return light;
+}
+
+}  // namespace ps

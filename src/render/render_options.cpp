@@ -1,0 +1,163 @@
+// Camera, film, filter, sampler and integrator directives -> Scene settings.
+#include <cmath>
+
+#include "render/scene_builder.h"
+
+namespace ps {
+
+namespace {
+
+void applyCamera(const SceneDescription& desc, Scene& scene, int xRes, int yRes) {
+    const CameraEntity& c = desc.camera;
+    const ParamSet& ps = c.params;
+    Camera::Params p;
+    p.worldFromCamera = c.worldFromCamera;
+    p.xRes = xRes;
+    p.yRes = yRes;
+    if (c.type == "orthographic") {
+        p.projection = Camera::Projection::Orthographic;
+    } else if (c.type != "perspective") {
+        warning(c.loc, "Camera \"" + c.type + "\" is not supported; using \"perspective\"");
+    }
+    if (p.projection == Camera::Projection::Perspective) {
+        p.fovDeg = ps.getFloat("fov", 90);
+        if (!(p.fovDeg > 0 && p.fovDeg < 180)) throw InputError(c.loc, "Camera: \"fov\" must be in (0, 180) degrees");
+    }
+    p.lensRadius = ps.getFloat("lensradius", 0);
+    p.focalDistance = ps.getFloat("focaldistance", 1e6f);
+    std::vector<float> sw = ps.getFloats("screenwindow");
+    if (sw.size() == 4) {
+        for (int i = 0; i < 4; ++i) p.screenWindow[i] = sw[i];
+    } else if (!sw.empty()) {
+        throw InputError(c.loc, "Camera: \"screenwindow\" needs 4 values");
+    }
+    float frame = ps.getFloat("frameaspectratio", -1);
+    if (frame > 0 && sw.empty()) {
+        if (frame > 1) {
+            p.screenWindow[0] = -frame; p.screenWindow[1] = frame; p.screenWindow[2] = -1; p.screenWindow[3] = 1;
+        } else {
+            p.screenWindow[0] = -1; p.screenWindow[1] = 1; p.screenWindow[2] = -1 / frame; p.screenWindow[3] = 1 / frame;
+        }
+    }
+    float open = ps.getFloat("shutteropen", 0), close = ps.getFloat("shutterclose", 1);
+    scene.settings().imagingRatio *= (close - open);
+    scene.setCamera(std::make_unique<Camera>(p));
+    ps.reportUnused("Camera \"" + c.type + "\"");
+}
+
+PixelBounds computeBounds(const ParamSet& ps, const SourceLoc& loc, int xRes, int yRes) {
+    PixelBounds b{0, xRes, 0, yRes};
+    std::vector<float> crop = ps.getFloats("cropwindow");
+    std::vector<int> pb = ps.getInts("pixelbounds");
+    if (!pb.empty()) {
+        if (pb.size() != 4) throw InputError(loc, "Film: \"pixelbounds\" needs 4 values");
+        b = {std::max(0, pb[0]), std::min(xRes, pb[1]), std::max(0, pb[2]), std::min(yRes, pb[3])};
+    } else if (!crop.empty()) {
+        if (crop.size() != 4) throw InputError(loc, "Film: \"cropwindow\" needs 4 values");
+        auto c = [](float v) { return clampf(v, 0, 1); };
+        b = {int(std::ceil(xRes * c(std::min(crop[0], crop[1])))), int(std::ceil(xRes * c(std::max(crop[0], crop[1])))),
+             int(std::ceil(yRes * c(std::min(crop[2], crop[3])))), int(std::ceil(yRes * c(std::max(crop[2], crop[3]))))};
+    }
+    if (b.width() <= 0 || b.height() <= 0) throw InputError(loc, "Film: the crop window is empty");
+    return b;
+}
+
+std::unique_ptr<Filter> createFilter(const SceneEntity& f) {
+    const ParamSet& ps = f.params;
+    std::unique_ptr<Filter> filter;
+    auto radius = [&](float def) { return Vec2(ps.getFloat("xradius", def), ps.getFloat("yradius", def)); };
+    std::string type = f.type;
+    if (type != "box" && type != "gaussian" && type != "triangle" && type != "mitchell") {
+        warning(f.loc, "PixelFilter \"" + type + "\" is not supported; using \"gaussian\"");
+        type = "gaussian";
+    }
+    Vec2 r;
+    if (type == "box") {
+        r = radius(0.5f);
+    } else if (type == "gaussian") {
+        r = radius(1.5f);
+    } else {
+        r = radius(2.0f);
+    }
+    if (!(r.x > 0 && r.y > 0 && r.x < 64 && r.y < 64))
+        throw InputError(f.loc, "PixelFilter: radius must be in (0, 64)");
+    if (type == "box") filter = std::make_unique<BoxFilter>(r);
+    else if (type == "triangle") filter = std::make_unique<TriangleFilter>(r);
+    else if (type == "mitchell") filter = std::make_unique<MitchellFilter>(r, ps.getFloat("B", 1.f / 3), ps.getFloat("C", 1.f / 3));
+    else {
+        float sigma = ps.getFloat("sigma", 0.5f);
+        if (!(sigma > 0)) throw InputError(f.loc, "PixelFilter \"gaussian\": \"sigma\" must be positive");
+        filter = std::make_unique<GaussianFilter>(r, sigma);
+    }
+    if (f.type == type) ps.reportUnused("PixelFilter \"" + type + "\"");
+    return filter;
+}
+
+}  // namespace
+
+void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
+    RenderSettings& s = scene.settings();
+
+    // Film.
+    const ParamSet& film = desc.film.params;
+    if (desc.film.type != "rgb")
+        warning(desc.film.loc, "Film \"" + desc.film.type + "\" is not supported; using \"rgb\"");
+    int xRes = film.getInt("xresolution", 1280), yRes = film.getInt("yresolution", 720);
+    const long long kMaxPixels = 1LL << 26;  // 67 Mpixel
+    if (xRes <= 0 || yRes <= 0 || (long long)xRes * yRes > kMaxPixels)
+        throw InputError(desc.film.loc, "Film: resolution " + std::to_string(xRes) + "x" + std::to_string(yRes) +
+                                            " is out of range (positive, at most 67 Mpixels)");
+    s.outputFile = film.getString("filename", "pbrt.exr");
+    scene.setPixelBounds(computeBounds(film, desc.film.loc, xRes, yRes));
+    float iso = film.getFloat("iso", 100);
+    s.imagingRatio = iso / 100;
+    film.getBool("savefp16", true);  // we always write float32 EXR
+    film.getFloat("diagonal", 35);
+    if (film.getFloat("whitebalance", 0) != 0)
+        warning(desc.film.loc, "Film: \"whitebalance\" is not supported; ignored");
+    if (film.getString("sensor", "cie1931") != "cie1931")
+        warning(desc.film.loc, "Film: only the \"cie1931\" sensor is supported; using it");
+    if (film.has("maxcomponentvalue")) {
+        film.getFloat("maxcomponentvalue", 0);
+        warning(desc.film.loc, "Film: \"maxcomponentvalue\" is not supported; samples are not clamped");
+    }
+    film.reportUnused("Film \"rgb\"");
+
+    applyCamera(desc, scene, xRes, yRes);
+    scene.setFilter(createFilter(desc.filter));
+
+    // Sampler: only independent sampling exists yet.
+    const ParamSet& sp = desc.sampler.params;
+    s.spp = sp.getInt("pixelsamples", desc.sampler.type == "independent" ? 4 : 16);
+    s.seed = uint64_t(sp.getInt("seed", 0));
+    sp.getString("randomization", "");
+    sp.getBool("jitter", true);
+    if (desc.sampler.type == "stratified") {
+        s.spp = sp.getInt("xsamples", 4) * sp.getInt("ysamples", 4);
+    }
+    if (desc.sampler.type != "independent")
+        warning(desc.sampler.loc, "Sampler \"" + desc.sampler.type + "\" is not available yet; using \"independent\"");
+    s.sampler = "independent";
+    if (s.spp <= 0) throw InputError(desc.sampler.loc, "Sampler: \"pixelsamples\" must be positive");
+    sp.reportUnused("Sampler \"" + desc.sampler.type + "\"");
+
+    // Integrator.
+    const ParamSet& ip = desc.integrator.params;
+    std::string it = desc.integrator.type;
+    s.maxDepth = ip.getInt("maxdepth", 5);
+    if (s.maxDepth < 0) throw InputError(desc.integrator.loc, "Integrator: \"maxdepth\" must be >= 0");
+    s.regularize = ip.getBool("regularize", false);
+    ip.getString("lightsampler", "bvh");  // any unbiased light choice gives the same image
+    if (it == "path" || it == "volpath") {
+        s.integrator = "path";
+    } else {
+        warning(desc.integrator.loc, "Integrator \"" + it + "\" is not available yet; using \"path\"");
+        s.integrator = "path";
+    }
+    if (it == "path" || it == "volpath") ip.reportUnused("Integrator \"" + it + "\"");
+
+    auto seedOpt = desc.options.find("seed");
+    if (seedOpt != desc.options.end()) s.seed = std::strtoull(seedOpt->second.c_str(), nullptr, 10);
+}
+
+}  // namespace ps

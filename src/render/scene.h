@@ -1,0 +1,88 @@
+// The renderable scene: Embree BVH over shapes and instances, materials, lights with a
+// power-proportional light chooser, the camera and the render settings from the file.
+#pragma once
+#include <embree3/rtcore.h>
+#include <memory>
+#include <string>
+#include <vector>
+#include "camera/camera.h"
+#include "film/filter.h"
+#include "film/film.h"
+#include "geometry/shape.h"
+#include "lights/light.h"
+#include "materials/material.h"
+#include "mc/distribution.h"
+
+namespace ps {
+
+// What the scene file asks for; the command line may override each field.
+struct RenderSettings {
+    std::string integrator = "path";
+    int maxDepth = 5;
+    bool regularize = false;
+    std::string sampler = "independent";
+    int spp = 16;
+    uint64_t seed = 0;
+    std::string outputFile = "pbrt.exr";
+    float imagingRatio = 1;  // (shutterclose - shutteropen) * iso / 100
+};
+
+class Scene {
+public:
+    Scene();
+    ~Scene();
+    Scene(const Scene&) = delete;
+    Scene& operator=(const Scene&) = delete;
+
+    // Closest hit within r.tMax; fills si (geometry, material, emitter, wo).
+    bool intersect(const Ray& r, SurfaceInteraction& si) const;
+    // Any hit within r.tMax.
+    bool occluded(const Ray& r) const;
+
+    // Light choice in proportion to power (luminance of phi).
+    const Light* sampleLight(float u, float* pmf) const;
+    float lightPmf(const Light* light) const;
+
+    const std::vector<std::unique_ptr<Light>>& lights() const { return lights_; }
+    const std::vector<const Light*>& infiniteLights() const { return infiniteLights_; }
+    const Camera& camera() const { return *camera_; }
+    const Filter& filter() const { return *filter_; }
+    const PixelBounds& pixelBounds() const { return pixelBounds_; }
+    void setPixelBounds(const PixelBounds& b) { pixelBounds_ = b; }
+    void setCamera(std::unique_ptr<Camera> c) { camera_ = std::move(c); }
+    void setFilter(std::unique_ptr<Filter> f) { filter_ = std::move(f); }
+    const RenderSettings& settings() const { return settings_; }
+    RenderSettings& settings() { return settings_; }
+    Vec3 boundsCenter() const { return center_; }
+    // The underlying Embree scene, for benchmarks that measure raw traversal speed.
+    RTCScene embreeScene() const { return scene_; }
+    float boundsRadius() const { return radius_; }
+
+private:
+    friend class SceneBuilder;
+    struct Instance {
+        Transform worldFromPrototype;
+        int prototype;
+    };
+
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+    std::vector<RTCScene> prototypeScenes_;
+    std::vector<std::unique_ptr<Shape>> shapes_;          // owns every shape
+    std::vector<const Shape*> worldGeometry_;             // by world geomID (nullptr: instance)
+    std::vector<int> instanceOfGeometry_;                 // by world geomID: index into instances_, or -1
+    std::vector<Instance> instances_;
+    std::vector<std::vector<const Shape*>> prototypeGeometry_;  // by prototype, by geomID
+    std::vector<std::shared_ptr<Material>> materials_;
+    std::vector<std::unique_ptr<Light>> lights_;
+    std::vector<const Light*> infiniteLights_;
+    Distribution1D lightDistribution_;
+    std::unique_ptr<Camera> camera_;
+    std::unique_ptr<Filter> filter_;
+    PixelBounds pixelBounds_;
+    RenderSettings settings_;
+    Vec3 center_;
+    float radius_ = 1;
+};
+
+}  // namespace ps

@@ -1,0 +1,238 @@
+#include "render/scene_builder.h"
+
+#include <cstdio>
+#include <limits>
+#include <mutex>
+
+#include "lights/area_light.h"
+#include "materials/create.h"
+
+namespace ps {
+
+// Friend of Scene: assembles its private parts.
+class SceneBuilder {
+public:
+    SceneBuilder(const SceneDescription& desc, Scene& scene) : desc_(desc), scene_(scene) {}
+    void build();
+
+private:
+    void createMaterials();
+    const Material* materialFor(const ShapeEntity& e) const;
+    void addAreaLights(const ShapeEntity& e, Shape& shape);
+    void addWorldShapes();
+    void addInstances();
+    void addLights();
+    unsigned attach(RTCScene target, const Shape& shape);
+
+    const SceneDescription& desc_;
+    Scene& scene_;
+    TextureRegistry textures_;
+    std::map<std::string, std::shared_ptr<Material>> named_;
+};
+
+namespace {
+std::mutex gEmbreeErrorMutex;
+std::string gEmbreeError;
+void embreeError(void*, RTCError code, const char* str) {
+    if (code == RTC_ERROR_NONE) return;
+    std::lock_guard<std::mutex> lock(gEmbreeErrorMutex);
+    gEmbreeError = str ? str : "unknown Embree error";
+}
+}  // namespace
+
+void SceneBuilder::createMaterials() {
+    const std::string& base = desc_.baseDirectory;
+    for (const TextureEntity& t : desc_.floatTextures)
+        if (auto tex = createFloatTexture(t, textures_, base)) textures_.floats[t.name] = tex;
+    for (const TextureEntity& t : desc_.spectrumTextures)
+        if (auto tex = createSpectrumTexture(t, textures_, base)) textures_.spectra[t.name] = tex;
+
+    // Named materials: `mix` refers to others, so create in rounds until all resolve.
+    std::vector<const MaterialEntity*> pending;
+    for (const auto& [name, m] : desc_.namedMaterials) pending.push_back(&m);
+    while (!pending.empty()) {
+        std::vector<const MaterialEntity*> next;
+        for (const MaterialEntity* m : pending) {
+            bool ready = true;
+            if (m->type == "mix")
+                for (const std::string& n : m->params.getStrings("materials"))
+                    if (!named_.count(n)) ready = false;
+            if (ready)
+                named_[m->name] = createMaterial(m->type, m->params, textures_, named_, base);
+            else
+                next.push_back(m);
+        }
+        if (next.size() == pending.size()) {
+            const MaterialEntity* m = next.front();
+            throw InputError(m->loc, "mix material \"" + m->name + "\" refers to a material that is not defined");
+        }
+        pending = std::move(next);
+    }
+    for (const MaterialEntity& m : desc_.materials)
+        scene_.materials_.push_back(createMaterial(m.type, m.params, textures_, named_, base));
+}
+
+const Material* SceneBuilder::materialFor(const ShapeEntity& e) const {
+    if (!e.material.name.empty()) {
+        auto it = named_.find(e.material.name);
+        if (it == named_.end()) throw InputError(e.loc, "NamedMaterial \"" + e.material.name + "\" is not defined");
+        return it->second.get();
+    }
+    if (e.material.index >= 0 && size_t(e.material.index) < scene_.materials_.size())
+        return scene_.materials_[e.material.index].get();
+    return scene_.materials_.empty() ? nullptr : scene_.materials_.front().get();
+}
+
+void SceneBuilder::addAreaLights(const ShapeEntity& e, Shape& shape) {
+    if (e.areaLight < 0 || size_t(e.areaLight) >= desc_.areaLights.size()) return;
+    const SceneEntity& al = desc_.areaLights[e.areaLight];
+    if (shape.material && shape.material->isInterface()) {
+        warning(e.loc, "area light on a shape with the \"interface\" material is ignored (as in pbrt-v4)");
+        return;
+    }
+    if (al.type != "diffuse") {
+        warning(al.loc, "AreaLightSource \"" + al.type + "\" is not supported; using \"diffuse\"");
+    }
+    const ParamSet& ps = al.params;
+    Spectrum L = ps.getSpectrum("L", SpectrumKind::Illuminant).value_or(Spectrum(1.0f));
+    float scale = ps.getFloat("scale", 1);
+    bool twoSided = ps.getBool("twosided", false);
+    float power = ps.getFloat("power", -1);
+    if (ps.has("filename")) {
+        ps.getString("filename", "");
+        warning(al.loc, "AreaLightSource: image \"filename\" is not supported yet; using \"L\"");
+    }
+    ps.reportUnused("AreaLightSource \"diffuse\"");
+    int n = shape.primitiveCount();
+    shape.areaLights.resize(n);
+    for (int i = 0; i < n; ++i) {
+        float s = scale;
+        // pbrt-v4: power is per shape, and every triangle of a mesh is a shape.
+        if (power > 0) {
+            float a = shape.area(i);
+            s *= a > 0 ? power / (kPi * (twoSided ? 2 : 1) * a) : 0.0f;
+        }
+        auto light = std::make_unique<DiffuseAreaLight>(&shape, i, L * s, twoSided);
+        shape.areaLights[i] = light.get();
+        scene_.lights_.push_back(std::move(light));
+    }
+}
+
+unsigned SceneBuilder::attach(RTCScene target, const Shape& shape) {
+    RTCGeometry g = shape.buildGeometry(scene_.device_);
+    unsigned id = rtcAttachGeometry(target, g);
+    rtcReleaseGeometry(g);
+    return id;
+}
+
+void SceneBuilder::addWorldShapes() {
+    for (const ShapeEntity& e : desc_.shapes) {
+        std::unique_ptr<Shape> shape = createShape(e, e.worldFromObject, desc_.baseDirectory);
+        if (!shape || shape->primitiveCount() == 0) continue;
+        shape->material = materialFor(e);
+        addAreaLights(e, *shape);
+        unsigned id = attach(scene_.scene_, *shape);
+        if (scene_.worldGeometry_.size() <= id) {
+            scene_.worldGeometry_.resize(id + 1, nullptr);
+            scene_.instanceOfGeometry_.resize(id + 1, -1);
+        }
+        scene_.worldGeometry_[id] = shape.get();
+        scene_.shapes_.push_back(std::move(shape));
+    }
+}
+
+void SceneBuilder::addInstances() {
+    std::map<std::string, int> prototypeIndex;
+    for (const auto& [name, def] : desc_.instances) {
+        RTCScene proto = rtcNewScene(scene_.device_);
+        rtcSetSceneBuildQuality(proto, RTC_BUILD_QUALITY_HIGH);
+        std::vector<const Shape*> geoms;
+        for (const ShapeEntity& e : def.shapes) {
+            std::unique_ptr<Shape> shape = createShape(e, e.worldFromObject, desc_.baseDirectory);
+            if (!shape || shape->primitiveCount() == 0) continue;
+            shape->material = materialFor(e);
+            unsigned id = attach(proto, *shape);
+            if (geoms.size() <= id) geoms.resize(id + 1, nullptr);
+            geoms[id] = shape.get();
+            scene_.shapes_.push_back(std::move(shape));
+        }
+        rtcCommitScene(proto);
+        prototypeIndex[name] = int(scene_.prototypeScenes_.size());
+        scene_.prototypeScenes_.push_back(proto);
+        scene_.prototypeGeometry_.push_back(std::move(geoms));
+    }
+    for (const InstanceUse& use : desc_.instanceUses) {
+        auto it = prototypeIndex.find(use.name);
+        if (it == prototypeIndex.end()) throw InputError(use.loc, "ObjectInstance \"" + use.name + "\" is not defined");
+        if (scene_.prototypeGeometry_[it->second].empty()) continue;
+        RTCGeometry g = rtcNewGeometry(scene_.device_, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(g, scene_.prototypeScenes_[it->second]);
+        float xfm[12];
+        const Matrix4& m = use.worldFromInstance.matrix();
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c) xfm[r * 4 + c] = m.m[r][c];
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+        rtcCommitGeometry(g);
+        unsigned id = rtcAttachGeometry(scene_.scene_, g);
+        rtcReleaseGeometry(g);
+        if (scene_.worldGeometry_.size() <= id) {
+            scene_.worldGeometry_.resize(id + 1, nullptr);
+            scene_.instanceOfGeometry_.resize(id + 1, -1);
+        }
+        scene_.instanceOfGeometry_[id] = int(scene_.instances_.size());
+        scene_.instances_.push_back({use.worldFromInstance, it->second});
+    }
+}
+
+void SceneBuilder::addLights() {
+    for (const LightEntity& e : desc_.lights)
+        if (auto light = createLight(e, desc_.baseDirectory)) scene_.lights_.push_back(std::move(light));
+}
+
+void SceneBuilder::build() {
+    applyRenderOptions(desc_, scene_);
+    scene_.device_ = rtcNewDevice(nullptr);
+    if (!scene_.device_) throw std::runtime_error("cannot create the Embree device");
+    rtcSetDeviceErrorFunction(scene_.device_, embreeError, nullptr);
+    scene_.scene_ = rtcNewScene(scene_.device_);
+    rtcSetSceneBuildQuality(scene_.scene_, RTC_BUILD_QUALITY_HIGH);
+
+    createMaterials();
+    addWorldShapes();
+    addInstances();
+    addLights();
+    rtcCommitScene(scene_.scene_);
+    {
+        std::lock_guard<std::mutex> lock(gEmbreeErrorMutex);
+        if (!gEmbreeError.empty()) {
+            std::string msg = gEmbreeError;
+            gEmbreeError.clear();
+            throw std::runtime_error("Embree: " + msg);
+        }
+    }
+
+    RTCBounds b;
+    rtcGetSceneBounds(scene_.scene_, &b);
+    Vec3 lo(b.lower_x, b.lower_y, b.lower_z), hi(b.upper_x, b.upper_y, b.upper_z);
+    if (isFinite(lo) && isFinite(hi) && lo.x <= hi.x) {
+        scene_.center_ = (lo + hi) * 0.5f;
+        scene_.radius_ = std::max(1e-3f, length(hi - lo) * 0.5f);
+    }
+    std::vector<float> power;
+    for (size_t i = 0; i < scene_.lights_.size(); ++i) {
+        Light& l = *scene_.lights_[i];
+        l.index = int(i);
+        l.preprocess(scene_.center_, scene_.radius_);
+        if (l.type() == LightType::Infinite) scene_.infiniteLights_.push_back(&l);
+        power.push_back(l.phi().luminance());
+    }
+    scene_.lightDistribution_ = Distribution1D(power);
+}
+
+std::unique_ptr<Scene> buildScene(const SceneDescription& desc) {
+    auto scene = std::make_unique<Scene>();
+    SceneBuilder(desc, *scene).build();
+    return scene;
+}
+
+}  // namespace ps

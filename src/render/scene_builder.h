@@ -1,0 +1,22 @@
+// Turns a parsed SceneDescription into a renderable Scene.
+#pragma once
+#include <memory>
+#include "render/scene.h"
+#include "scene/scene_description.h"
+
+namespace ps {
+
+// Throws InputError for problems in the scene (missing files, bad values); warns for
+// unsupported features and falls back to the nearest supported behaviour.
+std::unique_ptr<Scene> buildScene(const SceneDescription& desc);
+
+// Individual steps, exposed for the builder's own files and for tests.
+std::unique_ptr<Shape> createShape(const ShapeEntity& e, const Transform& toScene, const std::string& baseDirectory);
+// Lights declared by LightSource (not area lights).
+std::unique_ptr<Light> createLight(const LightEntity& e, const std::string& baseDirectory);
+// Camera, film, filter, sampler and integrator settings.
+void applyRenderOptions(const SceneDescription& desc, Scene& scene);
+
+std::string resolvePath(const std::string& baseDirectory, const std::string& file);
+
+}  // namespace ps

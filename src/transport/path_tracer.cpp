@@ -1,0 +1,124 @@
+#include "transport/path_tracer.h"
+
+#include "transport/mis.h"
+#include "util/error.h"
+
+namespace ps {
+
+Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
+                                  Sampler& sampler, PathStats& stats) const {
+    float uLight = sampler.get1D();
+    Vec2 u = sampler.get2D();
+    float pmf;
+    const Light* light = scene_.sampleLight(uLight, &pmf);
+    if (!light || !(pmf > 0)) return {};
+    auto ls = light->sampleLi(LightSampleContext{si.p, si.ng}, u);
+    if (!ls || ls->L.isBlack() || !(ls->pdf > 0)) return {};
+    Vec3 wiLocal = frame.toLocal(ls->wi);
+    Spectrum f = bxdf.f(woLocal, wiLocal, TransportMode::Radiance) * absCosTheta(wiLocal);
+    if (f.isBlack()) return {};
+    ++stats.shadowRays;
+    if (scene_.occluded(spawnRayTo(si.p, si.ng, ls->pLight))) return {};
+    float pLight = pmf * ls->pdf;
+    if (light->isDelta()) return f * ls->L / pLight;
+    float pBsdf = bxdf.pdf(woLocal, wiLocal, TransportMode::Radiance);
+    return f * ls->L * (powerHeuristic(pLight, pBsdf) / pLight);
+}
+
+Spectrum PathTracer::Li(const Ray& cameraRay, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats) const {
+    Spectrum L, beta(1.0f);
+    Ray ray = cameraRay;
+    int depth = 0;
+    bool specularBounce = false;
+    float etaScale = 1;     // product of eta'^2 over refractions, for roulette
+    float prevBsdfPdf = 0;  // solid-angle pdf of the direction just sampled
+    LightSampleContext prevCtx;
+    ++stats.cameraPaths;
+
+    while (true) {
+        SurfaceInteraction si;
+        ++stats.rays;
+        if (!scene_.intersect(ray, si)) {
+            for (const Light* light : scene_.infiniteLights()) {
+                Spectrum Le = light->Le(ray);
+                if (Le.isBlack()) continue;
+                if (depth == 0 || specularBounce) {
+                    L += beta * Le;
+                } else {
+                    float pl = scene_.lightPmf(light) * light->pdfLi(prevCtx, ray.d, nullptr);
+                    L += beta * Le * powerHeuristic(prevBsdfPdf, pl);
+                }
+            }
+            break;
+        }
+
+        // Emission found by the path (s = 0 strategy), MIS-weighted against light sampling.
+        if (si.areaLight) {
+            Spectrum Le = si.areaLight->L(si.p, si.ng, si.uv, si.wo);
+            if (!Le.isBlack()) {
+                if (depth == 0 || specularBounce) {
+                    L += beta * Le;
+                } else {
+                    float pl = scene_.lightPmf(si.areaLight) * si.areaLight->pdfLi(prevCtx, ray.d, &si);
+                    L += beta * Le * powerHeuristic(prevBsdfPdf, pl);
+                }
+            }
+        }
+
+        MaterialEvalContext mctx;
+        mctx.p = si.p;
+        mctx.n = si.ns;
+        mctx.uv = si.uv;
+        mctx.wo = si.wo;
+        mctx.dpdu = si.dpdu;
+        const Material* material = si.material ? si.material->resolve(mctx) : nullptr;
+        const BxDF* bxdf = material ? material->bxdf(mctx, scratch) : nullptr;
+        if (!bxdf) {
+            // `interface`: not a scattering event; continue straight through.
+            specularBounce = true;
+            ray = spawnRay(si.p, si.ng, ray.d);
+            continue;
+        }
+        if (depth++ == maxDepth_) break;
+
+        Frame frame = si.shadingFrame();
+        Vec3 woLocal = frame.toLocal(si.wo);
+        if (woLocal.z == 0) break;
+        uint8_t flags = bxdf->flags();
+        if (flags & (kDiffuse | kGlossy)) L += beta * sampleDirect(si, frame, *bxdf, woLocal, sampler, stats);
+
+        float uc = sampler.get1D();
+        Vec2 u = sampler.get2D();
+        auto bs = bxdf->sample(woLocal, uc, u, TransportMode::Radiance);
+        if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) break;
+        Vec3 wi = frame.toWorld(bs->wi);
+        Spectrum weight = bs->f * (absCosTheta(bs->wi) / bs->pdf);
+        if (!weight.isFinite()) {
+            ++stats.guarded;
+            break;
+        }
+        beta *= weight;
+        prevBsdfPdf = bs->pdf;
+        specularBounce = bs->isSpecular();
+        if (bs->isTransmission()) etaScale *= sqr(bs->eta);
+        prevCtx = LightSampleContext{si.p, si.ng};
+        ray = spawnRay(si.p, si.ng, wi);
+
+        // Russian roulette on the throughput with the radiance scaling of refraction undone.
+        Spectrum rrBeta = beta * etaScale;
+        float m = rrBeta.maxComponent();
+        if (m < 1 && depth > 1) {
+            float q = std::max(0.0f, 1 - m);
+            if (sampler.get1D() < q) break;
+            beta /= 1 - q;
+        }
+    }
+    return L;
+}
+
+std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scene& scene) {
+    if (name == "path") return std::make_unique<PathTracer>(scene, scene.settings().maxDepth);
+    throw InputError("unknown integrator \"" + name + "\" (available: path)");
+}
+
+}  // namespace ps

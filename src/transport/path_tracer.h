@@ -1,0 +1,23 @@
+// Unidirectional path tracing with next-event estimation and BSDF sampling combined by
+// the power heuristic (thesis ch. 9), Russian roulette after the second bounce (thesis
+// §2.5.3.2 / pbrt-v4's rule), maxdepth = number of scattering events.
+#pragma once
+#include "transport/integrator.h"
+
+namespace ps {
+
+class PathTracer final : public Integrator {
+public:
+    PathTracer(const Scene& scene, int maxDepth) : scene_(scene), maxDepth_(maxDepth) {}
+    Spectrum Li(const Ray& ray, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats) const override;
+
+private:
+    // Direct lighting at a surface by one light sample, MIS-weighted against BSDF sampling.
+    Spectrum sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
+                          Sampler& sampler, PathStats& stats) const;
+
+    const Scene& scene_;
+    int maxDepth_;
+};
+
+}  // namespace ps

@@ -1,0 +1,158 @@
+// End-to-end tests of the pathspace command: exit codes, outputs, statistics, early stops.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+#include "image/image.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+    int status = -1;
+    std::string out;  // stdout and stderr together
+};
+
+Result run(const std::string& args) {
+    std::string cmd = std::string(PATHSPACE_BINARY) + " " + args + " 2>&1";
+    Result r;
+    FILE* p = popen(cmd.c_str(), "r");
+    if (!p) return r;
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+    int st = pclose(p);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return r;
+}
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("pathspace-cli-" + std::to_string(getpid()) + "-" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    std::string write(const std::string& name, const std::string& text) {
+        fs::path p = dir / name;
+        std::ofstream(p) << text;
+        return p.string();
+    }
+    fs::path dir;
+};
+
+const char* kSmallScene = R"(LookAt 0 0 5  0 0 0  0 1 0
+Camera "perspective" "float fov" [ 30 ]
+Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 24 ] "string filename" [ "small.exr" ]
+Sampler "independent" "integer pixelsamples" [ 4 ]
+WorldBegin
+LightSource "infinite" "rgb L" [ 1 1 1 ]
+Material "diffuse"
+Shape "sphere" "float radius" [ 1 ]
+)";
+
+}  // namespace
+
+TEST_F(Cli, HelpDocumentsEveryOption) {
+    Result r = run("--help");
+    EXPECT_EQ(r.status, 0);
+    EXPECT_NE(r.out.find("render"), std::string::npos);
+    Result rr = run("render --help");
+    EXPECT_EQ(rr.status, 0);
+    for (const char* opt : {"--spp", "--time", "--threads", "--seed", "--integrator", "--output", "--crop", "--stats", "--quiet"})
+        EXPECT_NE(rr.out.find(opt), std::string::npos) << opt;
+}
+
+TEST_F(Cli, MissingSceneIsBadInput) {
+    Result r = run("render " + (dir / "nope.pbrt").string());
+    EXPECT_EQ(r.status, 2);
+}
+
+TEST_F(Cli, SyntaxErrorNamesFileLineColumn) {
+    std::string scene = write("bad.pbrt", "LookAt 0 0 5  0 0 0  0 1 0\nWorldBegin\n  Shape \"sphere\" \"float radius [ 1 ]\n");
+    Result r = run("render --quiet " + scene);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.out.find("bad.pbrt:3:"), std::string::npos) << r.out;
+}
+
+TEST_F(Cli, UnwritableOutputFailsBeforeRendering) {
+    std::string scene = write("s.pbrt", kSmallScene);
+    Result r = run("render --quiet --spp 100000 " + scene + " -o /nonexistent-dir/x.exr");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.out.find("/nonexistent-dir"), std::string::npos) << r.out;
+    Result r2 = run("render --quiet " + scene + " -o " + (dir / "x.tga").string());
+    EXPECT_EQ(r2.status, 2);
+}
+
+TEST_F(Cli, RendersToFilmFilenameAndWritesStats) {
+    std::string scene = write("s.pbrt", kSmallScene);
+    std::string cmd = "cd " + dir.string() + " && " + PATHSPACE_BINARY + " render --quiet --stats stats.json s.pbrt";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    ASSERT_TRUE(fs::exists(dir / "small.exr"));
+    ps::Image img = ps::readImage((dir / "small.exr").string());
+    EXPECT_EQ(img.width, 32);
+    EXPECT_EQ(img.height, 24);
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "stats.json"));
+    for (const char* k : {"wall_time_s", "spp_mean", "camera_paths_per_s", "rays", "rays_per_s"})
+        EXPECT_TRUE(j.contains(k)) << k;
+    EXPECT_EQ(j["spp_mean"].get<double>(), 4.0);
+    EXPECT_EQ(j["camera_paths"].get<long long>(), 32 * 24 * 4);
+}
+
+TEST_F(Cli, SeveralOutputsAndCrop) {
+    std::string scene = write("s.pbrt", kSmallScene);
+    std::string exr = (dir / "a.exr").string(), png = (dir / "a.png").string(), pfm = (dir / "a.pfm").string();
+    Result r = run("render --quiet --crop 0.25 0.75 0 0.5 " + scene + " -o " + exr + " -o " + png + " -o " + pfm);
+    ASSERT_EQ(r.status, 0) << r.out;
+    ps::Image a = ps::readImage(exr), b = ps::readImage(pfm);
+    EXPECT_EQ(a.width, 16);
+    EXPECT_EQ(a.height, 12);
+    EXPECT_EQ(a.rgb, b.rgb);
+    EXPECT_TRUE(fs::exists(png));
+}
+
+TEST_F(Cli, TimeBudgetWritesPartialImage) {
+    std::string scene = write("s.pbrt", kSmallScene);
+    std::string out = (dir / "t.exr").string(), stats = (dir / "t.json").string();
+    Result r = run("render --quiet --spp 100000000 --time 1 --stats " + stats + " " + scene + " -o " + out);
+    ASSERT_EQ(r.status, 0) << r.out;
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(stats));
+    EXPECT_TRUE(j["stopped_early"].get<bool>());
+    EXPECT_LT(j["spp_mean"].get<double>(), 1e8);
+    EXPECT_GT(j["spp_mean"].get<double>(), 1.0);
+    ps::Image img = ps::readImage(out);
+    // Every pixel of the sphere under a white sky is 0.5 (albedo 0.5): an early stop is not darker.
+    double sum = 0;
+    for (float v : img.rgb) sum += v;
+    EXPECT_GT(sum / img.rgb.size(), 0.1);
+}
+
+TEST_F(Cli, InterruptWritesImageSoFar) {
+    std::string scene = write("s.pbrt", kSmallScene);
+    std::string out = (dir / "i.exr").string();
+    pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        execl(PATHSPACE_BINARY, PATHSPACE_BINARY, "render", "--quiet", "--spp", "100000000", scene.c_str(), "-o",
+              out.c_str(), (char*)nullptr);
+        _exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    kill(pid, SIGINT);
+    int st = 0;
+    waitpid(pid, &st, 0);
+    ASSERT_TRUE(WIFEXITED(st));
+    EXPECT_EQ(WEXITSTATUS(st), 130);
+    ASSERT_TRUE(fs::exists(out));
+    ps::Image img = ps::readImage(out);
+    EXPECT_EQ(img.width, 32);
+}

@@ -1,0 +1,133 @@
+// Scenes with closed-form answers; tolerances come from the measured standard error.
+#include <gtest/gtest.h>
+
+#include "render_helpers.h"
+
+using namespace ps;
+using namespace ps::test;
+
+namespace {
+
+void expectWithin4Sigma(const RegionStats& r, const double expected[3], double maxRelStdErr = 0.02) {
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(r.mean[c], expected[c], 4 * r.stdErr[c] + 1e-6)
+            << "channel " << c << ": mean " << r.mean[c] << " +- " << r.stdErr[c] << ", exact " << expected[c];
+        // The test must be able to fail: the noise has to be small against the value.
+        if (expected[c] > 0) EXPECT_LT(r.stdErr[c], maxRelStdErr * expected[c]) << "channel " << c;
+    }
+}
+
+}  // namespace
+
+// A convex diffuse object under a uniform sky reflects a * L exactly (it never sees itself).
+TEST(ExactScenes, DiffuseSphereUnderUniformSky) {
+    const char* scene = R"(
+        LookAt 0 0 5  0 0 0  0 1 0
+        Camera "perspective" "float fov" [ 10 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 5 ]
+        WorldBegin
+        LightSource "infinite" "rgb L" [ 0.8 0.9 1.0 ]
+        Material "diffuse" "rgb reflectance" [ 0.5 0.3 0.7 ]
+        Shape "sphere" "float radius" [ 1 ]
+    )";
+    RenderResult r = renderString(scene, 64);
+    const double exact[3] = {0.5 * 0.8, 0.3 * 0.9, 0.7 * 1.0};
+    expectWithin4Sigma(wholeImage(r.image), exact);
+}
+
+// Inside a closed sphere emitting Le with albedo r: pixel = Le * sum_{k=0..d} r^k.
+class ClosedFurnace : public ::testing::TestWithParam<int> {};
+
+TEST_P(ClosedFurnace, EmittingSphereSeenFromInside) {
+    int maxDepth = GetParam();
+    std::string scene = R"(
+        LookAt 0 0 0  0 0 1  0 1 0
+        Camera "perspective" "float fov" [ 60 ]
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ )" + std::to_string(maxDepth) + R"( ]
+        WorldBegin
+        AreaLightSource "diffuse" "rgb L" [ 0.5 0.25 1.0 ]
+        Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]
+        ReverseOrientation
+        Shape "sphere" "float radius" [ 1 ]
+    )";
+    RenderResult r = renderString(scene, 256);
+    double sum = 0;
+    for (int k = 0; k <= maxDepth; ++k) sum += std::pow(0.6, k);
+    const double exact[3] = {0.5 * sum, 0.25 * sum, 1.0 * sum};
+    expectWithin4Sigma(wholeImage(r.image), exact);
+}
+
+INSTANTIATE_TEST_SUITE_P(Depths, ClosedFurnace, ::testing::Values(0, 1, 2, 5, 20));
+
+// Irradiance below the centre of a parallel rectangle of radiance L, 2a x 2b at height h:
+// four corner form factors F = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + (X<->Y)].
+static double cornerFormFactor(double a, double b, double h) {
+    double X = a / h, Y = b / h;
+    double sx = std::sqrt(1 + X * X), sy = std::sqrt(1 + Y * Y);
+    return (X / sx * std::atan(Y / sx) + Y / sy * std::atan(X / sy)) / (2 * M_PI);
+}
+
+TEST(ExactScenes, DiffusePlaneUnderRectangularLight) {
+    // The camera sits between plane and light (it does not occlude) and sees a tiny spot.
+    const char* scene = R"(
+        LookAt 0 0.5 0   0 0 0   0 0 1
+        Camera "perspective" "float fov" [ 0.5 ]
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 1 ]
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 2 3 4 ]
+          Shape "bilinearmesh" "point3 P" [ -1 1 -0.5   1 1 -0.5   -1 1 0.5   1 1 0.5 ]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+        Shape "trianglemesh" "point3 P" [ -20 0 -20  20 0 -20  20 0 20  -20 0 20 ]
+            "integer indices" [ 0 1 2 0 2 3 ]
+    )";
+    RenderResult r = renderString(scene, 256);
+    double f = 4 * cornerFormFactor(1.0, 0.5, 1.0);
+    const double exact[3] = {0.5 * 2 * f, 0.5 * 3 * f, 0.5 * 4 * f};
+    expectWithin4Sigma(wholeImage(r.image), exact);
+}
+
+// A point light of intensity I at height h over a diffuse plane: L = rho I / (pi h^2).
+TEST(ExactScenes, DiffusePlaneUnderPointLight) {
+    const char* scene = R"(
+        LookAt 0 0.5 0   0 0 0   0 0 1
+        Camera "perspective" "float fov" [ 0.5 ]
+        Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 3 ]
+        WorldBegin
+        LightSource "point" "rgb I" [ 2 3 4 ] "point3 from" [ 0 2 0 ]
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+        Shape "trianglemesh" "point3 P" [ -20 0 -20  20 0 -20  20 0 20  -20 0 20 ]
+            "integer indices" [ 0 1 2 0 2 3 ]
+    )";
+    RenderResult r = renderString(scene, 16);
+    RegionStats s = wholeImage(r.image);
+    // Deterministic up to the footprint's cos^4 falloff (< 1e-5 relative here).
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.mean[c], 0.5 * (c + 2) / (M_PI * 4), 1e-4);
+}
+
+// "rgb L [1 1 1]" on a light seen directly gives pixel value 1 (as in pbrt-v4).
+TEST(ExactScenes, DirectlySeenLightHasItsRadiance) {
+    const char* scene = R"(
+        LookAt 0 0 0  0 0 1  0 1 0
+        Camera "perspective" "float fov" [ 30 ]
+        Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+          ReverseOrientation
+          Shape "disk" "float height" [ 3 ] "float radius" [ 10 ]
+        AttributeEnd
+    )";
+    RenderResult r = renderString(scene, 4);
+    RegionStats s = wholeImage(r.image);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.mean[c], 1.0, 1e-5);
+}
