@@ -54,6 +54,9 @@ void RenderCommand::attach(CLI::App& app) {
     cmd_->add_option("--maxdepth", maxDepth_, "Maximum number of scattering events (overrides the scene's)")
         ->check(CLI::NonNegativeNumber);
     cmd_->add_option("--integrator", integrator_, "Integrator: path (pbrt names path/volpath map to it)");
+    cmd_->add_option("--sampler", sampler_,
+                     "Sample placement: sobol (default; Owen-scrambled Sobol, stratified per pixel) or independent")
+        ->check(CLI::IsMember({"sobol", "independent"}));
     cmd_->add_option("-o,--output", outputs_,
                      "Output image(s): .exr (float32), .png (sRGB 8-bit, clamped), .pfm; may be repeated. "
                      "Default: the scene's Film filename, relative to the current directory");
@@ -70,6 +73,7 @@ int RenderCommand::run() {
     if (seed_ >= 0) settings.seed = uint64_t(seed_);
     if (maxDepth_ >= 0) settings.maxDepth = maxDepth_;
     if (!integrator_.empty()) settings.integrator = integrator_ == "volpath" ? "path" : integrator_;
+    if (!sampler_.empty()) settings.sampler = sampler_;
     if (!crop_.empty()) {
         int W = scene->camera().params().xRes, H = scene->camera().params().yRes;
         auto c = [](float v) { return clampf(v, 0, 1); };
@@ -91,6 +95,7 @@ int RenderCommand::run() {
     opts.timeLimit = time_;
     opts.threads = threads_;
     opts.seed = settings.seed;
+    opts.sampler = settings.sampler;
     opts.progress = !quiet_;
     opts.cancel = &gInterrupt;
     RenderResult r = render(*scene, *integrator, opts);
@@ -103,6 +108,7 @@ int RenderCommand::run() {
         {"scene", scene_},
         {"outputs", outputs},
         {"integrator", settings.integrator},
+        {"sampler", settings.sampler},
         {"resolution", {scene->camera().params().xRes, scene->camera().params().yRes}},
         {"pixels", scene->pixelBounds().area()},
         {"threads", threads_},

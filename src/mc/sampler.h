@@ -3,8 +3,10 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <string>
 #include "math/vec.h"
 #include "mc/rng.h"
+#include "mc/sobol.h"
 
 namespace ps {
 
@@ -38,5 +40,40 @@ private:
     uint64_t seed_;
     Rng rng_;
 };
+
+// Owen-scrambled Sobol points per pixel, padded across dimensions: every 1-D and 2-D
+// request uses the first one or two Sobol dimensions with its own scramble seed, keyed by
+// (pixel, dimension, seed). Each pixel's samples are stratified in every requested 1-D and
+// 2-D projection (a (0,2)-net for power-of-two counts); different dimensions are
+// decorrelated by the independent scrambles (pbrt-v4's "paddedsobol").
+class PaddedSobolSampler final : public Sampler {
+public:
+    explicit PaddedSobolSampler(uint64_t seed) : seed_(seed) {}
+    void startPixelSample(int px, int py, int sampleIndex) override {
+        pixelHash_ = hashCombine(mix64((uint64_t(uint32_t(px)) << 32) | uint32_t(py)), seed_);
+        index_ = uint32_t(sampleIndex);
+        dimension_ = 0;
+    }
+    float get1D() override {
+        uint64_t h = hashCombine(pixelHash_, dimension_++);
+        return fixedToFloat(owenScramble(sobolDim0(index_), uint32_t(h)));
+    }
+    Vec2 get2D() override {
+        uint64_t h = hashCombine(pixelHash_, dimension_);
+        dimension_ += 2;
+        return {fixedToFloat(owenScramble(sobolDim0(index_), uint32_t(h))),
+                fixedToFloat(owenScramble(sobolDim1(index_), uint32_t(h >> 32)))};
+    }
+    std::unique_ptr<Sampler> clone() const override { return std::make_unique<PaddedSobolSampler>(seed_); }
+
+private:
+    uint64_t seed_;
+    uint64_t pixelHash_ = 0;
+    uint32_t index_ = 0;
+    uint64_t dimension_ = 0;
+};
+
+// Names: "independent", "sobol" (padded Owen-scrambled Sobol). nullptr for other names.
+std::unique_ptr<Sampler> createSampler(const std::string& name, uint64_t seed);
 
 }  // namespace ps

@@ -126,20 +126,25 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
     applyCamera(desc, scene, xRes, yRes);
     scene.setFilter(createFilter(desc.filter));
 
-    // Sampler: only independent sampling exists yet.
+    // Sampler: pbrt's Sobol family maps to our padded Owen-scrambled Sobol sampler.
     const ParamSet& sp = desc.sampler.params;
-    s.spp = sp.getInt("pixelsamples", desc.sampler.type == "independent" ? 4 : 16);
-    s.seed = uint64_t(sp.getInt("seed", 0));
+    const std::string& st = desc.sampler.type;
+    s.spp = sp.getInt("pixelsamples", st == "independent" ? 4 : 16);
+    s.seed = uint64_t(std::max(0, sp.getInt("seed", 0)));
     sp.getString("randomization", "");
-    sp.getBool("jitter", true);
-    if (desc.sampler.type == "stratified") {
+    if (st == "stratified") {
+        sp.getBool("jitter", true);
         s.spp = sp.getInt("xsamples", 4) * sp.getInt("ysamples", 4);
     }
-    if (desc.sampler.type != "independent")
-        warning(desc.sampler.loc, "Sampler \"" + desc.sampler.type + "\" is not available yet; using \"independent\"");
-    s.sampler = "independent";
+    if (st == "independent") {
+        s.sampler = "independent";
+    } else {
+        s.sampler = "sobol";
+        if (st != "sobol" && st != "zsobol" && st != "paddedsobol")
+            warning(desc.sampler.loc, "Sampler \"" + st + "\" is not available yet; using \"sobol\" (padded, Owen-scrambled)");
+    }
     if (s.spp <= 0) throw InputError(desc.sampler.loc, "Sampler: \"pixelsamples\" must be positive");
-    sp.reportUnused("Sampler \"" + desc.sampler.type + "\"");
+    sp.reportUnused("Sampler \"" + st + "\"");
 
     // Integrator.
     const ParamSet& ip = desc.integrator.params;

@@ -20,7 +20,7 @@ struct RenderSettings {
     std::string integrator = "path";
     int maxDepth = 5;
     bool regularize = false;
-    std::string sampler = "independent";
+    std::string sampler = "sobol";
     int spp = 16;
     uint64_t seed = 0;
     std::string outputFile = "pbrt.exr";

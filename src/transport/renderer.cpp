@@ -1,5 +1,7 @@
 #include "transport/renderer.h"
 
+#include "util/error.h"
+
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -112,10 +114,11 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     const float imagingRatio = scene.settings().imagingRatio;
     const int spp = std::max(1, options.spp);
 
-    IndependentSampler prototype(options.seed);
+    std::unique_ptr<Sampler> prototype = createSampler(options.sampler, options.seed);
+    if (!prototype) throw InputError("unknown sampler \"" + options.sampler + "\" (available: independent, sobol)");
     tbb::enumerable_thread_specific<ThreadState> states([&] {
         ThreadState s;
-        s.sampler = prototype.clone();
+        s.sampler = prototype->clone();
         return s;
     });
 

@@ -3,6 +3,7 @@
 #pragma once
 #include <atomic>
 #include <cstdint>
+#include <string>
 #include "film/film.h"
 #include "image/image.h"
 #include "render/scene.h"
@@ -15,6 +16,7 @@ struct RenderOptions {
     double timeLimit = 0;        // seconds; 0 = none
     int threads = 0;             // 0 = all cores
     uint64_t seed = 0;
+    std::string sampler = "sobol";  // see createSampler
     bool progress = true;        // progress bar on stderr
     const std::atomic<bool>* cancel = nullptr;  // set asynchronously (Ctrl-C) to stop early
 };

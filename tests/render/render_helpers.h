@@ -22,6 +22,7 @@ inline RenderResult renderString(const std::string& text, int spp, uint64_t seed
     RenderOptions opts;
     opts.spp = spp;
     opts.seed = seed;
+    opts.sampler = scene->settings().sampler;
     opts.threads = threads;
     opts.progress = false;
     return render(*scene, *integ, opts);

@@ -1,0 +1,46 @@
+// The first two dimensions of the Sobol sequence, a (0,2)-sequence in base 2, with
+// hash-based Owen scrambling (Burley 2020, "Practical Hash-based Owen Scrambling"). Owen's
+// nested uniform scrambling keeps every elementary-interval property of the net while making
+// each point uniformly distributed, so estimates stay unbiased (thesis §2.7: stratification
+// and quasi-Monte Carlo).
+#pragma once
+#include <cstdint>
+
+namespace ps {
+
+inline uint32_t reverseBits32(uint32_t v) {
+    v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
+    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+    v = ((v >> 4) & 0x0F0F0F0Fu) | ((v & 0x0F0F0F0Fu) << 4);
+    v = ((v >> 8) & 0x00FF00FFu) | ((v & 0x00FF00FFu) << 8);
+    return (v >> 16) | (v << 16);
+}
+
+// Dimension 0: the van der Corput radical inverse in base 2, as 32-bit fixed point.
+inline uint32_t sobolDim0(uint32_t index) { return reverseBits32(index); }
+
+// Dimension 1: generator matrix from the primitive polynomial x + 1, whose columns are
+// the rows of Pascal's triangle mod 2: v_1 = 2^31, v_k = v_{k-1} ^ (v_{k-1} >> 1).
+inline uint32_t sobolDim1(uint32_t index) {
+    uint32_t result = 0, v = 1u << 31;
+    for (; index; index >>= 1, v ^= v >> 1)
+        if (index & 1) result ^= v;
+    return result;
+}
+
+// Owen scrambling of a 32-bit fixed-point value: a hash of each prefix of bits decides
+// whether the next bit flips (the Laine-Karras construction with Burley's constants).
+inline uint32_t owenScramble(uint32_t v, uint32_t seed) {
+    v = reverseBits32(v);
+    v ^= v * 0x3d20adeau;
+    v += seed;
+    v *= (seed >> 16) | 1u;
+    v ^= v * 0x05526c56u;
+    v ^= v * 0x53a22864u;
+    return reverseBits32(v);
+}
+
+// 32-bit fixed point to a float in [0, 1).
+inline float fixedToFloat(uint32_t v) { return float(v >> 8) * 0x1p-24f; }
+
+}  // namespace ps

@@ -1,0 +1,84 @@
+#include <gtest/gtest.h>
+
+#include <set>
+#include <vector>
+
+#include "mc/sampler.h"
+
+using namespace ps;
+
+// The published Sobol points (Joe-Kuo direction numbers, generated in Gray-code order)
+// start (0,0) (1/2,1/2) (3/4,1/4) (1/4,3/4) (3/8,3/8) (7/8,7/8) (5/8,1/8) (1/8,5/8).
+TEST(Sobol, FirstPointsMatchPublishedSequence) {
+    const double x[8] = {0, 0.5, 0.75, 0.25, 0.375, 0.875, 0.625, 0.125};
+    const double y[8] = {0, 0.5, 0.25, 0.75, 0.375, 0.875, 0.125, 0.625};
+    for (uint32_t i = 0; i < 8; ++i) {
+        uint32_t gray = i ^ (i >> 1);
+        EXPECT_DOUBLE_EQ(sobolDim0(gray) * 0x1p-32, x[i]) << i;
+        EXPECT_DOUBLE_EQ(sobolDim1(gray) * 0x1p-32, y[i]) << i;
+    }
+}
+
+// Every elementary interval of volume 1/N (2^a x 2^b boxes, a + b = m) holds exactly one
+// of N = 2^m points: the (0,m,2)-net property, which Owen scrambling preserves.
+TEST(Sobol, ScrambledPointsFormA02Net) {
+    for (int m : {4, 6, 8}) {
+        int n = 1 << m;
+        for (uint32_t seed : {1u, 12345u, 0xdeadbeefu}) {
+            std::vector<uint32_t> xs(n), ys(n);
+            for (int i = 0; i < n; ++i) {
+                xs[i] = owenScramble(sobolDim0(i), seed);
+                ys[i] = owenScramble(sobolDim1(i), seed * 2654435761u);
+            }
+            for (int a = 0; a <= m; ++a) {
+                int b = m - a;
+                std::set<uint64_t> cells;
+                for (int i = 0; i < n; ++i) {
+                    uint64_t cx = a == 0 ? 0 : xs[i] >> (32 - a), cy = b == 0 ? 0 : ys[i] >> (32 - b);
+                    cells.insert((cx << 32) | cy);
+                }
+                EXPECT_EQ(int(cells.size()), n) << "m=" << m << " a=" << a << " seed=" << seed;
+            }
+        }
+    }
+}
+
+// Owen scrambling makes each point uniform: the mean of many scrambles of one point is 1/2.
+TEST(Sobol, ScrambledPointIsUniform) {
+    double sum = 0;
+    int n = 100000;
+    for (int s = 0; s < n; ++s) sum += fixedToFloat(owenScramble(sobolDim1(5), uint32_t(mix64(s))));
+    EXPECT_NEAR(sum / n, 0.5, 4 * std::sqrt(1.0 / 12 / n));
+}
+
+TEST(Samplers, DeterministicPerPixelSample) {
+    for (const char* name : {"independent", "sobol"}) {
+        auto a = createSampler(name, 42), b = createSampler(name, 42);
+        a->startPixelSample(3, 4, 5);
+        float a1 = a->get1D();
+        Vec2 a2 = a->get2D();
+        b->startPixelSample(9, 9, 9);
+        b->get1D();
+        b->startPixelSample(3, 4, 5);
+        EXPECT_EQ(b->get1D(), a1) << name;
+        Vec2 b2 = b->get2D();
+        EXPECT_EQ(b2.x, a2.x) << name;
+        EXPECT_EQ(b2.y, a2.y) << name;
+    }
+    EXPECT_EQ(createSampler("nonsense", 1), nullptr);
+}
+
+// Per pixel, the padded Sobol sampler stratifies each 1-D dimension: 16 samples fall in 16
+// different sixteenths.
+TEST(Samplers, PaddedSobolStratifiesEachDimension) {
+    auto s = createSampler("sobol", 3);
+    for (int dim = 0; dim < 5; ++dim) {
+        std::set<int> strata;
+        for (int i = 0; i < 16; ++i) {
+            s->startPixelSample(7, 2, i);
+            for (int d = 0; d < dim; ++d) s->get1D();
+            strata.insert(int(s->get1D() * 16));
+        }
+        EXPECT_EQ(strata.size(), 16u) << "dimension " << dim;
+    }
+}
