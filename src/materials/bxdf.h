@@ -29,6 +29,9 @@ struct BSDFSample {
     float pdf = 0;
     uint8_t flags = 0;
     float eta = 1;  // relative index of refraction across the sampled transmission, 1 otherwise
+    // Stochastic BxDFs (layered) return f/pdf with the right ratio but pdf only
+    // proportional: MIS must ask pdf() for the true density.
+    bool pdfIsProportional = false;
     bool isSpecular() const { return flags & kSpecular; }
     bool isTransmission() const { return flags & kTransmission; }
     bool isReflection() const { return flags & kReflection; }

@@ -70,6 +70,8 @@ void SceneBuilder::createMaterials() {
     }
     for (const MaterialEntity& m : desc_.materials)
         scene_.materials_.push_back(createMaterial(m.type, m.params, textures_, named_, base));
+    // The scene owns every material; shapes keep raw pointers.
+    for (const auto& [name, m] : named_) scene_.materials_.push_back(m);
 }
 
 const Material* SceneBuilder::materialFor(const ShapeEntity& e) const {

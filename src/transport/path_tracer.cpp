@@ -1,6 +1,6 @@
 #include "transport/path_tracer.h"
 
-#include "transport/mis.h"
+#include "mc/mis.h"
 #include "util/error.h"
 
 namespace ps {
@@ -98,7 +98,8 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Sampler& sampler, ScratchBuffer& s
             break;
         }
         beta *= weight;
-        prevBsdfPdf = bs->pdf;
+        // Layered BxDFs only know their pdf up to a factor; MIS needs the true density.
+        prevBsdfPdf = bs->pdfIsProportional ? bxdf->pdf(woLocal, bs->wi, TransportMode::Radiance) : bs->pdf;
         specularBounce = bs->isSpecular();
         if (bs->isTransmission()) etaScale *= sqr(bs->eta);
         prevCtx = LightSampleContext{si.p, si.ng};

@@ -13,7 +13,9 @@ void expectWithin4Sigma(const RegionStats& r, const double expected[3], double m
         EXPECT_NEAR(r.mean[c], expected[c], 4 * r.stdErr[c] + 1e-6)
             << "channel " << c << ": mean " << r.mean[c] << " +- " << r.stdErr[c] << ", exact " << expected[c];
         // The test must be able to fail: the noise has to be small against the value.
-        if (expected[c] > 0) EXPECT_LT(r.stdErr[c], maxRelStdErr * expected[c]) << "channel " << c;
+        if (expected[c] > 0) {
+            EXPECT_LT(r.stdErr[c], maxRelStdErr * expected[c]) << "channel " << c;
+        }
     }
 }
 

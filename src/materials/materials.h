@@ -1,0 +1,106 @@
+// pbrt-v4's materials (PBRT-CONVENTIONS §5): each evaluates its textures at the shading
+// point and builds its BxDF in the scratch buffer.
+#pragma once
+#include <array>
+#include <memory>
+#include "materials/material.h"
+
+namespace ps {
+
+using FloatTex = std::shared_ptr<FloatTexture>;
+using SpectrumTex = std::shared_ptr<SpectrumTexture>;
+
+// Anisotropic roughness as the scene gives it: alpha = sqrt(roughness) unless remap is off.
+struct Roughness {
+    FloatTex u, v;
+    bool remap = true;
+    Vec2 alpha(const TextureEvalContext& ctx) const;
+};
+
+class DiffuseMaterial final : public Material {
+public:
+    explicit DiffuseMaterial(SpectrumTex R) : R_(std::move(R)) {}
+    const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override;
+
+private:
+    SpectrumTex R_;
+};
+
+class ConductorMaterial final : public Material {
+public:
+    // Either eta and k, or reflectance (then eta = 1 and k follows from it).
+    ConductorMaterial(SpectrumTex eta, SpectrumTex k, SpectrumTex reflectance, Roughness r)
+        : eta_(std::move(eta)), k_(std::move(k)), reflectance_(std::move(reflectance)), rough_(std::move(r)) {}
+    const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override;
+
+private:
+    SpectrumTex eta_, k_, reflectance_;
+    Roughness rough_;
+};
+
+class DielectricMaterial final : public Material {
+public:
+    DielectricMaterial(float eta, Roughness r) : eta_(eta), rough_(std::move(r)) {}
+    const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override;
+
+private:
+    float eta_;
+    Roughness rough_;
+};
+
+class ThinDielectricMaterial final : public Material {
+public:
+    explicit ThinDielectricMaterial(float eta) : eta_(eta) {}
+    const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override;
+
+private:
+    float eta_;
+};
+
+class DiffuseTransmissionMaterial final : public Material {
+public:
+    DiffuseTransmissionMaterial(SpectrumTex R, SpectrumTex T, float scale) : R_(std::move(R)), T_(std::move(T)), scale_(scale) {}
+    const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override;
+
+private:
+    SpectrumTex R_, T_;
+    float scale_;
+};
+
+struct CoatedDiffuseParams {
+    SpectrumTex reflectance, albedo;
+    Roughness roughness;
+    FloatTex thickness, g;
+    float eta = 1.5f;
+    int maxDepth = 10, nSamples = 1;
+};
+
+class CoatedDiffuseMaterial final : public Material {
+public:
+    explicit CoatedDiffuseMaterial(CoatedDiffuseParams p) : p_(std::move(p)) {}
+    const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override;
+
+private:
+    CoatedDiffuseParams p_;
+};
+
+// Chooses materials[1] with probability `amount`, by a deterministic hash of (p, wo).
+class MixMaterial final : public Material {
+public:
+    MixMaterial(std::array<std::shared_ptr<Material>, 2> m, FloatTex amount) : m_(std::move(m)), amount_(std::move(amount)) {}
+    const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override { return resolve(ctx)->bxdf(ctx, buf); }
+    const Material* resolve(const MaterialEvalContext& ctx) const override;
+
+private:
+    std::array<std::shared_ptr<Material>, 2> m_;
+    FloatTex amount_;
+};
+
+// No surface: the ray continues as if nothing was there (used to bound media in pbrt).
+class InterfaceMaterial final : public Material {
+public:
+    const BxDF* bxdf(const MaterialEvalContext&, ScratchBuffer&) const override { return nullptr; }
+    bool isInterface() const override { return true; }
+};
+
+}  // namespace ps
