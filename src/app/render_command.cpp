@@ -60,7 +60,9 @@ void RenderCommand::attach(CLI::App& app) {
     cmd_->add_option("-o,--output", outputs_,
                      "Output image(s): .exr (float32), .png (sRGB 8-bit, clamped), .pfm; may be repeated. "
                      "Default: the scene's Film filename, relative to the current directory");
-    cmd_->add_option("--crop", crop_, "Crop window x0 x1 y0 y1 in [0,1] (y down), as pbrt's cropwindow")->expected(4);
+    cmd_->add_option("--crop", crop_, "Crop window x0 x1 y0 y1 in [0,1] (y down), as pbrt's cropwindow")
+        ->expected(4)
+        ->allow_extra_args(false);
     cmd_->add_option("--stats", statsFile_, "Write render statistics as JSON to this file");
     cmd_->add_flag("--quiet", quiet_, "No progress bar or statistics on the terminal");
 }

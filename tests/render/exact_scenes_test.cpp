@@ -8,9 +8,11 @@ using namespace ps::test;
 
 namespace {
 
+// |mean - exact| < 4 sigma, plus a floor of 1e-4 relative for single-precision arithmetic
+// (stratified sampling can push sigma below what float geometry resolves).
 void expectWithin4Sigma(const RegionStats& r, const double expected[3], double maxRelStdErr = 0.02) {
     for (int c = 0; c < 3; ++c) {
-        EXPECT_NEAR(r.mean[c], expected[c], 4 * r.stdErr[c] + 1e-6)
+        EXPECT_NEAR(r.mean[c], expected[c], 4 * r.stdErr[c] + 1e-4 * expected[c] + 1e-7)
             << "channel " << c << ": mean " << r.mean[c] << " +- " << r.stdErr[c] << ", exact " << expected[c];
         // The test must be able to fail: the noise has to be small against the value.
         if (expected[c] > 0) {
