@@ -31,6 +31,8 @@ public:
     virtual std::optional<ShapeSample> sampleToward(int prim, Vec3 ref, Vec2 u) const;
     // Solid-angle pdf at ref of sampleToward producing the point hit (dist2 = |hit - ref|^2).
     virtual float pdfToward(int prim, Vec3 ref, Vec3 hitP, Vec3 hitN) const;
+    // Called once for emissive shapes: cache what light sampling needs per primitive.
+    virtual void prepareSampling() {}
 
     const Material* material = nullptr;
     // Per-primitive emitters (empty when the shape does not emit).

@@ -38,7 +38,20 @@ RTCGeometry TriangleMesh::buildGeometry(RTCDevice device) const {
 
 static inline Vec3 loadP(const std::vector<float>& p, unsigned i) { return {p[3 * i], p[3 * i + 1], p[3 * i + 2]}; }
 
+void TriangleMesh::prepareSampling() {
+    int n = primitiveCount();
+    std::vector<float> areas(n);
+    std::vector<Vec3> normals(n);
+    for (int i = 0; i < n; ++i) {
+        areas[i] = area(i);
+        normals[i] = geometricNormal(i);
+    }
+    areas_ = std::move(areas);
+    faceNormals_ = std::move(normals);
+}
+
 Vec3 TriangleMesh::geometricNormal(int prim) const {
+    if (!faceNormals_.empty()) return faceNormals_[prim];
     const unsigned* v = &indices_[3 * prim];
     Vec3 p0 = loadP(positions_, v[0]), p1 = loadP(positions_, v[1]), p2 = loadP(positions_, v[2]);
     Vec3 n = cross(p1 - p0, p2 - p0);
@@ -101,6 +114,7 @@ void TriangleMesh::interaction(const Ray& r, float t, int prim, float u, float v
 }
 
 float TriangleMesh::area(int prim) const {
+    if (!areas_.empty()) return areas_[prim];
     const unsigned* v = &indices_[3 * prim];
     Vec3 p0 = loadP(positions_, v[0]), p1 = loadP(positions_, v[1]), p2 = loadP(positions_, v[2]);
     return 0.5f * length(cross(p1 - p0, p2 - p0));

@@ -26,6 +26,7 @@ public:
     void interaction(const Ray& r, float t, int prim, float u, float v, SurfaceInteraction& si) const override;
     float area(int prim) const override;
     ShapeSample sampleArea(int prim, Vec2 u) const override;
+    void prepareSampling() override;
 
 private:
     Vec3 geometricNormal(int prim) const;
@@ -36,7 +37,8 @@ private:
     std::vector<Vec2> uv_;
     std::vector<unsigned> indices_;
     bool flipNormal_ = false;  // ReverseOrientation XOR transform swaps handedness
-    bool reverseShadingNormals_ = false;
+    std::vector<float> areas_;        // per triangle, filled by prepareSampling
+    std::vector<Vec3> faceNormals_;   // oriented geometric normals, likewise
 };
 
 }  // namespace ps

@@ -52,24 +52,25 @@ public:
     void startPixelSample(int px, int py, int sampleIndex) override {
         pixelHash_ = hashCombine(mix64((uint64_t(uint32_t(px)) << 32) | uint32_t(py)), seed_);
         index_ = uint32_t(sampleIndex);
+        index1Reversed_ = sobolDim1Reversed(index_);
         dimension_ = 0;
     }
     float get1D() override {
         uint64_t h = hashCombine(pixelHash_, dimension_++);
-        return fixedToFloat(owenScramble(sobolDim0(index_), uint32_t(h)));
+        return fixedToFloat(owenScrambleReversed(index_, uint32_t(h)));
     }
     Vec2 get2D() override {
         uint64_t h = hashCombine(pixelHash_, dimension_);
         dimension_ += 2;
-        return {fixedToFloat(owenScramble(sobolDim0(index_), uint32_t(h))),
-                fixedToFloat(owenScramble(sobolDim1(index_), uint32_t(h >> 32)))};
+        return {fixedToFloat(owenScrambleReversed(index_, uint32_t(h))),
+                fixedToFloat(owenScrambleReversed(index1Reversed_, uint32_t(h >> 32)))};
     }
     std::unique_ptr<Sampler> clone() const override { return std::make_unique<PaddedSobolSampler>(seed_); }
 
 private:
     uint64_t seed_;
     uint64_t pixelHash_ = 0;
-    uint32_t index_ = 0;
+    uint32_t index_ = 0, index1Reversed_ = 0;
     uint64_t dimension_ = 0;
 };
 

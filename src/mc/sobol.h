@@ -9,11 +9,10 @@
 namespace ps {
 
 inline uint32_t reverseBits32(uint32_t v) {
+    v = __builtin_bswap32(v);
     v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
     v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
-    v = ((v >> 4) & 0x0F0F0F0Fu) | ((v & 0x0F0F0F0Fu) << 4);
-    v = ((v >> 8) & 0x00FF00FFu) | ((v & 0x00FF00FFu) << 8);
-    return (v >> 16) | (v << 16);
+    return ((v >> 4) & 0x0F0F0F0Fu) | ((v & 0x0F0F0F0Fu) << 4);
 }
 
 // Dimension 0: the van der Corput radical inverse in base 2, as 32-bit fixed point.
@@ -32,6 +31,24 @@ inline uint32_t sobolDim1(uint32_t index) {
 // whether the next bit flips (the Laine-Karras construction with Burley's constants).
 inline uint32_t owenScramble(uint32_t v, uint32_t seed) {
     v = reverseBits32(v);
+    v ^= v * 0x3d20adeau;
+    v += seed;
+    v *= (seed >> 16) | 1u;
+    v ^= v * 0x05526c56u;
+    v ^= v * 0x53a22864u;
+    return reverseBits32(v);
+}
+
+// The same points computed in bit-reversed form, where Owen scrambling works directly:
+// owenScrambleReversed(sobolDimKReversed(i), seed) == owenScramble(sobolDimK(i), seed),
+// with two bit reversals fewer per sample.
+inline uint32_t sobolDim1Reversed(uint32_t index) {
+    uint32_t result = 0, v = 1;
+    for (; index; index >>= 1, v ^= v << 1)
+        if (index & 1) result ^= v;
+    return result;
+}
+inline uint32_t owenScrambleReversed(uint32_t v, uint32_t seed) {
     v ^= v * 0x3d20adeau;
     v += seed;
     v *= (seed >> 16) | 1u;

@@ -105,6 +105,7 @@ void SceneBuilder::addAreaLights(const ShapeEntity& e, Shape& shape) {
         warning(al.loc, "AreaLightSource: image \"filename\" is not supported yet; using \"L\"");
     }
     ps.reportUnused("AreaLightSource \"diffuse\"");
+    shape.prepareSampling();
     int n = shape.primitiveCount();
     shape.areaLights.resize(n);
     for (int i = 0; i < n; ++i) {

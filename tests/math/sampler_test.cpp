@@ -43,6 +43,14 @@ TEST(Sobol, ScrambledPointsFormA02Net) {
     }
 }
 
+TEST(Sobol, ReversedFormMatches) {
+    for (uint32_t i = 0; i < 1000; ++i)
+        for (uint32_t seed : {0u, 7u, 0x9e3779b9u}) {
+            EXPECT_EQ(owenScrambleReversed(i, seed), owenScramble(sobolDim0(i), seed));
+            EXPECT_EQ(owenScrambleReversed(sobolDim1Reversed(i), seed), owenScramble(sobolDim1(i), seed));
+        }
+}
+
 // Owen scrambling makes each point uniform: the mean of many scrambles of one point is 1/2.
 TEST(Sobol, ScrambledPointIsUniform) {
     double sum = 0;
