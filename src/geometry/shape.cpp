@@ -9,8 +9,9 @@ std::optional<ShapeSample> Shape::sampleToward(int prim, Vec3 ref, Vec2 u) const
     Vec3 d = s.p - ref;
     float dist2 = lengthSquared(d);
     if (!(dist2 > 0)) return std::nullopt;
-    float cosLight = absDot(s.n, d) / std::sqrt(dist2);
-    s.pdf = areaToSolidAngle(s.pdf, dist2, cosLight);
+    float dist = std::sqrt(dist2);
+    s.wi = d / dist;
+    s.pdf = areaToSolidAngle(s.pdf, dist2, absDot(s.n, s.wi));
     if (!(s.pdf > 0) || !std::isfinite(s.pdf)) return std::nullopt;
     return s;
 }

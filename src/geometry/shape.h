@@ -13,6 +13,7 @@ struct ShapeSample {
     Vec3 p, n;          // point and its oriented geometric normal
     Vec2 uv;
     float pdf = 0;      // area measure for sampleArea, solid angle for sampleToward
+    Vec3 wi;            // sampleToward only: unit direction from the reference point
 };
 
 class Shape {

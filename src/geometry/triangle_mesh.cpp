@@ -40,18 +40,28 @@ static inline Vec3 loadP(const std::vector<float>& p, unsigned i) { return {p[3 
 
 void TriangleMesh::prepareSampling() {
     int n = primitiveCount();
-    std::vector<float> areas(n);
-    std::vector<Vec3> normals(n);
+    std::vector<SamplingData> data(n);
     for (int i = 0; i < n; ++i) {
-        areas[i] = area(i);
-        normals[i] = geometricNormal(i);
+        const unsigned* v = &indices_[3 * i];
+        Vec3 p0 = loadP(positions_, v[0]), p1 = loadP(positions_, v[1]), p2 = loadP(positions_, v[2]);
+        SamplingData& d = data[i];
+        d.p0 = p0;
+        d.e1 = p1 - p0;
+        d.e2 = p2 - p0;
+        d.area = area(i);
+        d.n = geometricNormal(i);
+        d.normalsMayFlip = false;
+        if (!normals_.empty())
+            for (int k = 0; k < 3; ++k) d.normalsMayFlip |= dot(normals_[v[k]], d.n) < 0;
+        if (!normals_.empty() && !d.normalsMayFlip) {
+            // N decides the side; with all vertex normals on one side, so does every point.
+            if (dot(normals_[v[0]] + normals_[v[1]] + normals_[v[2]], d.n) < 0) d.n = -d.n;
+        }
     }
-    areas_ = std::move(areas);
-    faceNormals_ = std::move(normals);
+    sampling_ = std::move(data);
 }
 
 Vec3 TriangleMesh::geometricNormal(int prim) const {
-    if (!faceNormals_.empty()) return faceNormals_[prim];
     const unsigned* v = &indices_[3 * prim];
     Vec3 p0 = loadP(positions_, v[0]), p1 = loadP(positions_, v[1]), p2 = loadP(positions_, v[2]);
     Vec3 n = cross(p1 - p0, p2 - p0);
@@ -80,21 +90,12 @@ void TriangleMesh::interaction(const Ray& r, float t, int prim, float u, float v
 
     Vec2 uv0 = uvAt(vi[0], 0), uv1 = uvAt(vi[1], 1), uv2 = uvAt(vi[2], 2);
     si.uv = uv0 * b0 + uv1 * u + uv2 * v;
-    // dp/du from the uv parameterisation (degenerate uv: any tangent).
+    // dp/du from the uv parameterisation. Degenerate or non-finite tangents are replaced
+    // by Frame::fromNormalTangent, which falls back to an arbitrary tangent.
     Vec2 duv02 = uv0 - uv2, duv12 = uv1 - uv2;
-    Vec3 dp02 = p0 - p2, dp12 = p1 - p2;
     float det = duv02.x * duv12.y - duv02.y * duv12.x;
     Vec3 dpdu;
-    bool ok = false;
-    if (std::fabs(det) > 1e-9f) {
-        dpdu = (dp02 * duv12.y - dp12 * duv02.y) / det;
-        ok = lengthSquared(cross(dpdu, ng)) > 0 && isFinite(dpdu);
-    }
-    if (!ok) {
-        Vec3 s, tt;
-        coordinateSystem(ng, s, tt);
-        dpdu = s;
-    }
+    if (det != 0) dpdu = ((p0 - p2) * duv12.y - (p1 - p2) * duv02.y) / det;
 
     if (!normals_.empty()) {
         Vec3 ns = normals_[vi[0]] * b0 + normals_[vi[1]] * u + normals_[vi[2]] * v;
@@ -114,7 +115,7 @@ void TriangleMesh::interaction(const Ray& r, float t, int prim, float u, float v
 }
 
 float TriangleMesh::area(int prim) const {
-    if (!areas_.empty()) return areas_[prim];
+    if (!sampling_.empty()) return sampling_[prim].area;
     const unsigned* v = &indices_[3 * prim];
     Vec3 p0 = loadP(positions_, v[0]), p1 = loadP(positions_, v[1]), p2 = loadP(positions_, v[2]);
     return 0.5f * length(cross(p1 - p0, p2 - p0));
@@ -137,6 +138,31 @@ ShapeSample TriangleMesh::sampleArea(int prim, Vec2 u) const {
     float a = area(prim);
     s.pdf = a > 0 ? 1.0f / a : 0.0f;
     return s;
+}
+
+}  // namespace ps
+
+namespace ps {
+
+// Area sampling converted to solid angle at ref, in one pass (the light-sampling hot path).
+std::optional<ShapeSample> TriangleMesh::sampleToward(int prim, Vec3 ref, Vec2 u) const {
+    if (sampling_.empty()) return Shape::sampleToward(prim, ref, u);
+    const SamplingData& t = sampling_[prim];
+    if (t.normalsMayFlip) return Shape::sampleToward(prim, ref, u);
+    Vec2 b = sampleUniformTriangle(u);  // weights of vertices 0 and 1
+    ShapeSample s;
+    // p = b0 p0 + b1 p1 + b2 p2 = p0 + b1 e1 + b2 e2.
+    s.p = t.p0 + t.e1 * b.y + t.e2 * (1 - b.x - b.y);
+    s.n = t.n;
+    Vec3 d = s.p - ref;
+    float dist2 = lengthSquared(d);
+    if (!(dist2 > 0) || !(t.area > 0)) return std::nullopt;
+    s.wi = d / std::sqrt(dist2);
+    float cosLight = absDot(s.n, s.wi);
+    if (!(cosLight > 0)) return std::nullopt;
+    s.pdf = dist2 / (cosLight * t.area);
+    if (!std::isfinite(s.pdf)) return std::nullopt;
+    return s;  // uv is not needed by uniform emitters
 }
 
 }  // namespace ps

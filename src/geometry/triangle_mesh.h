@@ -26,6 +26,7 @@ public:
     void interaction(const Ray& r, float t, int prim, float u, float v, SurfaceInteraction& si) const override;
     float area(int prim) const override;
     ShapeSample sampleArea(int prim, Vec2 u) const override;
+    std::optional<ShapeSample> sampleToward(int prim, Vec3 ref, Vec2 u) const override;
     void prepareSampling() override;
 
 private:
@@ -37,8 +38,14 @@ private:
     std::vector<Vec2> uv_;
     std::vector<unsigned> indices_;
     bool flipNormal_ = false;  // ReverseOrientation XOR transform swaps handedness
-    std::vector<float> areas_;        // per triangle, filled by prepareSampling
-    std::vector<Vec3> faceNormals_;   // oriented geometric normals, likewise
+    // Per triangle, filled by prepareSampling for emitters: vertex 0, edges, oriented
+    // geometric normal and area, so light sampling touches one cache line per triangle.
+    struct SamplingData {
+        Vec3 p0, e1, e2, n;
+        float area;
+        bool normalsMayFlip;  // interpolated N disagrees with n somewhere on the triangle
+    };
+    std::vector<SamplingData> sampling_;
 };
 
 }  // namespace ps

@@ -5,13 +5,9 @@ namespace ps {
 std::optional<LightLiSample> DiffuseAreaLight::sampleLi(const LightSampleContext& ctx, Vec2 u) const {
     auto s = shape_->sampleToward(prim_, ctx.p, u);
     if (!s) return std::nullopt;
-    Vec3 d = s->p - ctx.p;
-    float dist = length(d);
-    if (!(dist > 0)) return std::nullopt;
-    Vec3 wi = d / dist;
-    Spectrum Le = L(s->p, s->n, s->uv, -wi);
+    Spectrum Le = L(s->p, s->n, s->uv, -s->wi);
     if (Le.isBlack()) return std::nullopt;
-    return LightLiSample{Le, wi, s->pdf, s->p, s->n};
+    return LightLiSample{Le, s->wi, s->pdf, s->p, s->n};
 }
 
 float DiffuseAreaLight::pdfLi(const LightSampleContext& ctx, Vec3, const SurfaceInteraction* hit) const {

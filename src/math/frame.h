@@ -27,7 +27,8 @@ struct Frame {
     static Frame fromNormalTangent(Vec3 n, Vec3 dpdu) {
         Vec3 s = dpdu - n * dot(n, dpdu);
         float l2 = lengthSquared(s);
-        if (!(l2 > 1e-12f)) return fromNormal(n);
+        // Zero, parallel to n, or non-finite: any tangent will do.
+        if (!(l2 > 1e-10f * lengthSquared(dpdu)) || !std::isfinite(l2)) return fromNormal(n);
         s = s / std::sqrt(l2);
         return Frame(s, cross(n, s), n);
     }

@@ -20,11 +20,11 @@ inline Vec2 sampleConcentricDisk(Vec2 u) {
     return {r * std::cos(theta), r * std::sin(theta)};
 }
 
-// Cosine-weighted hemisphere around +z; pdf (solid angle) = cos(theta)/pi.
+// Cosine-weighted hemisphere around +z (Malley's method with the polar disk map:
+// r^2 = u.x is uniform on the disk); pdf (solid angle) = cos(theta)/pi.
 inline Vec3 sampleCosineHemisphere(Vec2 u) {
-    Vec2 d = sampleConcentricDisk(u);
-    float z = safeSqrt(1 - d.x * d.x - d.y * d.y);
-    return {d.x, d.y, z};
+    float r = std::sqrt(u.x), phi = 2 * kPi * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), safeSqrt(1 - u.x)};
 }
 inline float cosineHemispherePdf(float cosTheta) { return std::max(0.0f, cosTheta) * kInvPi; }
 

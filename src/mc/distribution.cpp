@@ -27,7 +27,12 @@ Distribution1D::Distribution1D(std::span<const float> weights) {
 }
 
 static int findInterval(const std::vector<float>& cdf, float u) {
-    // Largest i with cdf[i] <= u, clamped to a valid bin.
+    // Largest i with cdf[i] <= u, clamped to a valid bin; small tables by a linear scan.
+    if (cdf.size() <= 17) {
+        int i = 0;
+        while (i + 2 < int(cdf.size()) && cdf[i + 1] <= u) ++i;
+        return i;
+    }
     auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
     int i = int(it - cdf.begin()) - 1;
     return std::clamp(i, 0, int(cdf.size()) - 2);

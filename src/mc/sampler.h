@@ -56,11 +56,11 @@ public:
         dimension_ = 0;
     }
     float get1D() override {
-        uint64_t h = hashCombine(pixelHash_, dimension_++);
+        uint64_t h = dimensionSeed(dimension_++);
         return fixedToFloat(owenScrambleReversed(index_, uint32_t(h)));
     }
     Vec2 get2D() override {
-        uint64_t h = hashCombine(pixelHash_, dimension_);
+        uint64_t h = dimensionSeed(dimension_);
         dimension_ += 2;
         return {fixedToFloat(owenScrambleReversed(index_, uint32_t(h))),
                 fixedToFloat(owenScrambleReversed(index1Reversed_, uint32_t(h >> 32)))};
@@ -68,6 +68,16 @@ public:
     std::unique_ptr<Sampler> clone() const override { return std::make_unique<PaddedSobolSampler>(seed_); }
 
 private:
+    // Scramble seeds per dimension from the (already well mixed) pixel hash: a cheap
+    // multiply-xorshift finaliser suffices on the hot path.
+    uint64_t dimensionSeed(uint64_t dim) const {
+        uint64_t h = pixelHash_ ^ (dim * 0x9e3779b97f4a7c15ULL);
+        h *= 0xbf58476d1ce4e5b9ULL;
+        h ^= h >> 31;
+        h *= 0x94d049bb133111ebULL;
+        return h ^ (h >> 29);
+    }
+
     uint64_t seed_;
     uint64_t pixelHash_ = 0;
     uint32_t index_ = 0, index1Reversed_ = 0;

@@ -113,6 +113,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     const Filter& filter = scene.filter();
     const float imagingRatio = scene.settings().imagingRatio;
     const int spp = std::max(1, options.spp);
+    const bool hasLens = scene.camera().params().lensRadius > 0;
 
     std::unique_ptr<Sampler> prototype = createSampler(options.sampler, options.seed);
     if (!prototype) throw InputError("unknown sampler \"" + options.sampler + "\" (available: independent, sobol)");
@@ -147,7 +148,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
                                 FilterSample fs = filter.sample(st.sampler->getPixel2D());
                                 CameraSample cs;
                                 cs.pFilm = {px + 0.5f + fs.offset.x, py + 0.5f + fs.offset.y};
-                                cs.pLens = st.sampler->get2D();
+                                cs.pLens = hasLens ? st.sampler->get2D() : Vec2(0.5f, 0.5f);
                                 Ray ray = scene.camera().generateRay(cs);
                                 Spectrum L = integrator.Li(ray, *st.sampler, st.scratch, st.stats);
                                 st.scratch.reset();
