@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <mutex>
 #include <thread>
+#include <unistd.h>
 
 namespace ps {
 
@@ -74,7 +75,8 @@ private:
             cv_.wait_for(lock, std::chrono::milliseconds(100));
             if (finished_) break;
             if ((cancel_ && cancel_->load()) || (timeLimit_ > 0 && elapsed() >= timeLimit_)) stop_ = true;
-            if (show_ && ++ticks_ % 3 == 0) print(false);
+            // Redraw in place on a terminal; elsewhere (logs, CI) only the final line is printed.
+            if (show_ && interactive_ && ++ticks_ % 3 == 0) print(false);
         }
     }
     void print(bool final) {
@@ -101,6 +103,7 @@ private:
     std::condition_variable cv_;
     bool finished_ = false;
     int ticks_ = 0;
+    bool interactive_ = isatty(fileno(stderr)) != 0;
     std::thread thread_;
 };
 
