@@ -21,18 +21,13 @@
 
 #include "image/image.h"
 #include "util/error.h"
+#include "util/path.h"
 
 namespace ps {
 
 namespace {
 
 constexpr long long kMaxPixels = 1LL << 28;
-
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
 
 void checkSize(const std::string& path, long long w, long long h) {
     if (w <= 0 || h <= 0 || w * h > kMaxPixels)

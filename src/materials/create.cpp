@@ -5,16 +5,11 @@
 #include "materials/materials.h"
 #include "materials/textures.h"
 #include "scene/spectra.h"
+#include "util/path.h"
 
 namespace ps {
 
 namespace {
-
-std::string resolve(const std::string& base, const std::string& f) {
-    std::filesystem::path p(f);
-    if (p.is_absolute() || base.empty()) return f;
-    return (std::filesystem::path(base) / p).string();
-}
 
 // A float parameter given as a constant or as `"texture name" "tex"`.
 FloatTex floatParam(const ParamSet& ps, const std::string& name, float def, const TextureRegistry& reg) {
@@ -81,9 +76,8 @@ ImageLookup imageLookup(const TextureEntity& e, const std::string& base) {
     const ParamSet& ps = e.params;
     std::string file = ps.getString("filename", "");
     if (file.empty()) throw InputError(e.loc, "imagemap: \"string filename\" is required");
-    std::string path = resolve(base, file);
-    std::string ext = std::filesystem::path(file).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    std::string path = resolvePath(base, file);
+    std::string ext = lowerExtension(file);
     std::string enc = ps.getString("encoding", ext == ".png" ? "sRGB" : "linear");
     ColorEncoding ce = enc == "linear" ? ColorEncoding::Linear : ColorEncoding::SRGB;
     if (enc != "linear" && enc != "sRGB") warning(e.loc, "imagemap: encoding \"" + enc + "\" is not supported; using sRGB");

@@ -3,6 +3,7 @@
 #include <memory>
 #include "render/scene.h"
 #include "scene/scene_description.h"
+#include "util/path.h"
 
 namespace ps {
 
@@ -16,7 +17,5 @@ std::unique_ptr<Shape> createShape(const ShapeEntity& e, const Transform& toScen
 std::unique_ptr<Light> createLight(const LightEntity& e, const std::string& baseDirectory);
 // Camera, film, filter, sampler and integrator settings.
 void applyRenderOptions(const SceneDescription& desc, Scene& scene);
-
-std::string resolvePath(const std::string& baseDirectory, const std::string& file);
 
 }  // namespace ps

@@ -7,12 +7,6 @@
 
 namespace ps {
 
-std::string resolvePath(const std::string& baseDirectory, const std::string& file) {
-    std::filesystem::path p(file);
-    if (p.is_absolute() || baseDirectory.empty()) return file;
-    return (std::filesystem::path(baseDirectory) / p).string();
-}
-
 namespace {
 
 // Checks indices against the vertex count and drops a trailing partial triangle.

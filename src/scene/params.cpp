@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "scene/spectra.h"
+#include "util/path.h"
 
 namespace ps {
 
@@ -32,9 +33,7 @@ std::vector<Vec3> triples(const Param& p) {
 }
 
 Spectrum spectrumFromFile(const Param& p, const std::string& file, const std::string& base, SpectrumKind kind) {
-    std::filesystem::path path(file);
-    if (path.is_relative() && !base.empty()) path = std::filesystem::path(base) / path;
-    std::ifstream in(path);
+    std::ifstream in(resolvePath(base, file));
     if (!in) throw InputError(p.loc, "spectrum \"" + file + "\" is neither a named spectrum nor a readable file");
     std::vector<float> lambda, value;
     double l, v;

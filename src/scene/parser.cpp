@@ -6,6 +6,7 @@
 #include <set>
 
 #include "scene/tokenizer.h"
+#include "util/path.h"
 
 namespace ps {
 
@@ -255,11 +256,7 @@ private:
             for (int j = 0; j < 4; ++j) m.m[j][i] = float(v[i * 4 + j]);
         return m;
     }
-    std::string resolve(const std::string& f) const {
-        std::filesystem::path p(f);
-        if (p.is_absolute() || desc_.baseDirectory.empty()) return f;
-        return (std::filesystem::path(desc_.baseDirectory) / p).string();
-    }
+    std::string resolve(const std::string& f) const { return resolvePath(desc_.baseDirectory, f); }
 
     void directive(TokenStream& ts, const Token& t, int depth) {
         if (t.isString() || t.text == "[" || t.text == "]") fail(ts, t, "expected a directive");
@@ -321,9 +318,7 @@ private:
             else if (name == "PixelFilter") desc_.filter = e;
         } else if (name == "ColorSpace") {
             std::string cs = quoted(ts, t, "a colour space name");
-            std::string lower = cs;
-            for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
-            if (lower != "srgb") warning(loc, "ColorSpace \"" + cs + "\" is not supported; RGB values are read as sRGB");
+            if (toLower(cs) != "srgb") warning(loc, "ColorSpace \"" + cs + "\" is not supported; RGB values are read as sRGB");
         } else if (name == "Option") {
             Token n = need(ts, t, "an option name");
             if (!n.isString()) fail(ts, n, "expected a quoted option name");
