@@ -78,9 +78,7 @@ int RenderCommand::run() {
     if (!sampler_.empty()) settings.sampler = sampler_;
     if (!crop_.empty()) {
         int W = scene->camera().params().xRes, H = scene->camera().params().yRes;
-        auto c = [](float v) { return clampf(v, 0, 1); };
-        PixelBounds b{int(std::ceil(W * c(std::min(crop_[0], crop_[1])))), int(std::ceil(W * c(std::max(crop_[0], crop_[1])))),
-                      int(std::ceil(H * c(std::min(crop_[2], crop_[3])))), int(std::ceil(H * c(std::max(crop_[2], crop_[3]))))};
+        PixelBounds b = cropWindowToPixels(W, H, crop_.data());
         if (b.width() <= 0 || b.height() <= 0) throw InputError("--crop: the crop window is empty");
         scene->setPixelBounds(b);
     }

@@ -1,7 +1,9 @@
 // The film accumulates weighted camera samples per pixel (sum of w*L and of w) and counts
 // what it had to reject, so no NaN or infinity ever reaches an image.
 #pragma once
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <vector>
 #include "image/image.h"
 #include "math/spectrum.h"
@@ -14,6 +16,14 @@ struct PixelBounds {
     int height() const { return y1 - y0; }
     long long area() const { return (long long)width() * height(); }
 };
+
+// pbrt-v4's cropwindow [x0 x1 y0 y1] in NDC (y down) -> pixels [ceil(x0 W), ceil(x1 W)) x ...
+inline PixelBounds cropWindowToPixels(int xRes, int yRes, const float crop[4]) {
+    auto c = [](float v) { return std::min(1.0f, std::max(0.0f, v)); };
+    auto px = [](int res, float v) { return int(std::ceil(res * v)); };
+    return {px(xRes, c(std::min(crop[0], crop[1]))), px(xRes, c(std::max(crop[0], crop[1]))),
+            px(yRes, c(std::min(crop[2], crop[3]))), px(yRes, c(std::max(crop[2], crop[3])))};
+}
 
 class Film {
 public:

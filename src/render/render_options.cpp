@@ -54,9 +54,7 @@ PixelBounds computeBounds(const ParamSet& ps, const SourceLoc& loc, int xRes, in
         b = {std::max(0, pb[0]), std::min(xRes, pb[1]), std::max(0, pb[2]), std::min(yRes, pb[3])};
     } else if (!crop.empty()) {
         if (crop.size() != 4) throw InputError(loc, "Film: \"cropwindow\" needs 4 values");
-        auto c = [](float v) { return clampf(v, 0, 1); };
-        b = {int(std::ceil(xRes * c(std::min(crop[0], crop[1])))), int(std::ceil(xRes * c(std::max(crop[0], crop[1])))),
-             int(std::ceil(yRes * c(std::min(crop[2], crop[3])))), int(std::ceil(yRes * c(std::max(crop[2], crop[3]))))};
+        b = cropWindowToPixels(xRes, yRes, crop.data());
     }
     if (b.width() <= 0 || b.height() <= 0) throw InputError(loc, "Film: the crop window is empty");
     return b;

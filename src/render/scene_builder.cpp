@@ -1,7 +1,5 @@
 #include "render/scene_builder.h"
 
-#include <cstdio>
-#include <limits>
 #include <mutex>
 
 #include "lights/area_light.h"
