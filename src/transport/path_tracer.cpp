@@ -5,8 +5,9 @@
 
 namespace ps {
 
+template <typename S>
 Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
-                                  Sampler& sampler, PathStats& stats) const {
+                                  S& sampler, PathStats& stats) const {
     float uLight = sampler.get1D();
     Vec2 u = sampler.get2D();
     float pmf;
@@ -25,7 +26,14 @@ Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& fra
     return f * ls->L * (powerHeuristic(pLight, pBsdf) / pLight);
 }
 
-Spectrum PathTracer::Li(const Ray& cameraRay, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats) const {
+Spectrum PathTracer::Li(const Ray& ray, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats) const {
+    if (auto* s = dynamic_cast<PaddedSobolSampler*>(&sampler)) return estimate(ray, *s, scratch, stats);
+    if (auto* s = dynamic_cast<IndependentSampler*>(&sampler)) return estimate(ray, *s, scratch, stats);
+    return estimate(ray, sampler, scratch, stats);
+}
+
+template <typename S>
+Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& scratch, PathStats& stats) const {
     Spectrum L, beta(1.0f);
     Ray ray = cameraRay;
     int depth = 0;

@@ -12,9 +12,13 @@ public:
     Spectrum Li(const Ray& ray, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats) const override;
 
 private:
+    // The estimator, instantiated per concrete sampler so its calls inline on the hot path.
+    template <typename S>
+    Spectrum estimate(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats) const;
     // Direct lighting at a surface by one light sample, MIS-weighted against BSDF sampling.
+    template <typename S>
     Spectrum sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
-                          Sampler& sampler, PathStats& stats) const;
+                          S& sampler, PathStats& stats) const;
 
     const Scene& scene_;
     int maxDepth_;
