@@ -25,7 +25,7 @@ Ray Camera::generateRay(const CameraSample& s) const {
     float sy = sy1_ - s.pFilm.y / params_.yRes * (sy1_ - sy0_);
     Vec3 o, d;
     if (params_.projection == Projection::Perspective) {
-        d = normalize(Vec3(sx * tanHalfFov_, sy * tanHalfFov_, 1));
+        d = Vec3(sx * tanHalfFov_, sy * tanHalfFov_, 1);  // normalised once, in world space
         o = {0, 0, 0};
     } else {
         o = {sx, sy, 0};
@@ -36,7 +36,7 @@ Ray Camera::generateRay(const CameraSample& s) const {
         float ft = params_.focalDistance / d.z;
         Vec3 pFocus = o + d * ft;
         o = {o.x + lens.x, o.y + lens.y, 0};
-        d = normalize(pFocus - o);
+        d = pFocus - o;
     }
     const Transform& T = params_.worldFromCamera;
     return Ray{T.point(o), normalize(T.vector(d))};

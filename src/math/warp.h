@@ -54,15 +54,12 @@ inline Vec3 sampleUniformCone(Vec2 u, float cosMax) {
 inline float uniformConePdf(float cosMax) { return 1 / (2 * kPi * (1 - cosMax)); }
 
 // Uniform barycentrics (b0, b1) on a triangle; b2 = 1 - b0 - b1 (Heitz's low-distortion map).
+// Written with selects rather than a branch: u is random, so a branch mispredicts half the time.
 inline Vec2 sampleUniformTriangle(Vec2 u) {
-    float b0, b1;
-    if (u.x < u.y) {
-        b0 = u.x / 2;
-        b1 = u.y - b0;
-    } else {
-        b1 = u.y / 2;
-        b0 = u.x - b1;
-    }
+    bool lower = u.x < u.y;
+    float hx = u.x * 0.5f, hy = u.y * 0.5f;
+    float b0 = lower ? hx : u.x - hy;
+    float b1 = lower ? u.y - hx : hy;
     return {b0, b1};
 }
 

@@ -27,11 +27,12 @@ Distribution1D::Distribution1D(std::span<const float> weights) {
 }
 
 static int findInterval(const std::vector<float>& cdf, float u) {
-    // Largest i with cdf[i] <= u, clamped to a valid bin; small tables by a linear scan.
+    // Largest i with cdf[i] <= u, clamped to a valid bin. Small tables (a few lights) by
+    // counting without early exit: no branch to mispredict on a random u.
     if (cdf.size() <= 17) {
-        int i = 0;
-        while (i + 2 < int(cdf.size()) && cdf[i + 1] <= u) ++i;
-        return i;
+        int count = 0;
+        for (size_t i = 1; i + 1 < cdf.size(); ++i) count += cdf[i] <= u;
+        return count;
     }
     auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
     int i = int(it - cdf.begin()) - 1;
