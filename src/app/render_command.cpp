@@ -125,6 +125,9 @@ int RenderCommand::run() {
         {"closest_hit_rays", r.stats.rays},
         {"shadow_rays", r.stats.shadowRays},
         {"rays_per_s", double(rays) / secs},
+        {"mean_pixel_variance", r.error.meanVariance},
+        {"mean_relative_variance", r.error.meanRelativeVariance},
+        {"efficiency", r.efficiency},
         {"nonfinite_guarded", r.stats.guarded},
         {"nonfinite_samples_rejected", r.rejectedSamples},
         {"warnings", warningCount()},
@@ -143,6 +146,8 @@ int RenderCommand::run() {
                     r.seconds, r.meanSpp, r.targetSpp, double(r.stats.cameraPaths) / secs, double(rays),
                     double(r.stats.rays), double(r.stats.shadowRays), double(rays) / secs,
                     (unsigned long long)r.stats.guarded, r.rejectedSamples);
+        std::printf("error: mean relative variance %.3g, efficiency 1/(V T) %.3g\n", r.error.meanRelativeVariance,
+                    r.efficiency);
         if (r.stoppedEarly) std::printf("stopped early: %s\n", gInterrupt.load() ? "interrupted" : "time budget reached");
     }
     return gInterrupt.load() ? kExitInterrupted : kExitOk;

@@ -21,6 +21,19 @@ Image Film::image() const {
     return img;
 }
 
+Film::ErrorEstimate Film::errorEstimate() const {
+    ErrorEstimate e;
+    if (pixels_.empty()) return e;
+    for (const Pixel& p : pixels_) {
+        double v = p.luminance.varianceOfMean(), m = p.luminance.mean();
+        e.meanVariance += v;
+        e.meanRelativeVariance += v / (m * m + 1e-3);
+    }
+    e.meanVariance /= double(pixels_.size());
+    e.meanRelativeVariance /= double(pixels_.size());
+    return e;
+}
+
 double Film::meanSamplesPerPixel() const {
     long double total = 0;
     for (const Pixel& p : pixels_) total += p.samples;

@@ -7,6 +7,7 @@
 #include <vector>
 #include "image/image.h"
 #include "math/spectrum.h"
+#include "mc/estimator.h"
 
 namespace ps {
 
@@ -47,11 +48,22 @@ public:
         p.sum[2] += double(L.b) * weight;
         p.weight += weight;
         p.samples += 1;
+        p.luminance.add(L.luminance());
     }
 
     // The image of the crop region: each pixel the weighted mean of its samples.
     Image image() const;
     long long rejectedSamples() const { return rejected_.load(); }
+
+    // The render's own error, as the thesis defines it (§2.4): per pixel, the variance of the
+    // pixel's mean luminance estimated from its samples; over the image, the mean of those
+    // variances, and the mean relative variance V/(mean^2 + 1e-3) (the small constant keeps
+    // black pixels from dominating).
+    struct ErrorEstimate {
+        double meanVariance = 0;
+        double meanRelativeVariance = 0;
+    };
+    ErrorEstimate errorEstimate() const;
     // Mean number of samples per pixel so far.
     double meanSamplesPerPixel() const;
 
@@ -60,6 +72,7 @@ private:
         double sum[3] = {0, 0, 0};
         double weight = 0;
         long long samples = 0;
+        RunningStats luminance;
     };
     size_t index(int px, int py) const { return size_t(py - bounds_.y0) * bounds_.width() + (px - bounds_.x0); }
 

@@ -170,6 +170,8 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     result.meanSpp = film.meanSamplesPerPixel();
     result.stoppedEarly = result.meanSpp < spp;
     result.rejectedSamples = film.rejectedSamples();
+    result.error = film.errorEstimate();
+    result.efficiency = efficiency(result.error.meanRelativeVariance, result.seconds);
     return result;
 }
 

@@ -29,6 +29,9 @@ struct RenderResult {
     bool stoppedEarly = false;   // time budget or cancellation
     PathStats stats;
     long long rejectedSamples = 0;
+    Film::ErrorEstimate error;  // per-pixel variance of the estimate, averaged over the image
+    // Efficiency 1/(V T) with V the mean relative variance and T the render time (thesis eq. 2.26).
+    double efficiency = 0;
 };
 
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options);
