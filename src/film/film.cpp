@@ -25,7 +25,10 @@ Film::ErrorEstimate Film::errorEstimate() const {
     ErrorEstimate e;
     if (pixels_.empty()) return e;
     for (const Pixel& p : pixels_) {
-        double v = p.luminance.varianceOfMean(), m = p.luminance.mean();
+        double n = double(p.samples);
+        if (n < 2) continue;
+        double m = p.sumY / n;
+        double v = std::max(0.0, (p.sumY2 - n * m * m) / (n - 1)) / n;  // variance of the mean
         e.meanVariance += v;
         e.meanRelativeVariance += v / (m * m + 1e-3);
     }

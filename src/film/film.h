@@ -7,7 +7,6 @@
 #include <vector>
 #include "image/image.h"
 #include "math/spectrum.h"
-#include "mc/estimator.h"
 
 namespace ps {
 
@@ -48,7 +47,9 @@ public:
         p.sum[2] += double(L.b) * weight;
         p.weight += weight;
         p.samples += 1;
-        p.luminance.add(L.luminance());
+        double y = L.luminance();
+        p.sumY += y;
+        p.sumY2 += y * y;
     }
 
     // The image of the crop region: each pixel the weighted mean of its samples.
@@ -72,7 +73,9 @@ private:
         double sum[3] = {0, 0, 0};
         double weight = 0;
         long long samples = 0;
-        RunningStats luminance;
+        // Luminance moments in double precision: no division on the per-sample path, and no
+        // cancellation problem at the magnitudes and counts a render has.
+        double sumY = 0, sumY2 = 0;
     };
     size_t index(int px, int py) const { return size_t(py - bounds_.y0) * bounds_.width() + (px - bounds_.x0); }
 

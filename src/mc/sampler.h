@@ -12,7 +12,10 @@ namespace ps {
 
 class Sampler {
 public:
+    // Lets hot loops dispatch once to code specialised for a concrete sampler.
+    enum class Kind { Independent, PaddedSobol, Other };
     virtual ~Sampler() = default;
+    virtual Kind kind() const { return Kind::Other; }
     virtual void startPixelSample(int px, int py, int sampleIndex) = 0;
     virtual float get1D() = 0;
     virtual Vec2 get2D() = 0;
@@ -25,6 +28,7 @@ public:
 class IndependentSampler final : public Sampler {
 public:
     explicit IndependentSampler(uint64_t seed) : seed_(seed) {}
+    Kind kind() const override { return Kind::Independent; }
     void startPixelSample(int px, int py, int sampleIndex) override {
         uint64_t pixel = (uint64_t(uint32_t(px)) << 32) | uint32_t(py);
         rng_.seed(hashCombine(mix64(pixel), seed_), mix64(uint64_t(sampleIndex) ^ (seed_ << 20)));
@@ -49,6 +53,7 @@ private:
 class PaddedSobolSampler final : public Sampler {
 public:
     explicit PaddedSobolSampler(uint64_t seed) : seed_(seed) {}
+    Kind kind() const override { return Kind::PaddedSobol; }
     void startPixelSample(int px, int py, int sampleIndex) override {
         pixelHash_ = hashCombine(mix64((uint64_t(uint32_t(px)) << 32) | uint32_t(py)), seed_);
         index_ = uint32_t(sampleIndex);

@@ -27,9 +27,11 @@ Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& fra
 }
 
 Spectrum PathTracer::Li(const Ray& ray, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats) const {
-    if (auto* s = dynamic_cast<PaddedSobolSampler*>(&sampler)) return estimate(ray, *s, scratch, stats);
-    if (auto* s = dynamic_cast<IndependentSampler*>(&sampler)) return estimate(ray, *s, scratch, stats);
-    return estimate(ray, sampler, scratch, stats);
+    switch (sampler.kind()) {
+        case Sampler::Kind::PaddedSobol: return estimate(ray, static_cast<PaddedSobolSampler&>(sampler), scratch, stats);
+        case Sampler::Kind::Independent: return estimate(ray, static_cast<IndependentSampler&>(sampler), scratch, stats);
+        default: return estimate(ray, sampler, scratch, stats);
+    }
 }
 
 template <typename S>

@@ -1,5 +1,7 @@
 #include "transport/renderer.h"
 
+#include "mc/estimator.h"
+
 #include "util/error.h"
 
 #include <tbb/enumerable_thread_specific.h>
