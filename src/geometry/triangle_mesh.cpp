@@ -4,6 +4,8 @@
 
 namespace ps {
 
+static inline Vec3 loadP(const std::vector<float>& p, unsigned i) { return {p[3 * i], p[3 * i + 1], p[3 * i + 2]}; }
+
 TriangleMesh::TriangleMesh(TriangleMeshData data, const Transform& toScene, bool reverseOrientation) {
     positions_.resize(data.P.size() * 3 + 1);  // +1 float: Embree reads 16 bytes per vertex
     for (size_t i = 0; i < data.P.size(); ++i) {
@@ -24,6 +26,23 @@ TriangleMesh::TriangleMesh(TriangleMeshData data, const Transform& toScene, bool
     if (data.uv.size() == data.P.size()) uv_ = std::move(data.uv);
     indices_.assign(data.indices.begin(), data.indices.end());
     flipNormal_ = reverseOrientation ^ toScene.swapsHandedness();
+    int n = primitiveCount();
+    faceNormal_.resize(n);
+    faceDpdu_.resize(n);
+    for (int i = 0; i < n; ++i) {
+        const unsigned* vi = &indices_[3 * i];
+        Vec3 p0 = loadP(positions_, vi[0]), p1 = loadP(positions_, vi[1]), p2 = loadP(positions_, vi[2]);
+        Vec3 ng = cross(p1 - p0, p2 - p0);
+        float l = length(ng);
+        ng = l > 0 ? ng / l : Vec3(0, 0, 1);
+        faceNormal_[i] = flipNormal_ ? -ng : ng;
+        // dp/du from the uv parameterisation. Degenerate or non-finite tangents are replaced
+        // by Frame::fromNormalTangent, which falls back to an arbitrary tangent.
+        Vec2 uv0 = uvAt(vi[0], 0), uv1 = uvAt(vi[1], 1), uv2 = uvAt(vi[2], 2);
+        Vec2 duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+        float det = duv02.x * duv12.y - duv02.y * duv12.x;
+        faceDpdu_[i] = det != 0 ? ((p0 - p2) * duv12.y - (p1 - p2) * duv02.y) / det : Vec3();
+    }
 }
 
 RTCGeometry TriangleMesh::buildGeometry(RTCDevice device) const {
@@ -36,7 +55,6 @@ RTCGeometry TriangleMesh::buildGeometry(RTCDevice device) const {
     return g;
 }
 
-static inline Vec3 loadP(const std::vector<float>& p, unsigned i) { return {p[3 * i], p[3 * i + 1], p[3 * i + 2]}; }
 
 void TriangleMesh::prepareSampling() {
     int n = primitiveCount();
@@ -83,19 +101,9 @@ void TriangleMesh::interaction(const Ray& r, float t, int prim, float u, float v
     si.p = p0 * b0 + p1 * u + p2 * v;
     si.t = t;
     (void)r;
-    Vec3 ng = cross(p1 - p0, p2 - p0);
-    float l = length(ng);
-    ng = l > 0 ? ng / l : Vec3(0, 0, 1);
-    if (flipNormal_) ng = -ng;
-
-    Vec2 uv0 = uvAt(vi[0], 0), uv1 = uvAt(vi[1], 1), uv2 = uvAt(vi[2], 2);
-    si.uv = uv0 * b0 + uv1 * u + uv2 * v;
-    // dp/du from the uv parameterisation. Degenerate or non-finite tangents are replaced
-    // by Frame::fromNormalTangent, which falls back to an arbitrary tangent.
-    Vec2 duv02 = uv0 - uv2, duv12 = uv1 - uv2;
-    float det = duv02.x * duv12.y - duv02.y * duv12.x;
-    Vec3 dpdu;
-    if (det != 0) dpdu = ((p0 - p2) * duv12.y - (p1 - p2) * duv02.y) / det;
+    Vec3 ng = faceNormal_[prim];
+    si.uv = uv_.empty() ? Vec2(u + v, v) : uv_[vi[0]] * b0 + uv_[vi[1]] * u + uv_[vi[2]] * v;
+    Vec3 dpdu = faceDpdu_[prim];
 
     if (!normals_.empty()) {
         Vec3 ns = normals_[vi[0]] * b0 + normals_[vi[1]] * u + normals_[vi[2]] * v;
