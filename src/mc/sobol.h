@@ -27,21 +27,10 @@ inline uint32_t sobolDim1(uint32_t index) {
     return result;
 }
 
-// Owen scrambling of a 32-bit fixed-point value: a hash of each prefix of bits decides
-// whether the next bit flips (the Laine-Karras construction with Burley's constants).
-inline uint32_t owenScramble(uint32_t v, uint32_t seed) {
-    v = reverseBits32(v);
-    v ^= v * 0x3d20adeau;
-    v += seed;
-    v *= (seed >> 16) | 1u;
-    v ^= v * 0x05526c56u;
-    v ^= v * 0x53a22864u;
-    return reverseBits32(v);
-}
-
-// The same points computed in bit-reversed form, where Owen scrambling works directly:
-// owenScrambleReversed(sobolDimKReversed(i), seed) == owenScramble(sobolDimK(i), seed),
-// with two bit reversals fewer per sample.
+// Owen scrambling works on the bit-reversed value (the hash of each prefix must reach the
+// bits below it, which multiplication only carries upwards). Points computed directly in
+// reversed form save two reversals: owenScrambleReversed(sobolDim1Reversed(i), seed) ==
+// owenScramble(sobolDim1(i), seed), and for dimension 0 the reversed point is i itself.
 inline uint32_t sobolDim1Reversed(uint32_t index) {
     uint32_t result = 0, v = 1;
     for (; index; index >>= 1, v ^= v << 1)
@@ -56,6 +45,10 @@ inline uint32_t owenScrambleReversed(uint32_t v, uint32_t seed) {
     v ^= v * 0x53a22864u;
     return reverseBits32(v);
 }
+
+// Owen scrambling of a 32-bit fixed-point value: a hash of each prefix of bits decides
+// whether the next bit flips (the Laine-Karras construction with Burley's constants).
+inline uint32_t owenScramble(uint32_t v, uint32_t seed) { return owenScrambleReversed(reverseBits32(v), seed); }
 
 // 32-bit fixed point to a float in [0, 1).
 inline float fixedToFloat(uint32_t v) { return float(v >> 8) * 0x1p-24f; }
