@@ -55,8 +55,9 @@ void RenderCommand::attach(CLI::App& app) {
         ->check(CLI::NonNegativeNumber);
     cmd_->add_option("--integrator", integrator_, "Integrator: path (pbrt names path/volpath map to it)");
     cmd_->add_option("--sampler", sampler_,
-                     "Sample placement: sobol (default; Owen-scrambled Sobol, stratified per pixel) or independent")
-        ->check(CLI::IsMember({"sobol", "independent"}));
+                     "Sample placement per pixel: sobol (default; Owen-scrambled Sobol), stratified (jittered strata), "
+                     "lhs (Latin hypercube) or independent")
+        ->check(CLI::IsMember({"sobol", "stratified", "lhs", "independent"}));
     cmd_->add_option("-o,--output", outputs_,
                      "Output image(s): .exr (float32), .png (sRGB 8-bit, clamped), .pfm; may be repeated. "
                      "Default: the scene's Film filename, relative to the current directory");

@@ -6,6 +6,7 @@
 #include <string>
 #include "math/vec.h"
 #include "mc/rng.h"
+#include "mc/permutation.h"
 #include "mc/sobol.h"
 
 namespace ps {
@@ -89,7 +90,58 @@ private:
     uint64_t dimension_ = 0;
 };
 
-// Names: "independent", "sobol" (padded Owen-scrambled Sobol). nullptr for other names.
-std::unique_ptr<Sampler> createSampler(const std::string& name, uint64_t seed);
+// Stratified sampling over a pixel's N samples (thesis §2.7.1), padded across dimensions:
+// every 1-D request is jittered in N strata, sample i taking stratum pi_d(i) of a random
+// permutation per (pixel, dimension). 2-D requests use an m x m jittered grid when N = m^2
+// (stratified) or N-rooks (Latin hypercube) otherwise, and always in "lhs" mode.
+class StratifiedSampler final : public Sampler {
+public:
+    StratifiedSampler(uint64_t seed, int samplesPerPixel, bool latinHypercube)
+        : seed_(seed), n_(uint32_t(samplesPerPixel < 1 ? 1 : samplesPerPixel)), lhs_(latinHypercube) {
+        uint32_t m = 1;
+        while ((m + 1) * (m + 1) <= n_) ++m;
+        gridSide_ = (!lhs_ && m * m == n_) ? m : 0;
+    }
+    void startPixelSample(int px, int py, int sampleIndex) override {
+        pixelHash_ = hashCombine(mix64((uint64_t(uint32_t(px)) << 32) | uint32_t(py)), seed_);
+        index_ = uint32_t(sampleIndex);
+        dimension_ = 0;
+    }
+    float get1D() override {
+        uint64_t h = hashCombine(pixelHash_, dimension_++);
+        return stratum(permuteIndex(index_ % n_, n_, uint32_t(h)), n_, jitter(h, 0));
+    }
+    Vec2 get2D() override {
+        uint64_t h = hashCombine(pixelHash_, dimension_);
+        dimension_ += 2;
+        if (gridSide_) {
+            uint32_t cell = permuteIndex(index_ % n_, n_, uint32_t(h));
+            return {stratum(cell % gridSide_, gridSide_, jitter(h, 0)), stratum(cell / gridSide_, gridSide_, jitter(h, 1))};
+        }
+        return {stratum(permuteIndex(index_ % n_, n_, uint32_t(h)), n_, jitter(h, 0)),
+                stratum(permuteIndex(index_ % n_, n_, uint32_t(h >> 32)), n_, jitter(h, 1))};
+    }
+    std::unique_ptr<Sampler> clone() const override { return std::make_unique<StratifiedSampler>(seed_, int(n_), lhs_); }
+
+private:
+    // Beyond N samples the pattern repeats with fresh jitter (index_ / n_ enters the hash).
+    float jitter(uint64_t h, uint64_t k) const {
+        return float(mix64(h ^ (uint64_t(index_) * 0x9e3779b97f4a7c15ULL) ^ (k << 62)) >> 40) * 0x1p-24f;
+    }
+    static float stratum(uint32_t s, uint32_t count, float j) {
+        float u = (float(s) + j) / float(count);
+        return u < 1.0f ? u : 0x1.fffffep-1f;
+    }
+    uint64_t seed_;
+    uint32_t n_, gridSide_ = 0;
+    bool lhs_;
+    uint64_t pixelHash_ = 0;
+    uint32_t index_ = 0;
+    uint64_t dimension_ = 0;
+};
+
+// Names: "independent", "sobol" (padded Owen-scrambled Sobol), "stratified", "lhs".
+// nullptr for other names. samplesPerPixel sizes the strata of the stratified samplers.
+std::unique_ptr<Sampler> createSampler(const std::string& name, uint64_t seed, int samplesPerPixel = 16);
 
 }  // namespace ps

@@ -134,8 +134,8 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
         sp.getBool("jitter", true);
         s.spp = sp.getInt("xsamples", 4) * sp.getInt("ysamples", 4);
     }
-    if (st == "independent") {
-        s.sampler = "independent";
+    if (st == "independent" || st == "stratified") {
+        s.sampler = st;
     } else {
         s.sampler = "sobol";
         if (st != "sobol" && st != "zsobol" && st != "paddedsobol")

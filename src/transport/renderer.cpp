@@ -120,8 +120,9 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     const int spp = std::max(1, options.spp);
     const bool hasLens = scene.camera().params().lensRadius > 0;
 
-    std::unique_ptr<Sampler> prototype = createSampler(options.sampler, options.seed);
-    if (!prototype) throw InputError("unknown sampler \"" + options.sampler + "\" (available: independent, sobol)");
+    std::unique_ptr<Sampler> prototype = createSampler(options.sampler, options.seed, spp);
+    if (!prototype)
+        throw InputError("unknown sampler \"" + options.sampler + "\" (available: sobol, stratified, lhs, independent)");
     tbb::enumerable_thread_specific<ThreadState> states([&] {
         ThreadState s;
         s.sampler = prototype->clone();

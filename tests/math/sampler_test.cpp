@@ -60,7 +60,7 @@ TEST(Sobol, ScrambledPointIsUniform) {
 }
 
 TEST(Samplers, DeterministicPerPixelSample) {
-    for (const char* name : {"independent", "sobol"}) {
+    for (const char* name : {"independent", "sobol", "stratified", "lhs"}) {
         auto a = createSampler(name, 42), b = createSampler(name, 42);
         a->startPixelSample(3, 4, 5);
         float a1 = a->get1D();
@@ -89,4 +89,48 @@ TEST(Samplers, PaddedSobolStratifiesEachDimension) {
         }
         EXPECT_EQ(strata.size(), 16u) << "dimension " << dim;
     }
+}
+
+// Stratified sampling: with N samples per pixel every 1-D dimension puts exactly one sample
+// in each of N strata; 2-D requests fill every cell of the m x m grid (N = m^2), and in
+// Latin hypercube mode every row and every column of the N x N grid exactly once.
+TEST(Samplers, StratifiedAndLatinHypercubeFillEveryStratum) {
+    for (bool lhs : {false, true}) {
+        for (int n : {16, 12}) {
+            StratifiedSampler s(9, n, lhs);
+            for (int px : {0, 5}) {
+                std::set<int> d0, d1x, d1y, cells;
+                for (int i = 0; i < n; ++i) {
+                    s.startPixelSample(px, 3, i);
+                    d0.insert(int(s.get1D() * n));
+                    Vec2 u = s.get2D();
+                    ASSERT_GE(u.x, 0.0f);
+                    ASSERT_LT(u.x, 1.0f);
+                    d1x.insert(int(u.x * n));
+                    d1y.insert(int(u.y * n));
+                    cells.insert(int(u.x * 4) * 4 + int(u.y * 4));
+                }
+                EXPECT_EQ(int(d0.size()), n);
+                if (lhs || n == 12) {
+                    EXPECT_EQ(int(d1x.size()), n) << "columns";
+                    EXPECT_EQ(int(d1y.size()), n) << "rows";
+                } else {
+                    EXPECT_EQ(int(cells.size()), 16) << "4x4 grid cells";
+                }
+            }
+        }
+    }
+}
+
+TEST(Permutation, IsABijection) {
+    for (uint32_t n : {1u, 2u, 7u, 16u, 1000u})
+        for (uint32_t seed : {0u, 123u, 0xfeedbeefu}) {
+            std::set<uint32_t> seen;
+            for (uint32_t i = 0; i < n; ++i) {
+                uint32_t p = permuteIndex(i, n, seed);
+                ASSERT_LT(p, n);
+                seen.insert(p);
+            }
+            EXPECT_EQ(seen.size(), n);
+        }
 }

@@ -135,3 +135,33 @@ TEST(ExactScenes, DirectlySeenLightHasItsRadiance) {
     RegionStats s = wholeImage(r.image);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.mean[c], 1.0, 1e-5);
 }
+
+// Every sampler gives an unbiased image: the closed furnace (maxdepth 3) with each.
+TEST(ExactScenes, ClosedFurnaceWithEverySampler) {
+    const char* scene = R"(
+        LookAt 0 0 0  0 0 1  0 1 0
+        Camera "perspective" "float fov" [ 60 ]
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 3 ]
+        WorldBegin
+        AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+        ReverseOrientation
+        Shape "sphere" "float radius" [ 1 ]
+    )";
+    const double exact[3] = {1.875, 1.875, 1.875};  // 1 + 1/2 + 1/4 + 1/8
+    for (const char* sampler : {"sobol", "stratified", "lhs", "independent"}) {
+        SceneDescription desc = parseSceneString(scene);
+        auto s = buildScene(desc);
+        auto integrator = createIntegrator("path", *s);
+        RenderOptions o;
+        o.spp = 64;
+        o.seed = 11;
+        o.sampler = sampler;
+        o.progress = false;
+        RenderResult r = render(*s, *integrator, o);
+        SCOPED_TRACE(sampler);
+        expectWithin4Sigma(wholeImage(r.image), exact);
+    }
+}
