@@ -1,7 +1,11 @@
+// Materials and textures from the scene's parameter lists, with pbrt-v4's parameter names
+// and defaults (PBRT-CONVENTIONS §5, §6; pbrt-v4 materials.cpp / textures.cpp Create()).
 #include "materials/create.h"
 
-#include <filesystem>
+#include <atomic>
+#include <type_traits>
 
+#include "materials/image_texture.h"
 #include "materials/materials.h"
 #include "materials/textures.h"
 #include "scene/spectra.h"
@@ -11,23 +15,32 @@ namespace ps {
 
 namespace {
 
+const SourceLoc& locOf(const ParamSet& ps, const std::string& name) {
+    const Param* p = ps.find(name);
+    return p ? p->loc : ps.loc;
+}
+
 // A float parameter given as a constant or as `"texture name" "tex"`.
 FloatTex floatParam(const ParamSet& ps, const std::string& name, float def, const TextureRegistry& reg) {
     std::string tex = ps.getTexture(name);
     if (!tex.empty()) {
         auto it = reg.floats.find(tex);
-        if (it == reg.floats.end()) throw InputError(ps.loc, "float texture \"" + tex + "\" (for \"" + name + "\") is not defined");
+        if (it == reg.floats.end())
+            throw InputError(locOf(ps, name), "float texture \"" + tex + "\" (for \"" + name + "\") is not defined");
         return it->second;
     }
     return std::make_shared<ConstantTexture<float>>(ps.getFloat(name, def));
 }
 
+// A spectrum parameter as a texture or as rgb / spectrum / blackbody; def when absent
+// (nullptr when def is nullopt).
 SpectrumTex spectrumParam(const ParamSet& ps, const std::string& name, std::optional<Spectrum> def, SpectrumKind kind,
                           const TextureRegistry& reg) {
     std::string tex = ps.getTexture(name);
     if (!tex.empty()) {
         auto it = reg.spectra.find(tex);
-        if (it == reg.spectra.end()) throw InputError(ps.loc, "spectrum texture \"" + tex + "\" (for \"" + name + "\") is not defined");
+        if (it == reg.spectra.end())
+            throw InputError(locOf(ps, name), "spectrum texture \"" + tex + "\" (for \"" + name + "\") is not defined");
         return it->second;
     }
     if (auto s = ps.getSpectrum(name, kind)) return std::make_shared<ConstantTexture<Spectrum>>(*s);
@@ -35,105 +48,146 @@ SpectrumTex spectrumParam(const ParamSet& ps, const std::string& name, std::opti
     return nullptr;
 }
 
+SpectrumTex constantSpectrum(const Spectrum& s) { return std::make_shared<ConstantTexture<Spectrum>>(s); }
+
+// uroughness / vroughness, each defaulting to roughness (0); remaproughness (true).
 Roughness roughness(const ParamSet& ps, const TextureRegistry& reg, const std::string& prefix = "") {
     Roughness r;
-    FloatTex base = floatParam(ps, prefix + "roughness", 0, reg);
-    r.u = ps.has(prefix + "uroughness") ? floatParam(ps, prefix + "uroughness", 0, reg) : base;
-    r.v = ps.has(prefix + "vroughness") ? floatParam(ps, prefix + "vroughness", 0, reg) : base;
+    r.u = ps.has(prefix + "uroughness") ? floatParam(ps, prefix + "uroughness", 0, reg) : floatParam(ps, prefix + "roughness", 0, reg);
+    r.v = ps.has(prefix + "vroughness") ? floatParam(ps, prefix + "vroughness", 0, reg) : floatParam(ps, prefix + "roughness", 0, reg);
     r.remap = ps.getBool("remaproughness", true);
     return r;
 }
 
-// Dielectric eta: a float, or a spectrum (whose dispersion we cannot model).
+// A dielectric's index: `float` (the first value), or a spectrum. pbrt-v4 then follows one
+// wavelength (dispersion); in RGB we keep the green channel's value and say so once.
 float etaParam(const ParamSet& ps, const std::string& name) {
     const Param* p = ps.find(name);
-    if (p && p->type != ParamType::Float) {
-        if (auto s = ps.getSpectrum(name, SpectrumKind::Unbounded)) {
-            warning(p->loc, "spectrally varying \"" + name + "\": dispersion is not modelled; using its green value " +
-                                std::to_string(s->g));
-            return s->g;
-        }
+    float eta = 1.5f;
+    if (p && p->type == ParamType::Float) {
+        std::vector<float> v = ps.getFloats(name);
+        if (v.empty()) throw InputError(p->loc, "\"float " + name + "\" needs a value");
+        eta = v[0];
+    } else if (auto s = ps.getSpectrum(name, SpectrumKind::Unbounded)) {
+        static std::atomic<bool> warned{false};
+        if (!warned.exchange(true))
+            warning(p->loc, "spectrally varying \"" + name + "\": dispersion is not modelled; using the green channel's value " +
+                                std::to_string(s->g) + " (warned once)");
+        eta = s->g;
     }
-    if (p && p->type == ParamType::Texture) {
-        ps.getTexture(name);
-        warning(p->loc, "textured \"" + name + "\" is not supported; using 1.5");
-        return 1.5f;
-    }
-    float eta = ps.getFloat(name, 1.5f);
-    if (!(eta > 0)) throw InputError(p ? p->loc : ps.loc, "\"" + name + "\" must be positive");
+    // A textured index is not a pbrt-v4 feature: left unused, reportUnused names it.
+    if (eta == 0) eta = 1;  // as pbrt-v4
+    if (!(eta > 0) || !std::isfinite(eta)) throw InputError(p ? p->loc : ps.loc, "\"" + name + "\" must be positive");
     return eta;
 }
 
+LayerTextures layerParams(const ParamSet& ps, const TextureRegistry& reg) {
+    LayerTextures l;
+    l.thickness = floatParam(ps, "thickness", 0.01f, reg);
+    l.g = floatParam(ps, "g", 0, reg);
+    l.albedo = spectrumParam(ps, "albedo", Spectrum(0.0f), SpectrumKind::Albedo, reg);
+    l.maxDepth = ps.getInt("maxdepth", 10);
+    l.nSamples = ps.getInt("nsamples", 1);
+    if (l.maxDepth < 0) throw InputError(locOf(ps, "maxdepth"), "\"maxdepth\" must not be negative");
+    if (l.nSamples < 1) throw InputError(locOf(ps, "nsamples"), "\"nsamples\" must be at least 1");
+    return l;
+}
+
+// Conductor eta / k (default copper) or reflectance; giving both forms is an error.
+void conductorParams(const ParamSet& ps, const TextureRegistry& reg, const std::string& prefix, const std::string& what,
+                     SpectrumTex& eta, SpectrumTex& k, SpectrumTex& reflectance) {
+    const SpectrumKind U = SpectrumKind::Unbounded;
+    reflectance = spectrumParam(ps, "reflectance", std::nullopt, SpectrumKind::Albedo, reg);
+    eta = spectrumParam(ps, prefix + "eta", std::nullopt, U, reg);
+    k = spectrumParam(ps, prefix + "k", std::nullopt, U, reg);
+    if (reflectance && (eta || k))
+        throw InputError(locOf(ps, "reflectance"),
+                         what + ": give either \"reflectance\" or \"" + prefix + "eta\"/\"" + prefix + "k\", not both");
+    if (reflectance) return;
+    if (!eta) eta = constantSpectrum(*namedSpectrumToRGB("metal-Cu-eta", U));
+    if (!k) k = constantSpectrum(*namedSpectrumToRGB("metal-Cu-k", U));
+}
+
+std::shared_ptr<Material> defaultDiffuse() { return std::make_shared<DiffuseMaterial>(constantSpectrum(Spectrum(0.5f))); }
+
 UVMapping uvMapping(const ParamSet& ps, const SourceLoc& loc) {
     std::string m = ps.getString("mapping", "uv");
-    if (m != "uv") warning(loc, "texture mapping \"" + m + "\" is not supported; using \"uv\"");
-    ps.getFloats("v1");
-    ps.getFloats("v2");
+    if (m != "uv") {
+        warning(loc, "texture mapping \"" + m + "\" is not supported; using \"uv\"");
+        ps.getVector3("v1", {});
+        ps.getVector3("v2", {});
+    }
     return UVMapping{ps.getFloat("uscale", 1), ps.getFloat("vscale", 1), ps.getFloat("udelta", 0), ps.getFloat("vdelta", 0)};
 }
 
-ImageLookup imageLookup(const TextureEntity& e, const std::string& base) {
+ImageLookup imageLookup(const TextureEntity& e, const std::string& base, bool isFloat) {
     const ParamSet& ps = e.params;
     std::string file = ps.getString("filename", "");
     if (file.empty()) throw InputError(e.loc, "imagemap: \"string filename\" is required");
     std::string path = resolvePath(base, file);
-    std::string ext = lowerExtension(file);
-    std::string enc = ps.getString("encoding", ext == ".png" ? "sRGB" : "linear");
+    // pbrt-v4 honours `encoding` for PNG only (8-bit formats are always sRGB, floats linear).
+    std::string enc = ps.getString("encoding", lowerExtension(file) == ".png" ? "sRGB" : "linear");
+    if (enc != "linear" && enc != "sRGB") warning(locOf(ps, "encoding"), "imagemap: encoding \"" + enc + "\" is not supported; using sRGB");
     ColorEncoding ce = enc == "linear" ? ColorEncoding::Linear : ColorEncoding::SRGB;
-    if (enc != "linear" && enc != "sRGB") warning(e.loc, "imagemap: encoding \"" + enc + "\" is not supported; using sRGB");
     std::string wrap = ps.getString("wrap", "repeat");
-    WrapMode wm = wrap == "clamp" ? WrapMode::Clamp : wrap == "black" ? WrapMode::Black : WrapMode::Repeat;
-    if (wrap != "clamp" && wrap != "black" && wrap != "repeat")
-        warning(e.loc, "imagemap: wrap \"" + wrap + "\" is not supported; using \"repeat\"");
-    ps.getString("filter", "bilinear");
+    WrapMode wm = WrapMode::Repeat;
+    if (wrap == "clamp") wm = WrapMode::Clamp;
+    else if (wrap == "black") wm = WrapMode::Black;
+    else if (wrap != "repeat") warning(locOf(ps, "wrap"), "imagemap: wrap \"" + wrap + "\" is not supported; using \"repeat\"");
+    std::string filter = ps.getString("filter", "bilinear");
+    if (filter != "bilinear" && filter != "point" && filter != "trilinear" && filter != "ewa" && filter != "EWA")
+        warning(locOf(ps, "filter"), "imagemap: unknown filter \"" + filter + "\"; using bilinear");
     ps.getFloat("maxanisotropy", 8);
-    return ImageLookup(loadTextureImage(path, ce), uvMapping(ps, e.loc), wm, ps.getFloat("scale", 1), ps.getBool("invert", false));
+    auto img = loadTextureImage(path, ce);
+    ImageChannels ch = !isFloat ? ImageChannels::RGB : hasNonOpaqueAlpha(*img) ? ImageChannels::Alpha : ImageChannels::Average;
+    return ImageLookup(img, uvMapping(ps, e.loc), wm, ps.getFloat("scale", 1), ps.getBool("invert", false), ch);
 }
+
+// Float and spectrum textures share their classes and parameter names; `Value` reads one
+// parameter of the texture's own kind.
+template <typename T>
+struct TexParams;
+template <>
+struct TexParams<float> {
+    static FloatTex get(const ParamSet& ps, const std::string& n, float def, const TextureRegistry& reg) {
+        return floatParam(ps, n, def, reg);
+    }
+};
+template <>
+struct TexParams<Spectrum> {
+    // Spectrum textures feed albedos and unbounded quantities alike: values are kept as
+    // given, and materials clamp albedos themselves.
+    static SpectrumTex get(const ParamSet& ps, const std::string& n, float def, const TextureRegistry& reg) {
+        return spectrumParam(ps, n, Spectrum(def), SpectrumKind::Unbounded, reg);
+    }
+};
 
 template <typename T>
 std::shared_ptr<typename TextureOf<T>::type> createTexture(const TextureEntity& e, const TextureRegistry& reg,
-                                                           const std::string& base);
-
-template <>
-std::shared_ptr<FloatTexture> createTexture<float>(const TextureEntity& e, const TextureRegistry& reg, const std::string& base) {
+                                                           const std::string& base) {
+    using P = TexParams<T>;
+    using Ptr = std::shared_ptr<typename TextureOf<T>::type>;
     const ParamSet& ps = e.params;
-    std::shared_ptr<FloatTexture> t;
-    if (e.type == "constant") t = floatParam(ps, "value", 1, reg);
-    else if (e.type == "scale") t = std::make_shared<ScaleTexture<float>>(floatParam(ps, "tex", 1, reg), floatParam(ps, "scale", 1, reg));
-    else if (e.type == "mix")
-        t = std::make_shared<MixTexture<float>>(floatParam(ps, "tex1", 0, reg), floatParam(ps, "tex2", 1, reg), floatParam(ps, "amount", 0.5f, reg));
-    else if (e.type == "checkerboard") {
-        if (ps.getInt("dimension", 2) != 2) warning(e.loc, "checkerboard: only dimension 2 is supported");
-        t = std::make_shared<CheckerboardTexture<float>>(uvMapping(ps, e.loc), floatParam(ps, "tex1", 1, reg), floatParam(ps, "tex2", 0, reg));
-    } else if (e.type == "imagemap") t = std::make_shared<FloatImageTexture>(imageLookup(e, base));
-    else {
-        warning(e.loc, "float texture class \"" + e.type + "\" is not supported; using constant 1");
-        return std::make_shared<ConstantTexture<float>>(1.0f);
-    }
-    ps.reportUnused("Texture \"" + e.name + "\"");
-    return t;
-}
-
-template <>
-std::shared_ptr<SpectrumTexture> createTexture<Spectrum>(const TextureEntity& e, const TextureRegistry& reg, const std::string& base) {
-    const ParamSet& ps = e.params;
-    // Spectrum textures feed reflectances as well as other quantities; Unbounded keeps
-    // values as given (materials clamp albedos themselves).
-    const SpectrumKind k = SpectrumKind::Unbounded;
-    std::shared_ptr<SpectrumTexture> t;
-    if (e.type == "constant") t = spectrumParam(ps, "value", Spectrum(1.0f), k, reg);
-    else if (e.type == "scale") t = std::make_shared<ScaleTexture<Spectrum>>(spectrumParam(ps, "tex", Spectrum(1.0f), k, reg), floatParam(ps, "scale", 1, reg));
-    else if (e.type == "mix")
-        t = std::make_shared<MixTexture<Spectrum>>(spectrumParam(ps, "tex1", Spectrum(0.0f), k, reg), spectrumParam(ps, "tex2", Spectrum(1.0f), k, reg),
-                                                   floatParam(ps, "amount", 0.5f, reg));
-    else if (e.type == "checkerboard") {
-        if (ps.getInt("dimension", 2) != 2) warning(e.loc, "checkerboard: only dimension 2 is supported");
-        t = std::make_shared<CheckerboardTexture<Spectrum>>(uvMapping(ps, e.loc), spectrumParam(ps, "tex1", Spectrum(1.0f), k, reg),
-                                                            spectrumParam(ps, "tex2", Spectrum(0.0f), k, reg));
-    } else if (e.type == "imagemap") t = std::make_shared<SpectrumImageTexture>(imageLookup(e, base));
-    else {
-        warning(e.loc, "spectrum texture class \"" + e.type + "\" is not supported; using constant 1");
-        return std::make_shared<ConstantTexture<Spectrum>>(Spectrum(1.0f));
+    Ptr t;
+    if (e.type == "constant") {
+        t = P::get(ps, "value", 1, reg);
+    } else if (e.type == "scale") {
+        t = std::make_shared<ScaleTexture<T>>(P::get(ps, "tex", 1, reg), floatParam(ps, "scale", 1, reg));
+    } else if (e.type == "mix") {
+        t = std::make_shared<MixTexture<T>>(P::get(ps, "tex1", 0, reg), P::get(ps, "tex2", 1, reg), floatParam(ps, "amount", 0.5f, reg));
+    } else if (e.type == "checkerboard") {
+        int dim = ps.getInt("dimension", 2);
+        if (dim != 2) warning(locOf(ps, "dimension"), "checkerboard: only \"dimension\" 2 is supported; using the 2D (u,v) checkerboard");
+        t = std::make_shared<CheckerboardTexture<T>>(uvMapping(ps, e.loc), P::get(ps, "tex1", 1, reg), P::get(ps, "tex2", 0, reg));
+    } else if (e.type == "imagemap") {
+        if constexpr (std::is_same_v<T, float>)
+            t = std::make_shared<FloatImageTexture>(imageLookup(e, base, true));
+        else
+            t = std::make_shared<SpectrumImageTexture>(imageLookup(e, base, false));
+    } else {
+        warning(e.loc, std::string(std::is_same_v<T, float> ? "float" : "spectrum") + " texture class \"" + e.type +
+                           "\" is not supported; using constant 1");
+        return P::get(ParamSet{}, "value", 1, reg);
     }
     ps.reportUnused("Texture \"" + e.name + "\"");
     return t;
@@ -151,38 +205,24 @@ std::shared_ptr<SpectrumTexture> createSpectrumTexture(const TextureEntity& e, c
 
 std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet& ps, const TextureRegistry& reg,
                                          const std::map<std::string, std::shared_ptr<Material>>& named, const std::string&) {
-    const SpectrumKind A = SpectrumKind::Albedo, U = SpectrumKind::Unbounded;
-    std::shared_ptr<Material> m;
+    const SpectrumKind A = SpectrumKind::Albedo;
+    // Shading-normal perturbation is not implemented: say so rather than ignore silently.
     if (ps.has("normalmap")) {
         ps.getString("normalmap", "");
-        warning(ps.loc, "\"normalmap\" is not supported yet; ignored");
+        warning(locOf(ps, "normalmap"), "\"normalmap\" is not supported yet; ignored");
     }
     if (ps.has("displacement")) {
         ps.getTexture("displacement");
         ps.getFloat("displacement", 0);
-        warning(ps.loc, "material \"displacement\" (bump mapping) is not supported yet; ignored");
+        warning(locOf(ps, "displacement"), "\"displacement\" (bump mapping) is not supported yet; ignored");
     }
+    std::shared_ptr<Material> m;
     if (type == "diffuse") {
         m = std::make_shared<DiffuseMaterial>(spectrumParam(ps, "reflectance", Spectrum(0.5f), A, reg));
-    } else if (type == "conductor" || type == "coatedconductor") {
-        std::string pre = type == "coatedconductor" ? "conductor." : "";
-        if (type == "coatedconductor")
-            warning(ps.loc, "material \"coatedconductor\" is not supported yet; rendering its conductor layer only");
-        SpectrumTex refl = spectrumParam(ps, pre + "reflectance", std::nullopt, A, reg);
-        SpectrumTex eta = spectrumParam(ps, pre + "eta", std::nullopt, U, reg);
-        SpectrumTex k = spectrumParam(ps, pre + "k", std::nullopt, U, reg);
-        if (refl && (eta || k)) throw InputError(ps.loc, "conductor: give either \"reflectance\" or \"eta\"/\"k\", not both");
-        if (!refl) {
-            if (!eta) eta = std::make_shared<ConstantTexture<Spectrum>>(*namedSpectrumToRGB("metal-Cu-eta", U));
-            if (!k) k = std::make_shared<ConstantTexture<Spectrum>>(*namedSpectrumToRGB("metal-Cu-k", U));
-        }
-        Roughness r = roughness(ps, reg, pre);
-        if (type == "coatedconductor") {
-            roughness(ps, reg, "interface.");
-            ps.getFloat("interface.eta", 1.5f);
-            ps.getFloat("thickness", 0.01f);
-        }
-        m = std::make_shared<ConductorMaterial>(eta, k, refl, r);
+    } else if (type == "conductor") {
+        SpectrumTex eta, k, refl;
+        conductorParams(ps, reg, "", "conductor", eta, k, refl);
+        m = std::make_shared<ConductorMaterial>(eta, k, refl, roughness(ps, reg));
     } else if (type == "dielectric") {
         float eta = etaParam(ps, "eta");
         m = std::make_shared<DielectricMaterial>(eta, roughness(ps, reg));
@@ -195,31 +235,35 @@ std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet
     } else if (type == "coateddiffuse") {
         CoatedDiffuseParams p;
         p.reflectance = spectrumParam(ps, "reflectance", Spectrum(0.5f), A, reg);
-        p.albedo = spectrumParam(ps, "albedo", Spectrum(0.0f), A, reg);
         p.roughness = roughness(ps, reg);
-        p.thickness = floatParam(ps, "thickness", 0.01f, reg);
-        p.g = floatParam(ps, "g", 0, reg);
         p.eta = etaParam(ps, "eta");
-        p.maxDepth = std::clamp(ps.getInt("maxdepth", 10), 1, 100);
-        p.nSamples = std::clamp(ps.getInt("nsamples", 1), 1, 64);
-        if (ps.has("albedo")) warning(ps.loc, "coateddiffuse: scattering inside the layer (\"albedo\") is not supported; it is ignored");
+        p.layer = layerParams(ps, reg);
         m = std::make_shared<CoatedDiffuseMaterial>(p);
+    } else if (type == "coatedconductor") {
+        CoatedConductorParams p;
+        p.interfaceRoughness = roughness(ps, reg, "interface.");
+        p.interfaceEta = etaParam(ps, "interface.eta");
+        conductorParams(ps, reg, "conductor.", "coatedconductor", p.conductorEta, p.conductorK, p.reflectance);
+        p.conductorRoughness = roughness(ps, reg, "conductor.");
+        p.layer = layerParams(ps, reg);
+        m = std::make_shared<CoatedConductorMaterial>(p);
     } else if (type == "mix") {
         std::vector<std::string> names = ps.getStrings("materials");
-        if (names.size() != 2) throw InputError(ps.loc, "mix: \"string materials\" must name exactly two materials");
+        if (names.size() != 2) throw InputError(locOf(ps, "materials"), "mix: \"string materials\" must name exactly two materials");
         std::array<std::shared_ptr<Material>, 2> ms;
         for (int i = 0; i < 2; ++i) {
             auto it = named.find(names[i]);
-            if (it == named.end()) throw InputError(ps.loc, "mix: material \"" + names[i] + "\" is not defined");
-            if (it->second->isInterface()) throw InputError(ps.loc, "mix: \"interface\" cannot be mixed");
+            if (it == named.end()) throw InputError(locOf(ps, "materials"), "mix: material \"" + names[i] + "\" is not defined");
+            if (it->second->isInterface()) throw InputError(locOf(ps, "materials"), "mix: \"interface\" cannot be mixed");
             ms[i] = it->second;
         }
         m = std::make_shared<MixMaterial>(ms, floatParam(ps, "amount", 0.5f, reg));
     } else if (type == "interface" || type == "" || type == "none") {
         m = std::make_shared<InterfaceMaterial>();
     } else {
+        // Its parameters are all unknown too; the one warning says what happened.
         warning(ps.loc, "material \"" + type + "\" is not supported; using diffuse 0.5");
-        return std::make_shared<DiffuseMaterial>(std::make_shared<ConstantTexture<Spectrum>>(Spectrum(0.5f)));
+        return defaultDiffuse();
     }
     ps.reportUnused("Material \"" + type + "\"");
     return m;

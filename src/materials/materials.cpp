@@ -2,13 +2,39 @@
 
 #include <cstring>
 
-#include "materials/coated_diffuse_bxdf.h"
 #include "materials/conductor_bxdf.h"
 #include "materials/dielectric_bxdf.h"
 #include "materials/diffuse_bxdf.h"
+#include "materials/diffuse_transmission_bxdf.h"
+#include "materials/layered_bxdf.h"
+#include "materials/thin_dielectric_bxdf.h"
 #include "mc/rng.h"
 
 namespace ps {
+
+namespace {
+
+TrowbridgeReitz distribution(const Roughness& r, const TextureEvalContext& ctx) {
+    Vec2 a = r.alpha(ctx);
+    return TrowbridgeReitz(a.x, a.y);
+}
+
+// Complex index of a conductor: eta + i k, or from a normal-incidence reflectance r with
+// eta = 1, where F(0) = k^2 / (4 + k^2) = r gives k = 2 sqrt(r) / sqrt(1 - r). r is kept
+// below 1 so k stays finite.
+void conductorIndex(const SpectrumTex& etaTex, const SpectrumTex& kTex, const SpectrumTex& reflectance,
+                    const TextureEvalContext& ctx, Spectrum& eta, Spectrum& k) {
+    if (!reflectance) {
+        eta = etaTex->evaluate(ctx);
+        k = kTex->evaluate(ctx);
+        return;
+    }
+    Spectrum r = clamp(reflectance->evaluate(ctx), 0, 0.9999f);
+    eta = Spectrum(1.0f);
+    for (int c = 0; c < 3; ++c) k[c] = 2 * std::sqrt(r[c]) / std::sqrt(1 - r[c]);
+}
+
+}  // namespace
 
 Vec2 Roughness::alpha(const TextureEvalContext& ctx) const {
     float ur = u->evaluate(ctx), vr = v->evaluate(ctx);
@@ -16,29 +42,28 @@ Vec2 Roughness::alpha(const TextureEvalContext& ctx) const {
     return {std::max(0.0f, ur), std::max(0.0f, vr)};
 }
 
+LayerParams LayerTextures::evaluate(const TextureEvalContext& ctx) const {
+    LayerParams p;
+    p.thickness = thickness->evaluate(ctx);
+    p.albedo = clamp(albedo->evaluate(ctx), 0, 1);
+    p.g = clampf(g->evaluate(ctx), -1, 1);
+    p.maxDepth = maxDepth;
+    p.nSamples = nSamples;
+    return p;
+}
+
 const BxDF* DiffuseMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const {
     return buf.alloc<DiffuseBxDF>(clamp(R_->evaluate(ctx), 0, 1));
 }
 
 const BxDF* ConductorMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const {
-    Vec2 a = rough_.alpha(ctx);
     Spectrum eta, k;
-    if (reflectance_) {
-        // Normal-incidence reflectance r with eta = 1: k = 2 sqrt(r) / sqrt(1 - r).
-        Spectrum r = clamp(reflectance_->evaluate(ctx), 0, 0.9999f);
-        eta = Spectrum(1.0f);
-        k = Spectrum(2 * std::sqrt(r.r) / std::sqrt(1 - r.r), 2 * std::sqrt(r.g) / std::sqrt(1 - r.g),
-                     2 * std::sqrt(r.b) / std::sqrt(1 - r.b));
-    } else {
-        eta = eta_->evaluate(ctx);
-        k = k_->evaluate(ctx);
-    }
-    return buf.alloc<ConductorBxDF>(TrowbridgeReitz(a.x, a.y), eta, k);
+    conductorIndex(eta_, k_, reflectance_, ctx, eta, k);
+    return buf.alloc<ConductorBxDF>(distribution(rough_, ctx), eta, k);
 }
 
 const BxDF* DielectricMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const {
-    Vec2 a = rough_.alpha(ctx);
-    return buf.alloc<DielectricBxDF>(eta_, TrowbridgeReitz(a.x, a.y));
+    return buf.alloc<DielectricBxDF>(eta_, distribution(rough_, ctx));
 }
 
 const BxDF* ThinDielectricMaterial::bxdf(const MaterialEvalContext&, ScratchBuffer& buf) const {
@@ -50,16 +75,18 @@ const BxDF* DiffuseTransmissionMaterial::bxdf(const MaterialEvalContext& ctx, Sc
 }
 
 const BxDF* CoatedDiffuseMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const {
-    Vec2 a = p_.roughness.alpha(ctx);
-    CoatedDiffuseBxDF::Params q;
-    q.reflectance = clamp(p_.reflectance->evaluate(ctx), 0, 1);
-    q.albedo = clamp(p_.albedo->evaluate(ctx), 0, 1);
-    q.thickness = std::max(p_.thickness->evaluate(ctx), std::numeric_limits<float>::min());
-    q.g = clampf(p_.g->evaluate(ctx), -0.99f, 0.99f);
-    q.eta = p_.eta;
-    q.maxDepth = p_.maxDepth;
-    q.nSamples = p_.nSamples;
-    return buf.alloc<CoatedDiffuseBxDF>(q, TrowbridgeReitz(a.x, a.y));
+    DielectricBxDF top(p_.eta, distribution(p_.roughness, ctx));
+    DiffuseBxDF bottom(clamp(p_.reflectance->evaluate(ctx), 0, 1));
+    return buf.alloc<CoatedDiffuseBxDF>(top, bottom, p_.layer.evaluate(ctx));
+}
+
+const BxDF* CoatedConductorMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const {
+    DielectricBxDF top(p_.interfaceEta, distribution(p_.interfaceRoughness, ctx));
+    Spectrum eta, k;
+    conductorIndex(p_.conductorEta, p_.conductorK, p_.reflectance, ctx, eta, k);
+    // The base sits in the coating, not in vacuum: its index is relative to the coating's.
+    ConductorBxDF bottom(distribution(p_.conductorRoughness, ctx), eta / p_.interfaceEta, k / p_.interfaceEta);
+    return buf.alloc<CoatedConductorBxDF>(top, bottom, p_.layer.evaluate(ctx));
 }
 
 const Material* MixMaterial::resolve(const MaterialEvalContext& ctx) const {
@@ -70,8 +97,10 @@ const Material* MixMaterial::resolve(const MaterialEvalContext& ctx) const {
     } else if (amount >= 1) {
         chosen = m_[1].get();
     } else {
+        // A deterministic choice per (point, direction), so that f and pdf evaluations at
+        // the same vertex agree (as pbrt-v4's MixMaterial::ChooseMaterial).
         uint64_t h = 0;
-        float v[6] = {ctx.p.x, ctx.p.y, ctx.p.z, ctx.wo.x, ctx.wo.y, ctx.wo.z};
+        const float v[6] = {ctx.p.x, ctx.p.y, ctx.p.z, ctx.wo.x, ctx.wo.y, ctx.wo.z};
         for (float f : v) {
             uint32_t bits;
             std::memcpy(&bits, &f, 4);

@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <memory>
+#include "materials/layered_bxdf.h"
 #include "materials/material.h"
 
 namespace ps {
@@ -67,12 +68,19 @@ private:
     float scale_;
 };
 
-struct CoatedDiffuseParams {
-    SpectrumTex reflectance, albedo;
-    Roughness roughness;
-    FloatTex thickness, g;
-    float eta = 1.5f;
+// Shared by the layered materials; defaults as in pbrt-v4.
+struct LayerTextures {
+    FloatTex thickness, g;    // 0.01, 0
+    SpectrumTex albedo;       // 0: no scattering inside the layer
     int maxDepth = 10, nSamples = 1;
+    LayerParams evaluate(const TextureEvalContext& ctx) const;
+};
+
+struct CoatedDiffuseParams {
+    SpectrumTex reflectance;  // of the Lambertian base
+    Roughness roughness;      // of the coating
+    float eta = 1.5f;         // of the coating
+    LayerTextures layer;
 };
 
 class CoatedDiffuseMaterial final : public Material {
@@ -82,6 +90,26 @@ public:
 
 private:
     CoatedDiffuseParams p_;
+};
+
+struct CoatedConductorParams {
+    Roughness interfaceRoughness;
+    float interfaceEta = 1.5f;
+    // The base: eta and k, or reflectance (as for ConductorMaterial).
+    SpectrumTex conductorEta, conductorK, reflectance;
+    Roughness conductorRoughness;
+    LayerTextures layer;
+};
+
+// A conductor under a dielectric coating; the conductor's eta and k are taken relative to
+// the coating's index.
+class CoatedConductorMaterial final : public Material {
+public:
+    explicit CoatedConductorMaterial(CoatedConductorParams p) : p_(std::move(p)) {}
+    const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override;
+
+private:
+    CoatedConductorParams p_;
 };
 
 // Chooses materials[1] with probability `amount`, by a deterministic hash of (p, wo).

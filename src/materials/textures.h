@@ -1,8 +1,9 @@
-// Texture classes: constant, scale, mix, checkerboard and image maps, for float and
-// spectrum values, with pbrt-v4's uv mapping (s = uscale*u + udelta, t = vscale*v + vdelta).
+// Texture classes: constant, scale, mix and checkerboard, for float and spectrum values,
+// with pbrt-v4's uv mapping (s = uscale*u + udelta, t = vscale*v + vdelta). Image maps are
+// in image_texture.h.
 #pragma once
+#include <cmath>
 #include <memory>
-#include "image/image.h"
 #include "materials/texture.h"
 
 namespace ps {
@@ -63,7 +64,10 @@ private:
     std::shared_ptr<FloatTexture> amount_;
 };
 
-// tex1 where floor(s) + floor(t) is even, tex2 elsewhere (no antialiasing).
+// tex1 where floor(s) + floor(t) is even, tex2 elsewhere. Known difference: pbrt-v4 blends
+// the two near edges with a box-filtered checkerboard whose width comes from ray
+// differentials; this is the point-sampled (unfiltered) checkerboard that pbrt renders
+// with "disabletexturefiltering".
 template <typename T>
 class CheckerboardTexture final : public TextureOf<T>::type {
 public:
@@ -71,53 +75,17 @@ public:
         : map_(m), a_(std::move(a)), b_(std::move(b)) {}
     T evaluate(const TextureEvalContext& ctx) const override {
         Vec2 st = map_.map(ctx);
-        long long parity = (long long)std::floor(st.x) + (long long)std::floor(st.y);
-        return (parity & 1) == 0 ? a_->evaluate(ctx) : b_->evaluate(ctx);
+        return oddCell(st.x) == oddCell(st.y) ? a_->evaluate(ctx) : b_->evaluate(ctx);
     }
 
 private:
+    // Whether floor(v) is odd, without integer overflow for huge coordinates (NaN: odd).
+    static bool oddCell(float v) {
+        float c = std::floor(v);
+        return !(c - 2 * std::floor(c * 0.5f) == 0);
+    }
     UVMapping map_;
     std::shared_ptr<typename TextureOf<T>::type> a_, b_;
 };
-
-enum class WrapMode { Repeat, Clamp, Black };
-
-// Bilinear lookup at (s, 1 - t): image row 0 is the top, uv (0,0) the bottom-left corner.
-// pbrt-v4 would pick a MIP level from ray differentials; this looks up the full resolution.
-class ImageLookup {
-public:
-    ImageLookup(std::shared_ptr<const Image> img, UVMapping m, WrapMode w, float scale, bool invert)
-        : img_(std::move(img)), map_(m), wrap_(w), scale_(scale), invert_(invert) {}
-    Spectrum evaluate(const TextureEvalContext& ctx) const;
-
-private:
-    bool texel(int x, int y, Spectrum& out) const;
-    std::shared_ptr<const Image> img_;
-    UVMapping map_;
-    WrapMode wrap_;
-    float scale_;
-    bool invert_;
-};
-
-class SpectrumImageTexture final : public SpectrumTexture {
-public:
-    explicit SpectrumImageTexture(ImageLookup l) : lookup_(std::move(l)) {}
-    Spectrum evaluate(const TextureEvalContext& ctx) const override { return lookup_.evaluate(ctx); }
-
-private:
-    ImageLookup lookup_;
-};
-
-class FloatImageTexture final : public FloatTexture {
-public:
-    explicit FloatImageTexture(ImageLookup l) : lookup_(std::move(l)) {}
-    float evaluate(const TextureEvalContext& ctx) const override { return lookup_.evaluate(ctx).average(); }
-
-private:
-    ImageLookup lookup_;
-};
-
-// Each image file is read once per process, whichever textures use it.
-std::shared_ptr<const Image> loadTextureImage(const std::string& path, ColorEncoding pngEncoding);
 
 }  // namespace ps

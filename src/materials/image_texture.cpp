@@ -1,0 +1,72 @@
+#include "materials/image_texture.h"
+
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <mutex>
+
+#include "util/path.h"
+
+namespace ps {
+
+Spectrum ImageLookup::texel(int x, int y) const {
+    const int w = img_->width, h = img_->height;
+    switch (wrap_) {
+        case WrapMode::Repeat:
+            x = ((x % w) + w) % w;
+            y = ((y % h) + h) % h;
+            break;
+        case WrapMode::Clamp:
+            x = std::clamp(x, 0, w - 1);
+            y = std::clamp(y, 0, h - 1);
+            break;
+        case WrapMode::Black:
+            if (x < 0 || y < 0 || x >= w || y >= h) return {};
+            break;
+    }
+    switch (channels_) {
+        case ImageChannels::RGB: return img_->get(x, y);
+        case ImageChannels::Average: return Spectrum(img_->get(x, y).average());
+        case ImageChannels::Alpha: return Spectrum(img_->alpha[size_t(y) * w + x]);
+    }
+    return {};
+}
+
+Spectrum ImageLookup::evaluate(const TextureEvalContext& ctx) const {
+    Vec2 st = map_.map(ctx);
+    // Continuous texel coordinates: texel centres sit at half-integers.
+    float x = st.x * img_->width - 0.5f, y = (1 - st.y) * img_->height - 0.5f;
+    // Non-finite or absurd coordinates (beyond exact int conversion) read as black.
+    if (!(std::fabs(x) < 1e8f) || !(std::fabs(y) < 1e8f)) return {};
+    int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+    float fx = x - x0, fy = y - y0;
+    Spectrum v = (texel(x0, y0) * (1 - fx) + texel(x0 + 1, y0) * fx) * (1 - fy) +
+                 (texel(x0, y0 + 1) * (1 - fx) + texel(x0 + 1, y0 + 1) * fx) * fy;
+    v *= scale_;
+    if (invert_) v = Spectrum(1) - v;
+    return clamp(v, 0, std::numeric_limits<float>::max());
+}
+
+bool hasNonOpaqueAlpha(const Image& img) {
+    for (float a : img.alpha)
+        if (a != 1) return true;
+    return false;
+}
+
+std::shared_ptr<const Image> loadTextureImage(const std::string& path, ColorEncoding enc) {
+    static std::mutex mutex;
+    static std::map<std::pair<std::string, int>, std::shared_ptr<const Image>> cache;
+    if (lowerExtension(path) != ".png") enc = ColorEncoding::SRGB;  // ignored by the reader
+    std::error_code ec;
+    std::filesystem::path abs = std::filesystem::absolute(path, ec);
+    auto key = std::make_pair(ec ? path : abs.lexically_normal().string(), int(enc));
+    // Held while reading, so concurrent first uses of one file read it once.
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = cache.find(key);
+    if (it != cache.end()) return it->second;
+    auto img = std::make_shared<const Image>(readImage(path, enc));
+    cache.emplace(key, img);
+    return img;
+}
+
+}  // namespace ps
