@@ -34,7 +34,7 @@ std::unique_ptr<Shape> createTriangleMesh(const ShapeEntity& e, const Transform&
     d.indices = ps.getInts("indices");
     d.N = ps.getNormals("N");
     d.uv = ps.getPoint2s("uv");
-    ps.getFloats("S");  // tangents: accepted, frames follow dp/du
+    ps.getVector3s("S");  // tangents: accepted, frames follow dp/du
     if (d.P.empty()) throw InputError(e.loc, "trianglemesh: \"point3 P\" is required");
     if (d.indices.empty()) {
         if (d.P.size() != 3) throw InputError(e.loc, "trianglemesh: \"integer indices\" is required unless there are exactly 3 points");

@@ -1,7 +1,7 @@
+// ParamSet lookups with pbrt-v4's rules (PBRT-CONVENTIONS §8 Parameters): a lookup matches
+// name and type; a parameter of another type is left unused (and reported later), while a
+// matching one with the wrong number of values is an error.
 #include "scene/params.h"
-
-#include <filesystem>
-#include <fstream>
 
 #include "scene/spectra.h"
 #include "util/path.h"
@@ -10,6 +10,8 @@ namespace ps {
 
 namespace {
 
+std::string describe(const Param& p) { return "\"" + p.typeName + " " + p.name + "\""; }
+
 const Param* findTyped(const ParamSet& ps, const std::string& name, ParamType type) {
     const Param* p = ps.find(name);
     if (!p || p->type != type) return nullptr;  // wrong type: left unused, reported later
@@ -17,33 +19,68 @@ const Param* findTyped(const ParamSet& ps, const std::string& name, ParamType ty
     return p;
 }
 
-void expectCount(const Param& p, size_t n, size_t have) {
-    if (have != n)
-        throw InputError(p.loc, "parameter \"" + p.typeName + " " + p.name + "\" needs " + std::to_string(n) +
-                                    " value(s), got " + std::to_string(have));
+void expectCount(const Param& p, size_t want, size_t have) {
+    if (have != want)
+        throw InputError(p.loc, "parameter " + describe(p) + " needs " + std::to_string(want) + " value" +
+                                    (want == 1 ? "" : "s") + ", got " + std::to_string(have));
+}
+
+void expectMultiple(const Param& p, size_t per) {
+    if (p.numbers.empty() || p.numbers.size() % per != 0)
+        throw InputError(p.loc, "parameter " + describe(p) + ": the number of values (" + std::to_string(p.numbers.size()) +
+                                    ") is not a positive multiple of " + std::to_string(per));
 }
 
 std::vector<Vec3> triples(const Param& p) {
-    if (p.numbers.size() % 3 != 0)
-        throw InputError(p.loc, "parameter \"" + p.typeName + " " + p.name + "\": number of values is not a multiple of 3");
+    expectMultiple(p, 3);
     std::vector<Vec3> out(p.numbers.size() / 3);
     for (size_t i = 0; i < out.size(); ++i)
         out[i] = Vec3(float(p.numbers[3 * i]), float(p.numbers[3 * i + 1]), float(p.numbers[3 * i + 2]));
     return out;
 }
 
-Spectrum spectrumFromFile(const Param& p, const std::string& file, const std::string& base, SpectrumKind kind) {
-    std::ifstream in(resolvePath(base, file));
-    if (!in) throw InputError(p.loc, "spectrum \"" + file + "\" is neither a named spectrum nor a readable file");
+Spectrum rgbValue(const Param& p, SpectrumKind kind) {
+    expectCount(p, 3, p.numbers.size());
+    Spectrum s(float(p.numbers[0]), float(p.numbers[1]), float(p.numbers[2]));
+    if (s.r < 0 || s.g < 0 || s.b < 0) throw InputError(p.loc, "parameter " + describe(p) + " has a negative component");
+    // pbrt-v4 refuses RGB reflectances above 1 rather than clamping them (§6).
+    if (kind == SpectrumKind::Albedo && s.maxComponent() > 1)
+        throw InputError(p.loc, "parameter " + describe(p) + " is a reflectance and has a component > 1 (pbrt-v4 requires [0, 1])");
+    return s;
+}
+
+Spectrum blackbodyValue(const Param& p, SpectrumKind kind) {
+    if (p.numbers.size() == 2)
+        throw InputError(p.loc, "parameter " + describe(p) + " has two values: that is pbrt-v3's [kelvin scale] form; "
+                                "pbrt-v4 takes one temperature (use \"float scale\"; `pbrt --upgrade` converts it)");
+    expectCount(p, 1, p.numbers.size());
+    if (!(p.numbers[0] > 0)) throw InputError(p.loc, "parameter " + describe(p) + ": the temperature must be positive");
+    return blackbodyToRGB(float(p.numbers[0]), kind);
+}
+
+Spectrum spectrumValue(const Param& p, SpectrumKind kind, const std::string& baseDirectory) {
     std::vector<float> lambda, value;
-    double l, v;
-    while (in >> l >> v) {
-        if (!lambda.empty() && l <= lambda.back())
-            throw InputError(p.loc, "spectrum file \"" + file + "\": wavelengths must increase");
-        lambda.push_back(float(l));
-        value.push_back(float(v));
+    if (!p.strings.empty()) {
+        expectCount(p, 1, p.strings.size());
+        const std::string& name = p.strings[0];
+        if (auto s = namedSpectrumToRGB(name, kind)) return *s;
+        std::string err = readSpectrumFile(resolvePath(baseDirectory, name), lambda, value);
+        if (!err.empty())
+            throw InputError(p.loc, "parameter " + describe(p) + ": \"" + name +
+                                        "\" is not a named spectrum and not a readable spectrum file (" + err + ")");
+    } else {
+        if (p.numbers.empty() || p.numbers.size() % 2 != 0)
+            throw InputError(p.loc, "parameter " + describe(p) + " needs wavelength/value pairs, got " +
+                                        std::to_string(p.numbers.size()) + " values");
+        for (size_t i = 0; i < p.numbers.size(); i += 2) {
+            if (!lambda.empty() && p.numbers[i] <= lambda.back())
+                throw InputError(p.loc, "parameter " + describe(p) + ": wavelengths must increase (" +
+                                            std::to_string(lambda.back()) + " is followed by " + std::to_string(p.numbers[i]) + ")");
+            lambda.push_back(float(p.numbers[i]));
+            value.push_back(float(p.numbers[i + 1]));
+        }
+        if (lambda.size() == 1) warning(p.loc, "spectrum " + describe(p) + " is non-zero at a single wavelength only");
     }
-    if (lambda.empty()) throw InputError(p.loc, "spectrum file \"" + file + "\" holds no wavelength/value pairs");
     return sampledSpectrumToRGB(lambda, value, kind);
 }
 
@@ -119,7 +156,7 @@ std::vector<float> ParamSet::getFloats(const std::string& name) const {
 std::vector<int> ParamSet::getInts(const std::string& name) const {
     const Param* p = findTyped(*this, name, ParamType::Integer);
     if (!p) return {};
-    return std::vector<int>(p->numbers.begin(), p->numbers.end());
+    return std::vector<int>(p->numbers.begin(), p->numbers.end());  // the parser checked the range
 }
 
 std::vector<std::string> ParamSet::getStrings(const std::string& name) const {
@@ -130,8 +167,7 @@ std::vector<std::string> ParamSet::getStrings(const std::string& name) const {
 std::vector<Vec2> ParamSet::getPoint2s(const std::string& name) const {
     const Param* p = findTyped(*this, name, ParamType::Point2);
     if (!p) return {};
-    if (p->numbers.size() % 2 != 0)
-        throw InputError(p->loc, "parameter \"point2 " + name + "\": number of values is not a multiple of 2");
+    expectMultiple(*p, 2);
     std::vector<Vec2> out(p->numbers.size() / 2);
     for (size_t i = 0; i < out.size(); ++i) out[i] = Vec2(float(p->numbers[2 * i]), float(p->numbers[2 * i + 1]));
     return out;
@@ -147,48 +183,20 @@ std::vector<Vec3> ParamSet::getNormals(const std::string& name) const {
     return p ? triples(*p) : std::vector<Vec3>{};
 }
 
+std::vector<Vec3> ParamSet::getVector3s(const std::string& name) const {
+    const Param* p = findTyped(*this, name, ParamType::Vector3);
+    return p ? triples(*p) : std::vector<Vec3>{};
+}
+
 std::optional<Spectrum> ParamSet::getSpectrum(const std::string& name, SpectrumKind kind) const {
     const Param* p = find(name);
     if (!p) return std::nullopt;
-    if (p->type == ParamType::RGB) {
-        p->used = true;
-        expectCount(*p, 3, p->numbers.size());
-        Spectrum s(float(p->numbers[0]), float(p->numbers[1]), float(p->numbers[2]));
-        if (s.r < 0 || s.g < 0 || s.b < 0)
-            throw InputError(p->loc, "parameter \"rgb " + name + "\": negative RGB values are not allowed");
-        if (kind == SpectrumKind::Albedo && s.maxComponent() > 1)
-            throw InputError(p->loc, "parameter \"rgb " + name + "\": a reflectance must lie in [0, 1] (as pbrt-v4 requires)");
-        return s;
+    switch (p->type) {
+        case ParamType::RGB: p->used = true; return rgbValue(*p, kind);
+        case ParamType::Blackbody: p->used = true; return blackbodyValue(*p, kind);
+        case ParamType::Spectrum: p->used = true; return spectrumValue(*p, kind, baseDirectory);
+        default: return std::nullopt;  // another type: unused, reported later
     }
-    if (p->type == ParamType::Blackbody) {
-        p->used = true;
-        if (p->numbers.size() == 2)
-            throw InputError(p->loc, "\"blackbody " + name + "\" takes one temperature in pbrt-v4 (the two-value form is pbrt-v3 syntax)");
-        expectCount(*p, 1, p->numbers.size());
-        if (!(p->numbers[0] > 0)) throw InputError(p->loc, "\"blackbody " + name + "\": temperature must be positive");
-        return blackbodyToRGB(float(p->numbers[0]));
-    }
-    if (p->type == ParamType::Spectrum) {
-        p->used = true;
-        if (!p->strings.empty()) {
-            expectCount(*p, 1, p->strings.size());
-            if (auto s = namedSpectrumToRGB(p->strings[0], kind)) return *s;
-            return spectrumFromFile(*p, p->strings[0], baseDirectory, kind);
-        }
-        if (p->numbers.size() < 2 || p->numbers.size() % 2 != 0)
-            throw InputError(p->loc, "\"spectrum " + name + "\" needs wavelength/value pairs");
-        std::vector<float> lambda, value;
-        for (size_t i = 0; i < p->numbers.size(); i += 2) {
-            if (!lambda.empty() && p->numbers[i] <= lambda.back())
-                throw InputError(p->loc, "\"spectrum " + name + "\": wavelengths must increase");
-            lambda.push_back(float(p->numbers[i]));
-            value.push_back(float(p->numbers[i + 1]));
-        }
-        Spectrum s = sampledSpectrumToRGB(lambda, value, kind);
-        if (kind == SpectrumKind::Albedo) s = clamp(s, 0, 1);
-        return s;
-    }
-    return std::nullopt;  // another type: unused, reported later
 }
 
 std::string ParamSet::getTexture(const std::string& name) const {
@@ -199,9 +207,9 @@ std::string ParamSet::getTexture(const std::string& name) const {
 }
 
 void ParamSet::reportUnused(const std::string& context) const {
+    // ps::warning prints each distinct message once, so repeated reports stay quiet.
     for (const Param& p : params)
-        if (!p.used && !p.fromAttribute)
-            warning(p.loc, "unused parameter \"" + p.typeName + " " + p.name + "\" in " + context);
+        if (!p.used && !p.fromAttribute) warning(p.loc, "unused parameter " + describe(p) + " in " + context);
 }
 
 }  // namespace ps

@@ -54,6 +54,7 @@ public:
     std::vector<Vec2> getPoint2s(const std::string& name) const;
     std::vector<Vec3> getPoint3s(const std::string& name) const;
     std::vector<Vec3> getNormals(const std::string& name) const;
+    std::vector<Vec3> getVector3s(const std::string& name) const;
 
     // rgb / spectrum (inline pairs, named, or file) / blackbody, converted to RGB.
     std::optional<Spectrum> getSpectrum(const std::string& name, SpectrumKind kind) const;

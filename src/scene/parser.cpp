@@ -1,10 +1,15 @@
+// The token-level parser: directive syntax, parameter lists, numbers, Include and Import
+// (PBRT-CONVENTIONS §8). What directives mean lives in directives.cpp.
 #include "scene/parser.h"
 
+#include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
-#include <set>
+#include <utility>
 
+#include "scene/directives.h"
 #include "scene/tokenizer.h"
 #include "util/path.h"
 
@@ -12,488 +17,393 @@ namespace ps {
 
 namespace {
 
-constexpr int kMaxIncludeDepth = 64;
-constexpr size_t kMaxParamValues = size_t(1) << 28;
+// Resource limits: the parser must survive hostile input.
+constexpr size_t kMaxOpenFiles = 64;                   // Include/Import nesting
+constexpr size_t kMaxParamValues = size_t(1) << 28;    // values in one parameter list
 
-struct GraphicsState {
-    Transform ctm;
-    bool reverseOrientation = false;
-    MaterialRef material{0, ""};
-    int areaLight = -1;
-    std::map<std::string, std::vector<Param>> attributes;  // "shape", "light", ... -> defaults
-};
+std::string show(const Token& t) { return "\"" + std::string(t.text.substr(0, 80)) + (t.text.size() > 80 ? "...\"" : "\""); }
 
-// One token of lookahead over a tokenizer.
-class TokenStream {
-public:
-    explicit TokenStream(Tokenizer& t) : tok(t) {}
-    std::optional<Token> peek() {
-        if (!peeked) peeked = tok.next();
-        return peeked;
+[[noreturn]] void fail(const Token& t, const std::string& msg) { throw InputError(t.loc(), msg); }
+
+// ---- numbers ----
+
+// pbrt-v4 accepts decimal, exponent and hex floats, but not inf/nan; the renderer works in
+// single precision, so values beyond float range are refused too.
+double parseFloat(const Token& t) {
+    std::string_view s = t.text;
+    bool negative = false;
+    if (!s.empty() && (s[0] == '+' || s[0] == '-')) {
+        negative = s[0] == '-';
+        s.remove_prefix(1);
     }
-    std::optional<Token> next() {
-        if (peeked) {
-            auto t = peeked;
-            peeked.reset();
-            return t;
-        }
-        return tok.next();
+    auto fmt = std::chars_format::general;
+    if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) {
+        s.remove_prefix(2);
+        fmt = std::chars_format::hex;
     }
-    SourceLoc loc(const Token& t) const { return tok.loc(t); }
-    Tokenizer& tok;
-    std::optional<Token> peeked;
-};
-
-bool isV3Material(const std::string& t) {
-    static const std::set<std::string> v3 = {"matte", "plastic", "glass", "uber", "metal", "mirror", "substrate", "translucent"};
-    return v3.count(t) > 0;
+    double v = 0;
+    if (s.empty() || s[0] == '+' || s[0] == '-') fail(t, "expected a number, got " + show(t));
+    auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v, fmt);
+    if (ec == std::errc::result_out_of_range) fail(t, "number out of range: " + show(t));
+    if (ec != std::errc() || end != s.data() + s.size()) fail(t, "expected a number, got " + show(t));
+    if (!std::isfinite(v)) fail(t, "numbers must be finite, got " + show(t));
+    if (!std::isfinite(float(v))) fail(t, "number out of single-precision range: " + show(t));
+    return negative ? -v : v;
 }
 
-class SceneParser {
+// Integers are an optional sign and digits only: "2.0" is an error, as in pbrt-v4.
+int parseInt(const Token& t) {
+    std::string_view s = t.text;
+    bool negative = false;
+    if (!s.empty() && (s[0] == '+' || s[0] == '-')) {
+        negative = s[0] == '-';
+        s.remove_prefix(1);
+    }
+    if (s.empty()) fail(t, "expected an integer, got " + show(t));
+    int64_t v = 0;
+    for (char c : s) {
+        if (c < '0' || c > '9') fail(t, "expected an integer, got " + show(t));
+        v = v * 10 + (c - '0');
+        if (v > int64_t(2147483647) + (negative ? 1 : 0)) fail(t, "integer out of 32-bit range: " + show(t));
+    }
+    return int(negative ? -v : v);
+}
+
+// ---- token stream over a stack of included files ----
+
+struct ParseContext {
+    explicit ParseContext(SceneDescription& d) : desc(d), builder(d) {}
+    SceneDescription& desc;
+    DescriptionBuilder builder;
+    std::vector<std::string> openFiles;  // canonical paths being read, outermost first
+};
+
+std::string canonicalPath(const std::string& path) {
+    std::error_code ec;
+    auto p = std::filesystem::weakly_canonical(path, ec);
+    return ec ? path : p.string();
+}
+
+// Tokens from the innermost open file; Include pushes a file so its text is read in place.
+class TokenStream {
 public:
-    explicit SceneParser(SceneDescription& desc) : desc_(desc) {
-        desc_.camera.type = "perspective";
-        desc_.film.type = "rgb";
-        desc_.sampler.type = "zsobol";
-        desc_.integrator.type = "volpath";
-        desc_.filter.type = "gaussian";
-        for (SceneEntity* e : {static_cast<SceneEntity*>(&desc_.camera), &desc_.film, &desc_.sampler, &desc_.integrator, &desc_.filter})
-            e->params.baseDirectory = desc_.baseDirectory;
-        MaterialEntity def;
-        def.type = "diffuse";
-        def.loc = SourceLoc{"<default material>", 0, 0};
-        desc_.materials.push_back(def);
+    explicit TokenStream(ParseContext& ctx) : ctx_(ctx) {}
+    ~TokenStream() {
+        while (!files_.empty()) close();
     }
 
-    void parseFile(const std::string& path, int depth, const SourceLoc* from) {
-        if (depth > kMaxIncludeDepth)
-            throw InputError(*from, "Include/Import nested more than " + std::to_string(kMaxIncludeDepth) + " deep (a cycle?)");
+    // Opens `path` for reading in place; `from` is the Include/Import token for messages.
+    void open(const std::string& path, const Token* from) {
+        const std::string canon = canonicalPath(path);
+        auto where = [&](const std::string& msg) -> InputError {
+            return from ? InputError(from->loc(), std::string(from->text) + ": " + msg) : InputError(msg);
+        };
+        for (const std::string& f : ctx_.openFiles)
+            if (f == canon) {
+                std::string chain;
+                for (const std::string& g : ctx_.openFiles) chain += g + " -> ";
+                throw where("include cycle: " + chain + canon);
+            }
+        if (ctx_.openFiles.size() >= kMaxOpenFiles)
+            throw where("Include/Import nested more than " + std::to_string(kMaxOpenFiles) + " files deep");
         std::unique_ptr<Tokenizer> tok;
         try {
             tok = Tokenizer::fromFile(path);
         } catch (const InputError& e) {
-            if (from) throw InputError(*from, std::string("cannot read included file: ") + e.what());
-            throw;
+            if (!from) throw;
+            throw where(std::string("cannot read the file: ") + e.what());
         }
-        parse(*tok, depth);
+        files_.push_back(std::move(tok));
+        ctx_.openFiles.push_back(canon);
+    }
+    void openString(std::string text, std::string name) {
+        files_.push_back(Tokenizer::fromString(std::move(text), std::move(name)));
+        ctx_.openFiles.push_back("");  // no path: cannot be part of a cycle
     }
 
-    void parse(Tokenizer& tokenizer, int depth) {
-        TokenStream ts(tokenizer);
-        while (auto t = ts.next()) directive(ts, *t, depth);
+    std::optional<Token> next() {
+        if (peeked_) return std::exchange(peeked_, std::nullopt);
+        while (!files_.empty()) {
+            if (auto t = files_.back()->next()) return t;
+            close();
+        }
+        return std::nullopt;
     }
-
-    void finish() {
-        if (!stack_.empty()) warning("scene ends with " + std::to_string(stack_.size()) + " unclosed AttributeBegin block(s)");
-        if (instance_) throw InputError(instance_->loc, "ObjectBegin \"" + instance_->name + "\" has no matching ObjectEnd");
+    const std::optional<Token>& peek() {
+        if (!peeked_) peeked_ = next();
+        return peeked_;
     }
-
-private:
-    // ---- token helpers ----
-    [[noreturn]] void fail(TokenStream& ts, const Token& t, const std::string& msg) {
-        throw InputError(ts.loc(t), msg + " (at '" + std::string(t.text.substr(0, 60)) + "')");
-    }
-    Token need(TokenStream& ts, const Token& after, const char* what) {
-        auto t = ts.next();
-        if (!t) throw InputError(ts.loc(after), std::string("unexpected end of file: expected ") + what);
+    // The next token, which must exist: `after` names what it follows.
+    Token need(const Token& after, const std::string& what) {
+        auto t = next();
+        if (!t) fail(after, "unexpected end of file after " + show(after) + ": expected " + what);
         return *t;
     }
-    double number(TokenStream& ts, const Token& t) {
-        double v = 0;
-        const char* b = t.text.data();
-        const char* e = b + t.text.size();
-        if (b != e && *b == '+') ++b;
-        auto [p, ec] = std::from_chars(b, e, v);
-        if (ec != std::errc() || p != e) fail(ts, t, "expected a number");
-        if (!std::isfinite(v)) fail(ts, t, "numbers must be finite");
-        return v;
-    }
-    std::string quoted(TokenStream& ts, const Token& after, const char* what) {
-        Token t = need(ts, after, what);
-        if (!t.isString()) fail(ts, t, std::string("expected a quoted string: ") + what);
-        return ts.tok.dequote(t);
-    }
-    std::vector<double> bareNumbers(TokenStream& ts, const Token& dir, int n) {
-        std::vector<double> v;
-        for (int i = 0; i < n; ++i) {
-            Token t = need(ts, dir, "a number");
-            if (t.text == "[") fail(ts, t, std::string(dir.text) + " takes bare numbers, without brackets");
-            v.push_back(number(ts, t));
-        }
-        return v;
-    }
-    std::vector<double> bracketNumbers(TokenStream& ts, const Token& dir, int n) {
-        Token open = need(ts, dir, "'['");
-        if (open.text != "[") fail(ts, open, std::string(dir.text) + " needs " + std::to_string(n) + " numbers in brackets");
-        std::vector<double> v;
-        while (true) {
-            Token t = need(ts, dir, "']'");
-            if (t.text == "]") break;
-            v.push_back(number(ts, t));
-            if (int(v.size()) > n) fail(ts, t, std::string(dir.text) + " takes exactly " + std::to_string(n) + " numbers");
-        }
-        if (int(v.size()) != n) fail(ts, open, std::string(dir.text) + " takes exactly " + std::to_string(n) + " numbers");
-        return v;
-    }
+    // Tokens point into the text of finished files until the current directive is done.
+    void releaseFinished() { finished_.clear(); }
 
-    ParamSet params(TokenStream& ts, const Token& dir) {
-        ParamSet ps;
-        ps.loc = ts.loc(dir);
-        ps.baseDirectory = desc_.baseDirectory;
-        while (true) {
-            auto t = ts.peek();
-            if (!t || !t->isString()) break;
-            ts.next();
-            ps.add(param(ts, *t));
-        }
-        return ps;
+private:
+    void close() {
+        finished_.push_back(std::move(files_.back()));
+        files_.pop_back();
+        ctx_.openFiles.pop_back();
     }
-
-    Param param(TokenStream& ts, const Token& declTok) {
-        std::string decl = ts.tok.dequote(declTok);
-        Param p;
-        p.loc = ts.loc(declTok);
-        size_t a = decl.find_first_not_of(" \t");
-        size_t b = a == std::string::npos ? a : decl.find_first_of(" \t", a);
-        size_t c = b == std::string::npos ? b : decl.find_first_not_of(" \t", b);
-        size_t d = c == std::string::npos ? c : decl.find_first_of(" \t", c);
-        if (c == std::string::npos || (d != std::string::npos && decl.find_first_not_of(" \t", d) != std::string::npos))
-            fail(ts, declTok, "parameter declaration must be \"type name\"");
-        p.typeName = decl.substr(a, b - a);
-        p.name = decl.substr(c, d == std::string::npos ? std::string::npos : d - c);
-        static const std::map<std::string, ParamType> types = {
-            {"float", ParamType::Float},     {"integer", ParamType::Integer}, {"bool", ParamType::Bool},
-            {"string", ParamType::String},   {"point2", ParamType::Point2},   {"vector2", ParamType::Vector2},
-            {"point3", ParamType::Point3},   {"vector3", ParamType::Vector3}, {"normal", ParamType::Normal},
-            {"rgb", ParamType::RGB},         {"blackbody", ParamType::Blackbody}, {"spectrum", ParamType::Spectrum},
-            {"texture", ParamType::Texture},
-        };
-        auto it = types.find(p.typeName);
-        if (it == types.end()) {
-            if (p.typeName == "normal3" || p.typeName == "point" || p.typeName == "vector" || p.typeName == "color")
-                fail(ts, declTok, "parameter type \"" + p.typeName + "\" is pbrt-v3 syntax; convert the file with `pbrt --upgrade`");
-            fail(ts, declTok, "unknown parameter type \"" + p.typeName + "\"");
-        }
-        p.type = it->second;
-
-        // Values: one token, or a bracketed list.
-        std::vector<Token> values;
-        Token first = need(ts, declTok, "a parameter value");
-        if (first.text == "[") {
-            while (true) {
-                Token t = need(ts, first, "']'");
-                if (t.text == "]") break;
-                if (t.text == "[") fail(ts, t, "nested '[' in a parameter list");
-                values.push_back(t);
-                if (values.size() > kMaxParamValues) fail(ts, t, "parameter list is too long");
-            }
-        } else {
-            values.push_back(first);
-        }
-        for (const Token& v : values) {
-            switch (p.type) {
-                case ParamType::Bool:
-                    if (v.text == "true") p.bools.push_back(true);
-                    else if (v.text == "false") p.bools.push_back(false);
-                    else if (v.isString()) fail(ts, v, "bool values are bare true/false, not quoted (pbrt-v3 syntax)");
-                    else fail(ts, v, "expected true or false");
-                    break;
-                case ParamType::String:
-                case ParamType::Texture:
-                    if (!v.isString()) fail(ts, v, "expected a quoted string for \"" + decl + "\"");
-                    p.strings.push_back(ts.tok.dequote(v));
-                    break;
-                case ParamType::Spectrum:
-                    if (v.isString()) p.strings.push_back(ts.tok.dequote(v));
-                    else p.numbers.push_back(number(ts, v));
-                    if (!p.strings.empty() && !p.numbers.empty()) fail(ts, v, "spectrum mixes names and numbers");
-                    break;
-                case ParamType::Integer: {
-                    if (v.isString()) fail(ts, v, "expected an integer for \"" + decl + "\"");
-                    std::string_view s = v.text;
-                    if (s.find_first_of(".eE") != std::string_view::npos) fail(ts, v, "expected an integer, got a floating-point number");
-                    double x = number(ts, v);
-                    if (x < -2147483648.0 || x > 2147483647.0) fail(ts, v, "integer out of range");
-                    p.numbers.push_back(x);
-                    break;
-                }
-                default:
-                    if (v.isString()) fail(ts, v, "expected a number for \"" + decl + "\"");
-                    p.numbers.push_back(number(ts, v));
-            }
-        }
-        return p;
-    }
-
-    // ---- state helpers ----
-    void requireOptions(TokenStream& ts, const Token& t) {
-        if (inWorld_) fail(ts, t, std::string(t.text) + " is only allowed before WorldBegin");
-    }
-    void requireWorld(TokenStream& ts, const Token& t) {
-        if (!inWorld_) fail(ts, t, std::string(t.text) + " is only allowed after WorldBegin");
-    }
-    void applyAttributes(ParamSet& ps, const std::string& category) {
-        auto it = gs_.attributes.find(category);
-        if (it == gs_.attributes.end()) return;
-        for (Param p : it->second) {
-            p.fromAttribute = true;
-            ps.addDefault(std::move(p));
-        }
-    }
-    void setCtm(TokenStream& ts, const Token& t, const Matrix4& m) {
-        auto tr = Transform::fromMatrix(m);
-        if (!tr) fail(ts, t, "transform is not invertible");
-        gs_.ctm = *tr;
-    }
-    void concat(TokenStream& ts, const Token& t, const Transform& tr) {
-        Transform r = gs_.ctm * tr;
-        if (!r.matrix().isFinite() || !r.inverseMatrix().isFinite()) fail(ts, t, "transform is not finite");
-        gs_.ctm = r;
-    }
-    Matrix4 columnMajor(const std::vector<double>& v) {
-        Matrix4 m;
-        for (int i = 0; i < 4; ++i)
-            for (int j = 0; j < 4; ++j) m.m[j][i] = float(v[i * 4 + j]);
-        return m;
-    }
-    std::string resolve(const std::string& f) const { return resolvePath(desc_.baseDirectory, f); }
-
-    void directive(TokenStream& ts, const Token& t, int depth) {
-        if (t.isString() || t.text == "[" || t.text == "]") fail(ts, t, "expected a directive");
-        const std::string name(t.text);
-        const SourceLoc loc = ts.loc(t);
-
-        if (name == "Identity") {
-            gs_.ctm = Transform();
-        } else if (name == "Translate") {
-            auto v = bareNumbers(ts, t, 3);
-            concat(ts, t, Transform::translate(Vec3(float(v[0]), float(v[1]), float(v[2]))));
-        } else if (name == "Scale") {
-            auto v = bareNumbers(ts, t, 3);
-            if (v[0] == 0 || v[1] == 0 || v[2] == 0) fail(ts, t, "Scale by zero makes the transform singular");
-            concat(ts, t, Transform::scale(Vec3(float(v[0]), float(v[1]), float(v[2]))));
-        } else if (name == "Rotate") {
-            auto v = bareNumbers(ts, t, 4);
-            if (v[1] == 0 && v[2] == 0 && v[3] == 0) fail(ts, t, "Rotate axis is zero");
-            concat(ts, t, Transform::rotate(float(v[0]), Vec3(float(v[1]), float(v[2]), float(v[3]))));
-        } else if (name == "LookAt") {
-            auto v = bareNumbers(ts, t, 9);
-            auto la = Transform::lookAt(Vec3(float(v[0]), float(v[1]), float(v[2])), Vec3(float(v[3]), float(v[4]), float(v[5])),
-                                        Vec3(float(v[6]), float(v[7]), float(v[8])));
-            if (!la) fail(ts, t, "LookAt: eye equals target, or up is parallel to the view direction");
-            concat(ts, t, la->inverse());  // the CTM is camera-from-world
-        } else if (name == "Transform") {
-            setCtm(ts, t, columnMajor(bracketNumbers(ts, t, 16)));
-        } else if (name == "ConcatTransform") {
-            auto tr = Transform::fromMatrix(columnMajor(bracketNumbers(ts, t, 16)));
-            if (!tr) fail(ts, t, "transform is not invertible");
-            concat(ts, t, *tr);
-        } else if (name == "CoordinateSystem") {
-            namedCoordSys_[quoted(ts, t, "a coordinate system name")] = gs_.ctm;
-        } else if (name == "CoordSysTransform") {
-            std::string n = quoted(ts, t, "a coordinate system name");
-            auto it = namedCoordSys_.find(n);
-            if (it == namedCoordSys_.end()) warning(loc, "CoordSysTransform: unknown coordinate system \"" + n + "\"");
-            else gs_.ctm = it->second;
-        } else if (name == "ReverseOrientation") {
-            gs_.reverseOrientation = !gs_.reverseOrientation;
-        } else if (name == "Camera") {
-            requireOptions(ts, t);
-            desc_.camera.type = quoted(ts, t, "the camera type");
-            desc_.camera.params = params(ts, t);
-            desc_.camera.loc = loc;
-            desc_.camera.worldFromCamera = gs_.ctm.inverse();
-            desc_.cameraGiven = true;
-            namedCoordSys_["camera"] = desc_.camera.worldFromCamera;
-        } else if (name == "Film" || name == "Sampler" || name == "Integrator" || name == "PixelFilter" || name == "Accelerator") {
-            requireOptions(ts, t);
-            SceneEntity e;
-            e.type = quoted(ts, t, "a type name");
-            e.params = params(ts, t);
-            e.loc = loc;
-            if (name == "Film" && e.type == "image") fail(ts, t, "Film \"image\" is pbrt-v3 syntax; convert the file with `pbrt --upgrade`");
-            if (name == "Film") desc_.film = e;
-            else if (name == "Sampler") desc_.sampler = e;
-            else if (name == "Integrator") desc_.integrator = e;
-            else if (name == "PixelFilter") desc_.filter = e;
-        } else if (name == "ColorSpace") {
-            std::string cs = quoted(ts, t, "a colour space name");
-            if (toLower(cs) != "srgb") warning(loc, "ColorSpace \"" + cs + "\" is not supported; RGB values are read as sRGB");
-        } else if (name == "Option") {
-            Token n = need(ts, t, "an option name");
-            if (!n.isString()) fail(ts, n, "expected a quoted option name");
-            std::string on = ts.tok.dequote(n);
-            if (on.find(' ') != std::string::npos) fail(ts, n, "Option takes a bare name and value (the typed form is not accepted)");
-            Token v = need(ts, n, "an option value");
-            desc_.options[on] = v.isString() ? ts.tok.dequote(v) : std::string(v.text);
-        } else if (name == "WorldBegin") {
-            requireOptions(ts, t);
-            inWorld_ = true;
-            gs_.ctm = Transform();
-            namedCoordSys_["world"] = gs_.ctm;
-        } else if (name == "WorldEnd") {
-            fail(ts, t, "WorldEnd is pbrt-v3 syntax (pbrt-v4 has none); remove it or convert with `pbrt --upgrade`");
-        } else if (name == "AttributeBegin" || name == "TransformBegin") {
-            if (name == "TransformBegin") warning(loc, "TransformBegin is deprecated; treated as AttributeBegin");
-            stack_.push_back(gs_);
-        } else if (name == "AttributeEnd" || name == "TransformEnd") {
-            if (stack_.empty()) fail(ts, t, "unmatched " + name);
-            gs_ = stack_.back();
-            stack_.pop_back();
-        } else if (name == "Attribute") {
-            std::string cat = quoted(ts, t, "an attribute category");
-            if (cat != "shape" && cat != "light" && cat != "material" && cat != "medium" && cat != "texture")
-                fail(ts, t, "unknown Attribute category \"" + cat + "\"");
-            ParamSet ps = params(ts, t);
-            auto& list = gs_.attributes[cat];
-            for (Param& p : ps.params) {
-                auto it = std::find_if(list.begin(), list.end(), [&](const Param& q) { return q.name == p.name; });
-                if (it != list.end()) *it = p;
-                else list.push_back(p);
-            }
-        } else if (name == "Material") {
-            requireWorld(ts, t);
-            MaterialEntity m;
-            m.type = quoted(ts, t, "a material type");
-            if (isV3Material(m.type)) fail(ts, t, "material \"" + m.type + "\" is pbrt-v3 syntax; convert the file with `pbrt --upgrade`");
-            m.params = params(ts, t);
-            applyAttributes(m.params, "material");
-            m.loc = loc;
-            desc_.materials.push_back(std::move(m));
-            gs_.material = MaterialRef{int(desc_.materials.size()) - 1, ""};
-        } else if (name == "MakeNamedMaterial") {
-            requireWorld(ts, t);
-            MaterialEntity m;
-            m.name = quoted(ts, t, "a material name");
-            m.params = params(ts, t);
-            applyAttributes(m.params, "material");
-            m.loc = loc;
-            const Param* type = m.params.find("type");
-            if (!type || type->type != ParamType::String || type->strings.size() != 1)
-                fail(ts, t, "MakeNamedMaterial \"" + m.name + "\" needs \"string type\"");
-            m.type = type->strings[0];
-            if (isV3Material(m.type)) fail(ts, t, "material \"" + m.type + "\" is pbrt-v3 syntax; convert the file with `pbrt --upgrade`");
-            m.params.params.erase(std::remove_if(m.params.params.begin(), m.params.params.end(),
-                                                 [](const Param& p) { return p.name == "type"; }),
-                                  m.params.params.end());
-            if (desc_.namedMaterials.count(m.name)) fail(ts, t, "named material \"" + m.name + "\" redefined");
-            desc_.namedMaterials[m.name] = std::move(m);
-        } else if (name == "NamedMaterial") {
-            requireWorld(ts, t);
-            gs_.material = MaterialRef{-1, quoted(ts, t, "a material name")};
-        } else if (name == "Texture") {
-            requireWorld(ts, t);
-            TextureEntity e;
-            e.name = quoted(ts, t, "a texture name");
-            std::string kind = quoted(ts, t, "\"float\" or \"spectrum\"");
-            if (kind == "color") fail(ts, t, "texture type \"color\" is pbrt-v3 syntax; use \"spectrum\"");
-            if (kind != "float" && kind != "spectrum") fail(ts, t, "texture type must be \"float\" or \"spectrum\"");
-            e.isFloat = kind == "float";
-            e.type = quoted(ts, t, "a texture class");
-            e.params = params(ts, t);
-            applyAttributes(e.params, "texture");
-            e.loc = loc;
-            e.worldFromTexture = gs_.ctm;
-            (e.isFloat ? desc_.floatTextures : desc_.spectrumTextures).push_back(std::move(e));
-        } else if (name == "LightSource") {
-            requireWorld(ts, t);
-            LightEntity e;
-            e.type = quoted(ts, t, "a light type");
-            e.params = params(ts, t);
-            applyAttributes(e.params, "light");
-            e.loc = loc;
-            e.worldFromLight = gs_.ctm;
-            desc_.lights.push_back(std::move(e));
-        } else if (name == "AreaLightSource") {
-            requireWorld(ts, t);
-            SceneEntity e;
-            e.type = quoted(ts, t, "an area light type");
-            e.params = params(ts, t);
-            applyAttributes(e.params, "light");
-            e.loc = loc;
-            desc_.areaLights.push_back(std::move(e));
-            gs_.areaLight = int(desc_.areaLights.size()) - 1;
-        } else if (name == "Shape") {
-            requireWorld(ts, t);
-            ShapeEntity e;
-            e.type = quoted(ts, t, "a shape type");
-            e.params = params(ts, t);
-            applyAttributes(e.params, "shape");
-            e.loc = loc;
-            e.worldFromObject = gs_.ctm;
-            e.reverseOrientation = gs_.reverseOrientation;
-            e.material = gs_.material;
-            e.areaLight = gs_.areaLight;
-            if (instance_) {
-                if (e.areaLight >= 0) warning(loc, "area lights inside ObjectBegin are not supported; the shape does not emit");
-                e.areaLight = -1;
-                instance_->shapes.push_back(std::move(e));
-            } else {
-                desc_.shapes.push_back(std::move(e));
-            }
-        } else if (name == "ObjectBegin") {
-            requireWorld(ts, t);
-            std::string n = quoted(ts, t, "an object name");
-            if (instance_) fail(ts, t, "ObjectBegin inside ObjectBegin \"" + instance_->name + "\"");
-            if (desc_.instances.count(n)) fail(ts, t, "object \"" + n + "\" redefined");
-            stack_.push_back(gs_);
-            InstanceDefinition& def = desc_.instances[n];
-            def.name = n;
-            def.loc = loc;
-            instance_ = &def;
-            instanceDepth_ = stack_.size();
-        } else if (name == "ObjectEnd") {
-            requireWorld(ts, t);
-            if (!instance_ || stack_.size() != instanceDepth_) fail(ts, t, "ObjectEnd without matching ObjectBegin");
-            instance_ = nullptr;
-            gs_ = stack_.back();
-            stack_.pop_back();
-        } else if (name == "ObjectInstance") {
-            requireWorld(ts, t);
-            std::string n = quoted(ts, t, "an object name");
-            if (instance_) fail(ts, t, "ObjectInstance inside an ObjectBegin block");
-            desc_.instanceUses.push_back(InstanceUse{n, gs_.ctm, loc});
-        } else if (name == "Include") {
-            std::string f = quoted(ts, t, "a file name");
-            parseFile(resolve(f), depth + 1, &loc);
-        } else if (name == "Import") {
-            requireWorld(ts, t);
-            std::string f = quoted(ts, t, "a file name");
-            // Parsed against a copy of the graphics state: changes do not leak back.
-            GraphicsState saved = gs_;
-            auto savedStack = stack_;
-            parseFile(resolve(f), depth + 1, &loc);
-            gs_ = saved;
-            stack_ = savedStack;
-        } else if (name == "MakeNamedMedium") {
-            std::string n = quoted(ts, t, "a medium name");
-            params(ts, t);
-            warning(loc, "participating media are not supported; medium \"" + n + "\" is ignored");
-        } else if (name == "MediumInterface") {
-            quoted(ts, t, "an interior medium name");
-            if (auto nx = ts.peek(); nx && nx->isString()) ts.next();
-            warning(loc, "participating media are not supported; MediumInterface is ignored");
-        } else if (name == "TransformTimes") {
-            requireOptions(ts, t);
-            bareNumbers(ts, t, 2);
-            warning(loc, "motion blur is not supported; TransformTimes is ignored");
-        } else if (name == "ActiveTransform") {
-            Token w = need(ts, t, "StartTime, EndTime or All");
-            if (w.text != "StartTime" && w.text != "EndTime" && w.text != "All") fail(ts, w, "expected StartTime, EndTime or All");
-            warning(loc, "motion blur is not supported; ActiveTransform is ignored");
-        } else {
-            fail(ts, t, "unknown directive \"" + name + "\"");
-        }
-    }
-
-    SceneDescription& desc_;
-    GraphicsState gs_;
-    std::vector<GraphicsState> stack_;
-    std::map<std::string, Transform> namedCoordSys_;
-    bool inWorld_ = false;
-    InstanceDefinition* instance_ = nullptr;
-    size_t instanceDepth_ = 0;
+    ParseContext& ctx_;
+    std::vector<std::unique_ptr<Tokenizer>> files_, finished_;
+    std::optional<Token> peeked_;
 };
+
+// ---- parameter lists ----
+
+std::optional<ParamType> paramType(std::string_view s) {
+    static const std::pair<std::string_view, ParamType> types[] = {
+        {"float", ParamType::Float},     {"integer", ParamType::Integer},     {"bool", ParamType::Bool},
+        {"string", ParamType::String},   {"point2", ParamType::Point2},       {"vector2", ParamType::Vector2},
+        {"point3", ParamType::Point3},   {"vector3", ParamType::Vector3},     {"normal", ParamType::Normal},
+        {"rgb", ParamType::RGB},         {"blackbody", ParamType::Blackbody}, {"spectrum", ParamType::Spectrum},
+        {"texture", ParamType::Texture},
+    };
+    for (auto& [name, type] : types)
+        if (name == s) return type;
+    return std::nullopt;
+}
+
+void addValue(Param& p, const Token& v) {
+    switch (p.type) {
+        case ParamType::Bool:
+            if (v.is("true") || v.is("false")) p.bools.push_back(v.is("true"));
+            else if (v.is("\"true\"") || v.is("\"false\""))
+                fail(v, "quoted bool " + show(v) + " is pbrt-v3 syntax: pbrt-v4 takes bare true/false; convert the file with `pbrt --upgrade`");
+            else fail(v, "expected true or false for \"bool " + p.name + "\", got " + show(v));
+            break;
+        case ParamType::String:
+        case ParamType::Texture:
+            if (!v.isString()) fail(v, "expected a quoted string for \"" + p.typeName + " " + p.name + "\", got " + show(v));
+            p.strings.push_back(Tokenizer::dequote(v));
+            break;
+        case ParamType::Spectrum:
+            if (v.isString() ? !p.numbers.empty() : !p.strings.empty())
+                fail(v, "\"spectrum " + p.name + "\" mixes names and numbers at " + show(v));
+            if (v.isString()) p.strings.push_back(Tokenizer::dequote(v));
+            else p.numbers.push_back(parseFloat(v));
+            break;
+        case ParamType::Integer:
+            if (v.isString()) fail(v, "expected an integer for \"integer " + p.name + "\", got " + show(v));
+            p.numbers.push_back(parseInt(v));
+            break;
+        default:
+            if (v.isString()) fail(v, "expected a number for \"" + p.typeName + " " + p.name + "\", got " + show(v));
+            p.numbers.push_back(parseFloat(v));
+    }
+}
+
+Param parseParam(TokenStream& ts, const Token& decl) {
+    // "type name": exactly two words.
+    const std::string text = Tokenizer::dequote(decl);
+    std::vector<std::string> words;
+    for (size_t i = 0; i < text.size();) {
+        size_t a = text.find_first_not_of(" \t", i);
+        if (a == std::string::npos) break;
+        size_t b = text.find_first_of(" \t", a);
+        words.push_back(text.substr(a, b == std::string::npos ? std::string::npos : b - a));
+        i = b == std::string::npos ? text.size() : b;
+    }
+    if (words.size() != 2) fail(decl, "expected a parameter declaration \"type name\", got " + show(decl));
+    Param p;
+    p.typeName = words[0];
+    p.name = words[1];
+    p.loc = decl.loc();
+    auto type = paramType(p.typeName);
+    if (!type) {
+        if (p.typeName == "normal3" || p.typeName == "point" || p.typeName == "vector" || p.typeName == "color")
+            fail(decl, "parameter type \"" + p.typeName + "\" in " + show(decl) + " is pbrt-v3 syntax; convert the file with `pbrt --upgrade`");
+        fail(decl, "unknown parameter type \"" + p.typeName + "\" in " + show(decl));
+    }
+    p.type = *type;
+
+    Token first = ts.need(decl, "a value for " + show(decl));
+    if (first.is("[")) {
+        while (true) {
+            Token v = ts.need(first, "']' closing the values of " + show(decl));
+            if (v.is("]")) break;
+            if (v.is("[")) fail(v, "unexpected '[' inside the values of " + show(decl));
+            if (p.numbers.size() + p.strings.size() + p.bools.size() >= kMaxParamValues)
+                fail(v, "more than " + std::to_string(kMaxParamValues) + " values for " + show(decl));
+            addValue(p, v);
+        }
+    } else if (first.is("]")) {
+        fail(first, "unexpected ']' after " + show(decl));
+    } else {
+        addValue(p, first);
+    }
+    if (p.numbers.empty() && p.strings.empty() && p.bools.empty()) fail(decl, "no values given for " + show(decl));
+    if (p.type == ParamType::Blackbody && p.numbers.size() == 2)
+        fail(decl, show(decl) + " has two values: that is pbrt-v3's [kelvin scale] form; pbrt-v4 takes one temperature; "
+                   "convert the file with `pbrt --upgrade`");
+    return p;
+}
+
+// A parameter list runs until the first token that is not a quoted string.
+ParamSet parseParams(ParseContext& ctx, TokenStream& ts, const Token& d) {
+    ParamSet ps;
+    ps.loc = d.loc();
+    ps.baseDirectory = ctx.desc.baseDirectory;
+    while (true) {
+        const auto& t = ts.peek();
+        if (!t || !t->isString()) break;
+        Token decl = *ts.next();
+        ps.add(parseParam(ts, decl));
+    }
+    return ps;
+}
+
+// ---- directive arguments ----
+
+std::string quoted(TokenStream& ts, const Token& d, const std::string& what) {
+    Token t = ts.need(d, what);
+    if (!t.isString()) fail(t, std::string(d.text) + ": expected " + what + " (a quoted string), got " + show(t));
+    return Tokenizer::dequote(t);
+}
+
+// LookAt, Translate, ...: bare numbers; brackets there are an error in pbrt-v4.
+template <size_t N>
+std::array<double, N> bareNumbers(TokenStream& ts, const Token& d) {
+    std::array<double, N> v{};
+    for (size_t i = 0; i < N; ++i) {
+        Token t = ts.need(d, std::to_string(N) + " numbers");
+        if (t.is("[") || t.is("]"))
+            fail(t, std::string(d.text) + " takes " + std::to_string(N) + " bare numbers; brackets are not allowed (got " + show(t) + ")");
+        v[i] = parseFloat(t);
+    }
+    return v;
+}
+
+// Transform and ConcatTransform: exactly 16 numbers in brackets.
+std::array<double, 16> matrixNumbers(TokenStream& ts, const Token& d) {
+    Token open = ts.need(d, "'[' and 16 numbers");
+    if (!open.is("[")) fail(open, std::string(d.text) + " takes 16 numbers in brackets, got " + show(open));
+    std::array<double, 16> v{};
+    for (size_t i = 0; i < 16; ++i) {
+        Token t = ts.need(open, "16 numbers");
+        if (t.is("]")) fail(t, std::string(d.text) + " takes 16 numbers, got " + std::to_string(i) + " before " + show(t));
+        v[i] = parseFloat(t);
+    }
+    Token close = ts.need(open, "']'");
+    if (!close.is("]")) fail(close, std::string(d.text) + " takes exactly 16 numbers; expected ']', got " + show(close));
+    return v;
+}
+
+Vec3 vec(const double* v) { return Vec3(float(v[0]), float(v[1]), float(v[2])); }
+
+void parseStream(ParseContext& ctx, TokenStream& ts);
+
+void includeFile(ParseContext& ctx, TokenStream& ts, const Token& d) {
+    std::string f = quoted(ts, d, "a file name");
+    if (f.empty()) fail(d, "Include: empty file name");
+    // Relative to the main scene file's directory, not the including file's (§8).
+    ts.open(resolvePath(ctx.desc.baseDirectory, f), &d);
+}
+
+void importFile(ParseContext& ctx, TokenStream& ts, const Token& d) {
+    std::string f = quoted(ts, d, "a file name");
+    if (f.empty()) fail(d, "Import: empty file name");
+    auto saved = ctx.builder.beginImport(d);
+    {
+        TokenStream inner(ctx);
+        inner.open(resolvePath(ctx.desc.baseDirectory, f), &d);
+        parseStream(ctx, inner);
+    }
+    ctx.builder.endImport(d, std::move(saved));
+}
+
+void directive(ParseContext& ctx, TokenStream& ts, const Token& d) {
+    DescriptionBuilder& b = ctx.builder;
+    const std::string_view n = d.text;
+    auto params = [&] { return parseParams(ctx, ts, d); };
+    auto typeThenParams = [&](const char* what, auto method) {
+        std::string type = quoted(ts, d, what);
+        (b.*method)(d, type, params());
+    };
+
+    if (n == "Shape") typeThenParams("a shape type", &DescriptionBuilder::shape);
+    else if (n == "AttributeBegin" || n == "TransformBegin") b.attributeBegin(d);
+    else if (n == "AttributeEnd" || n == "TransformEnd") b.attributeEnd(d);
+    else if (n == "Translate") {
+        auto v = bareNumbers<3>(ts, d);
+        b.translate(d, vec(v.data()));
+    } else if (n == "Scale") {
+        auto v = bareNumbers<3>(ts, d);
+        b.scale(d, vec(v.data()));
+    } else if (n == "Rotate") {
+        auto v = bareNumbers<4>(ts, d);
+        b.rotate(d, float(v[0]), vec(v.data() + 1));
+    } else if (n == "LookAt") {
+        auto v = bareNumbers<9>(ts, d);
+        b.lookAt(d, vec(v.data()), vec(v.data() + 3), vec(v.data() + 6));
+    } else if (n == "Transform") b.transform(d, matrixNumbers(ts, d).data());
+    else if (n == "ConcatTransform") b.concatTransform(d, matrixNumbers(ts, d).data());
+    else if (n == "Identity") b.identity(d);
+    else if (n == "Material") typeThenParams("a material type", &DescriptionBuilder::material);
+    else if (n == "MakeNamedMaterial") typeThenParams("a material name", &DescriptionBuilder::makeNamedMaterial);
+    else if (n == "NamedMaterial") b.namedMaterial(d, quoted(ts, d, "a material name"));
+    else if (n == "Texture") {
+        std::string name = quoted(ts, d, "a texture name");
+        std::string kind = quoted(ts, d, "\"float\" or \"spectrum\"");
+        std::string cls = quoted(ts, d, "a texture class");
+        b.texture(d, name, kind, cls, params());
+    } else if (n == "LightSource") typeThenParams("a light type", &DescriptionBuilder::lightSource);
+    else if (n == "AreaLightSource") typeThenParams("an area light type", &DescriptionBuilder::areaLightSource);
+    else if (n == "ReverseOrientation") b.reverseOrientation(d);
+    else if (n == "ObjectBegin") b.objectBegin(d, quoted(ts, d, "an object name"));
+    else if (n == "ObjectEnd") b.objectEnd(d);
+    else if (n == "ObjectInstance") b.objectInstance(d, quoted(ts, d, "an object name"));
+    else if (n == "Attribute") typeThenParams("an attribute target", &DescriptionBuilder::attribute);
+    else if (n == "CoordinateSystem") b.coordinateSystem(d, quoted(ts, d, "a coordinate system name"));
+    else if (n == "CoordSysTransform") b.coordSysTransform(d, quoted(ts, d, "a coordinate system name"));
+    else if (n == "Camera") typeThenParams("a camera type", &DescriptionBuilder::camera);
+    else if (n == "Film") typeThenParams("a film type", &DescriptionBuilder::film);
+    else if (n == "Sampler") typeThenParams("a sampler type", &DescriptionBuilder::sampler);
+    else if (n == "Integrator") typeThenParams("an integrator type", &DescriptionBuilder::integrator);
+    else if (n == "PixelFilter") typeThenParams("a filter type", &DescriptionBuilder::pixelFilter);
+    else if (n == "Accelerator") typeThenParams("an accelerator type", &DescriptionBuilder::accelerator);
+    else if (n == "WorldBegin") b.worldBegin(d);
+    else if (n == "ColorSpace") b.colorSpace(d, quoted(ts, d, "a colour space name"));
+    else if (n == "Option") {
+        std::string name = quoted(ts, d, "an option name");
+        Token value = ts.need(d, "an option value");
+        b.option(d, name, value);
+    } else if (n == "Include") includeFile(ctx, ts, d);
+    else if (n == "Import") importFile(ctx, ts, d);
+    else if (n == "MakeNamedMedium") typeThenParams("a medium name", &DescriptionBuilder::makeNamedMedium);
+    else if (n == "MediumInterface") {
+        std::string inside = quoted(ts, d, "a medium name"), outside = inside;
+        if (const auto& t = ts.peek(); t && t->isString()) outside = Tokenizer::dequote(*ts.next());
+        b.mediumInterface(d, inside, outside);
+    } else if (n == "TransformTimes") {
+        bareNumbers<2>(ts, d);
+        b.transformTimes(d);
+    } else if (n == "ActiveTransform") {
+        Token w = ts.need(d, "StartTime, EndTime or All");
+        if (!w.is("StartTime") && !w.is("EndTime") && !w.is("All"))
+            fail(w, "ActiveTransform: expected StartTime, EndTime or All, got " + show(w));
+        b.activeTransform(d, std::string(w.text));
+    } else if (n == "WorldEnd") {
+        fail(d, "WorldEnd is pbrt-v3 syntax (pbrt-v4 has no WorldEnd); remove it or convert the file with `pbrt --upgrade`");
+    } else if (d.isString() || d.is("[") || d.is("]")) {
+        fail(d, "expected a directive, got " + show(d));
+    } else {
+        fail(d, "unknown directive " + show(d));
+    }
+}
+
+void parseStream(ParseContext& ctx, TokenStream& ts) {
+    while (true) {
+        ts.releaseFinished();
+        auto t = ts.next();
+        if (!t) break;
+        directive(ctx, ts, *t);
+    }
+}
 
 }  // namespace
 
@@ -502,9 +412,13 @@ SceneDescription parseSceneFile(const std::string& path) {
     desc.sceneFile = path;
     std::filesystem::path p(path);
     desc.baseDirectory = p.has_parent_path() ? p.parent_path().string() : ".";
-    SceneParser parser(desc);
-    parser.parseFile(path, 0, nullptr);
-    parser.finish();
+    ParseContext ctx(desc);
+    {
+        TokenStream ts(ctx);
+        ts.open(path, nullptr);
+        parseStream(ctx, ts);
+    }
+    ctx.builder.finish(path);
     return desc;
 }
 
@@ -512,10 +426,13 @@ SceneDescription parseSceneString(const std::string& text, const std::string& ba
     SceneDescription desc;
     desc.sceneFile = displayName;
     desc.baseDirectory = baseDirectory;
-    SceneParser parser(desc);
-    auto tok = Tokenizer::fromString(text, displayName);
-    parser.parse(*tok, 0);
-    parser.finish();
+    ParseContext ctx(desc);
+    {
+        TokenStream ts(ctx);
+        ts.openString(text, displayName);
+        parseStream(ctx, ts);
+    }
+    ctx.builder.finish(displayName);
     return desc;
 }
 

@@ -1,0 +1,37 @@
+// The state that AttributeBegin saves and AttributeEnd restores (PBRT-CONVENTIONS §8 Blocks).
+#pragma once
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+#include "math/transform.h"
+#include "scene/scene_description.h"
+
+namespace ps {
+
+// Targets of the Attribute directive.
+enum class AttributeTarget { Shape, Light, Material, Medium, Texture };
+std::optional<AttributeTarget> attributeTarget(const std::string& name);
+
+struct GraphicsState {
+    Transform ctm;
+    bool reverseOrientation = false;
+    MaterialRef material{0, ""};  // the default material is SceneDescription::materials[0]
+    int areaLight = -1;
+    // pbrt keeps start and end transforms for motion blur; we keep the start one only, so
+    // transform directives after `ActiveTransform EndTime` are ignored.
+    bool startTransformActive = true;
+
+    // Attribute defaults per target, shared between copies so that AttributeBegin is O(1)
+    // however long the lists are; copied on write.
+    std::array<std::shared_ptr<const std::vector<Param>>, 5> attributes;
+
+    // Later Attribute statements override earlier ones of the same name.
+    void addAttributes(AttributeTarget target, std::vector<Param> params);
+    // Adds the defaults for `target` to ps (explicit parameters win); returns the number of
+    // values copied, for the parser's resource budget.
+    size_t applyAttributes(AttributeTarget target, ParamSet& ps) const;
+};
+
+}  // namespace ps
