@@ -1,0 +1,139 @@
+// PNG, JPEG, TGA, BMP (and whatever else stb_image knows) in; PNG out. Radiance HDR has
+// its own reader (hdr.cpp).
+// The stb implementation lives in Debian's libstb, so no *_IMPLEMENTATION defines here.
+#include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+
+#include "image/image_formats.h"
+#include "util/error.h"
+
+namespace ps::imageio {
+
+namespace {
+
+[[noreturn]] void stbFailure(const std::string& path) {
+    const char* reason = stbi_failure_reason();
+    throw InputError(path + ": not a readable image (stb: " + (reason ? reason : "unknown error") + ")");
+}
+
+// 8-bit sRGB decoding is a table lookup: image textures can have many megapixels.
+const std::array<float, 256>& srgbTable() {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t;
+        for (int i = 0; i < 256; ++i) t[i] = srgbToLinear(i / 255.0f);
+        return t;
+    }();
+    return table;
+}
+
+// Spreads 1-4 channel samples into img: grey becomes R=G=B, a 2nd/4th channel is alpha
+// (kept linear: value/maxValue). Colour goes through decode (sRGB or plain scaling).
+template <typename T, typename Decode>
+void unpack(const T* data, int comps, Image& img, float maxValue, Decode decode) {
+    size_t n = size_t(img.width) * size_t(img.height);
+    bool alpha = comps == 2 || comps == 4;
+    int colours = alpha ? comps - 1 : comps;
+    if (alpha) img.alpha.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        const T* p = data + i * size_t(comps);
+        for (int c = 0; c < 3; ++c) img.rgb[3 * i + c] = decode(p[colours >= 3 ? c : 0]);
+        if (alpha) img.alpha[i] = float(p[comps - 1]) / maxValue;
+    }
+}
+
+template <typename T>
+using StbPtr = std::unique_ptr<T, void (*)(void*)>;
+
+// stb reads through these so we learn whether it asked for bytes past the end: its
+// decoders then carry on with zeros (or, for raw TGA rows, unset memory) and "succeed".
+struct Source {
+    std::FILE* f;
+    bool pastEnd = false;
+};
+
+int readBytes(void* user, char* data, int size) {
+    auto* s = static_cast<Source*>(user);
+    size_t n = std::fread(data, 1, size_t(size), s->f);
+    if (n == 0) s->pastEnd = true;
+    return int(n);
+}
+void skipBytes(void* user, int n) {
+    std::FILE* f = static_cast<Source*>(user)->f;
+    std::fseek(f, n, SEEK_CUR);
+    // fseek clears the end-of-file flag, and stb's scanning loops stop only on atEnd:
+    // read one byte so a skip past the end is noticed (as stb's own stdio reader does).
+    int c = std::fgetc(f);
+    if (c != EOF) std::ungetc(c, f);
+}
+int atEnd(void* user) {
+    auto* s = static_cast<Source*>(user);
+    return std::feof(s->f) || std::ferror(s->f);
+}
+const stbi_io_callbacks kCallbacks = {readBytes, skipBytes, atEnd};
+
+}  // namespace
+
+Image readStb(const std::string& path, std::FILE* f, long long fileBytes, FileFormat format, ColorEncoding pngEncoding) {
+    // Every stb call starts a fresh context at the current position: rewind before each.
+    Source src{f};
+    int w = 0, h = 0, comps = 0;
+    if (!stbi_info_from_callbacks(&kCallbacks, &src, &w, &h, &comps)) stbFailure(path);
+    checkSize(path, w, h, fileBytes);  // before decoding allocates anything
+    std::rewind(f);
+    bool sixteen = stbi_is_16_bit_from_callbacks(&kCallbacks, &src);
+    // Only PNG may be declared linear; other 8/16-bit formats are always sRGB (PBRT-CONVENTIONS §6).
+    bool srgb = !(format == FileFormat::Png && pngEncoding == ColorEncoding::Linear);
+
+    std::rewind(f);
+    src.pastEnd = false;
+    int lw = 0, lh = 0;
+    Image img(w, h);
+    if (sixteen) {
+        StbPtr<stbi_us> data(stbi_load_16_from_callbacks(&kCallbacks, &src, &lw, &lh, &comps, 0), stbi_image_free);
+        if (!data) stbFailure(path);
+        if (lw != w || lh != h) throw InputError(path + ": image size changed between header and data");
+        unpack(data.get(), comps, img, 65535.0f, [&](stbi_us v) {
+            float u = v / 65535.0f;
+            return srgb ? srgbToLinear(u) : u;
+        });
+    } else {
+        StbPtr<stbi_uc> data(stbi_load_from_callbacks(&kCallbacks, &src, &lw, &lh, &comps, 0), stbi_image_free);
+        if (!data) stbFailure(path);
+        if (lw != w || lh != h) throw InputError(path + ": image size changed between header and data");
+        const auto& table = srgbTable();
+        unpack(data.get(), comps, img, 255.0f, [&](stbi_uc v) { return srgb ? table[v] : v / 255.0f; });
+    }
+    if (src.pastEnd) throw InputError(path + ": truncated image data");
+    return img;
+}
+
+std::vector<char> encodePng(const Image& img) {
+    std::vector<unsigned char> px(img.rgb.size());
+    for (size_t i = 0; i < px.size(); ++i) {
+        float v = std::clamp(finiteForOutput(img.rgb[i]), 0.0f, 1.0f);
+        px[i] = (unsigned char)std::lround(linearToSrgb(v) * 255.0f);
+    }
+    // The callback runs inside C code, so it must not throw: failures are recorded instead.
+    struct Sink {
+        std::vector<char> bytes;
+        bool failed = false;
+    } sink;
+    auto append = [](void* ctx, void* data, int size) {
+        auto* s = static_cast<Sink*>(ctx);
+        try {
+            s->bytes.insert(s->bytes.end(), static_cast<char*>(data), static_cast<char*>(data) + size);
+        } catch (...) {
+            s->failed = true;
+        }
+    };
+    if (!stbi_write_png_to_func(append, &sink, img.width, img.height, 3, px.data(), img.width * 3) || sink.failed)
+        throw std::runtime_error("PNG encoding failed (out of memory)");
+    return std::move(sink.bytes);
+}
+
+}  // namespace ps::imageio
