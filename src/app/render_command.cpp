@@ -53,7 +53,13 @@ void RenderCommand::attach(CLI::App& app) {
         ->check(CLI::NonNegativeNumber);
     cmd_->add_option("--maxdepth", maxDepth_, "Maximum number of scattering events (overrides the scene's)")
         ->check(CLI::NonNegativeNumber);
-    cmd_->add_option("--integrator", integrator_, "Integrator: path (pbrt names path/volpath map to it)");
+    cmd_->add_option("--integrator", integrator_,
+                     "Integrator: path (path tracing with MIS), light (light tracing: particles from the lights "
+                     "splatted through the lens), bdpt (bidirectional path tracing, every strategy with MIS). "
+                     "pbrt names volpath, lightpath map to them")
+        ->check(CLI::IsMember({"path", "volpath", "light", "lightpath", "bdpt"}));
+    cmd_->add_option("--mis", mis_, "BDPT's weighting of strategies: power (default), balance, none (uniform)")
+        ->check(CLI::IsMember({"power", "balance", "none"}));
     cmd_->add_option("--sampler", sampler_,
                      "Sample placement per pixel: sobol (default; Owen-scrambled Sobol), stratified (jittered strata), "
                      "lhs (Latin hypercube) or independent")
@@ -75,7 +81,8 @@ int RenderCommand::run() {
     if (spp_ > 0) settings.spp = spp_;
     if (seed_ >= 0) settings.seed = uint64_t(seed_);
     if (maxDepth_ >= 0) settings.maxDepth = maxDepth_;
-    if (!integrator_.empty()) settings.integrator = integrator_ == "volpath" ? "path" : integrator_;
+    if (!integrator_.empty())
+        settings.integrator = integrator_ == "volpath" ? "path" : integrator_ == "lightpath" ? "light" : integrator_;
     if (!sampler_.empty()) settings.sampler = sampler_;
     if (!crop_.empty()) {
         int W = scene->camera().params().xRes, H = scene->camera().params().yRes;
@@ -86,7 +93,7 @@ int RenderCommand::run() {
     std::vector<std::string> outputs = outputs_;
     if (outputs.empty()) outputs.push_back(std::filesystem::path(settings.outputFile).filename().string());
     for (const std::string& o : outputs) checkWritable(o);
-    std::unique_ptr<Integrator> integrator = createIntegrator(settings.integrator, *scene);
+    std::unique_ptr<Integrator> integrator = createIntegrator(settings.integrator, *scene, mis_);
 
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
@@ -122,6 +129,7 @@ int RenderCommand::run() {
         {"interrupted", gInterrupt.load()},
         {"camera_paths", r.stats.cameraPaths},
         {"camera_paths_per_s", double(r.stats.cameraPaths) / secs},
+        {"light_paths", r.stats.lightPaths},
         {"rays", rays},
         {"closest_hit_rays", r.stats.rays},
         {"shadow_rays", r.stats.shadowRays},

@@ -20,6 +20,7 @@ private:
     long long seed_ = -1;
     int maxDepth_ = -1;
     std::string integrator_;
+    std::string mis_ = "power";
     std::string sampler_;
     std::vector<std::string> outputs_;
     std::vector<float> crop_;

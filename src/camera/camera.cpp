@@ -17,6 +17,62 @@ Camera::Camera(const Params& p) : params_(p) {
         sx0_ = w[0]; sx1_ = w[1]; sy0_ = w[2]; sy1_ = w[3];
     }
     tanHalfFov_ = std::tan(radians(p.fovDeg) / 2);
+    cameraFromWorld_ = p.worldFromCamera.inverse();
+    forward_ = normalize(p.worldFromCamera.vector({0, 0, 1}));
+    filmArea_ = std::fabs((sx1_ - sx0_) * (sy1_ - sy0_)) * tanHalfFov_ * tanHalfFov_;
+}
+
+bool Camera::rasterOf(Vec3 oCam, Vec3 dCam, Vec2* pRaster) const {
+    // Every ray through a lens point focused at film point x passes through x's pinhole image
+    // on the plane of focus (z = 1 for a pinhole), so that point names the film position.
+    float zFocus = params_.lensRadius > 0 ? params_.focalDistance : 1.0f;
+    Vec3 pFocus = oCam + dCam * ((zFocus - oCam.z) / dCam.z);
+    float sx = pFocus.x / (zFocus * tanHalfFov_), sy = pFocus.y / (zFocus * tanHalfFov_);
+    float rx = (sx - sx0_) / (sx1_ - sx0_) * params_.xRes;
+    float ry = (sy1_ - sy) / (sy1_ - sy0_) * params_.yRes;
+    if (pRaster) *pRaster = {rx, ry};
+    return rx >= 0 && rx < params_.xRes && ry >= 0 && ry < params_.yRes;
+}
+
+float Camera::We(const Ray& r, Vec2* pRaster) const {
+    if (!hasImportance()) return 0;
+    Vec3 d = normalize(r.d);
+    float cosT = dot(d, forward_);
+    if (!(cosT > 0)) return 0;
+    Vec3 dCam = normalize(cameraFromWorld_.vector(d));
+    if (!rasterOf(cameraFromWorld_.point(r.o), dCam, pRaster)) return 0;
+    float cos2 = cosT * cosT;
+    return 1 / (filmArea_ * lensArea() * cos2 * cos2);
+}
+
+void Camera::pdfWe(const Ray& r, float* pdfPos, float* pdfDir) const {
+    *pdfPos = *pdfDir = 0;
+    if (!hasImportance()) return;
+    Vec3 d = normalize(r.d);
+    float cosT = dot(d, forward_);
+    if (!(cosT > 0)) return;
+    if (!rasterOf(cameraFromWorld_.point(r.o), normalize(cameraFromWorld_.vector(d)), nullptr)) return;
+    *pdfPos = 1 / lensArea();
+    *pdfDir = 1 / (filmArea_ * cosT * cosT * cosT);
+}
+
+std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, Vec2 u) const {
+    if (!hasImportance()) return std::nullopt;
+    Vec2 lens = sampleConcentricDisk(u) * params_.lensRadius;
+    CameraWiSample s;
+    s.pLens = params_.worldFromCamera.point({lens.x, lens.y, 0});
+    s.nLens = forward_;
+    Vec3 toLens = s.pLens - ref;
+    float dist2 = lengthSquared(toLens);
+    if (!(dist2 > 0)) return std::nullopt;
+    s.wi = toLens / std::sqrt(dist2);
+    float cosLens = std::fabs(dot(s.nLens, s.wi));
+    if (!(cosLens > 0)) return std::nullopt;
+    // Area density 1/lensArea on the lens, as a solid angle at ref (thesis eq. 8.10).
+    s.pdf = dist2 / (cosLens * lensArea());
+    s.We = We(Ray{s.pLens, -s.wi}, &s.pRaster);
+    if (!(s.We > 0)) return std::nullopt;
+    return s;
 }
 
 Ray Camera::generateRay(const CameraSample& s) const {

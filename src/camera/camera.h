@@ -1,6 +1,7 @@
 // Projective cameras with pbrt-v4's conventions (PBRT-CONVENTIONS §1): raster y points
 // down, fov spans the shorter image axis, focus on the plane z = focaldistance.
 #pragma once
+#include <optional>
 #include "geometry/ray.h"
 #include "math/transform.h"
 
@@ -9,6 +10,16 @@ namespace ps {
 struct CameraSample {
     Vec2 pFilm;  // raster position (pixels, continuous)
     Vec2 pLens;  // [0,1)^2
+};
+
+// A camera connection from a scene point (the t = 1 strategies, thesis §10.2).
+struct CameraWiSample {
+    float We = 0;     // importance arriving at the lens point from the reference point
+    Vec3 wi;          // unit direction from the reference point towards the lens
+    float pdf = 0;    // solid angle at the reference point
+    Vec3 pLens;       // world-space point on the lens
+    Vec3 nLens;       // lens normal (the viewing direction)
+    Vec2 pRaster;     // where the contribution lands on the film
 };
 
 class Camera {
@@ -29,8 +40,28 @@ public:
     Vec3 position() const { return params_.worldFromCamera.point({0, 0, 0}); }
     const Params& params() const { return params_; }
 
+    // Importance (thesis §8.1.1 / pbrt-v4's PerspectiveCamera): W_e = 1 / (A lensArea cos^4)
+    // over the film area A at unit distance, so that it integrates to one over the whole
+    // film; zero outside it. Only perspective cameras have a non-delta importance.
+    bool hasImportance() const { return params_.projection == Projection::Perspective; }
+    // W_e for the world-space ray leaving the lens; *pRaster receives the film point.
+    float We(const Ray& r, Vec2* pRaster = nullptr) const;
+    // Densities of generateRay choosing r: position on the lens (area) and direction.
+    void pdfWe(const Ray& r, float* pdfPos, float* pdfDir) const;
+    // Samples a lens point seen from ref and the importance it sends there.
+    std::optional<CameraWiSample> sampleWi(Vec3 ref, Vec2 u) const;
+    // The viewing direction in world space (the lens normal).
+    Vec3 forward() const { return forward_; }
+
 private:
+    float lensArea() const { return params_.lensRadius > 0 ? kPi * params_.lensRadius * params_.lensRadius : 1.0f; }
+    // Film point for a camera-space direction from camera-space lens point o; false off the film.
+    bool rasterOf(Vec3 oCam, Vec3 dCam, Vec2* pRaster) const;
+
     Params params_;
+    Transform cameraFromWorld_;
+    Vec3 forward_;
+    float filmArea_ = 1;  // screen window area at z = 1
     float sx0_, sx1_, sy0_, sy1_;  // screen window
     float tanHalfFov_ = 1;
 };

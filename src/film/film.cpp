@@ -1,13 +1,58 @@
 #include "film/film.h"
 
 #include <cmath>
+#include <cstring>
+
+#include "mc/rng.h"
 
 namespace ps {
 
-Film::Film(int xRes, int yRes, PixelBounds bounds)
-    : xRes_(xRes), yRes_(yRes), bounds_(bounds), pixels_(size_t(bounds.area())) {}
+Film::Film(int xRes, int yRes, PixelBounds bounds, const Filter* splatFilter)
+    : xRes_(xRes), yRes_(yRes), bounds_(bounds), pixels_(size_t(bounds.area())), splatFilter_(splatFilter) {
+    if (splatFilter_) {
+        size_t n = size_t(bounds.area()) * 6;
+        splats_.reset(new std::atomic<int64_t>[n]);
+        for (size_t i = 0; i < n; ++i) splats_[i].store(0, std::memory_order_relaxed);
+    }
+}
 
-Image Film::image() const {
+void Film::addSplat(Vec2 pFilm, Spectrum L, int sampleIndex) {
+    if (!splatFilter_) return;
+    if (!L.isFinite()) {
+        rejected_.fetch_add(1, std::memory_order_relaxed);
+        return;
+    }
+    if (L.isBlack()) return;
+    // Every pixel whose filter footprint covers pFilm gets its filter-weighted share.
+    Vec2 r = splatFilter_->radius();
+    float invIntegral = 1 / splatFilter_->integral();
+    int x0 = std::max(bounds_.x0, int(std::ceil(pFilm.x - 0.5f - r.x)));
+    int x1 = std::min(bounds_.x1 - 1, int(std::floor(pFilm.x - 0.5f + r.x)));
+    int y0 = std::max(bounds_.y0, int(std::ceil(pFilm.y - 0.5f - r.y)));
+    int y1 = std::min(bounds_.y1 - 1, int(std::floor(pFilm.y - 0.5f + r.y)));
+    for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+            float w = splatFilter_->evaluate({pFilm.x - (x + 0.5f), pFilm.y - (y + 0.5f)}) * invIntegral;
+            if (w == 0) continue;
+            size_t base = (index(x, y) * 2 + size_t(sampleIndex & 1)) * 3;
+            for (int c = 0; c < 3; ++c) {
+                double v = double(L[c]) * w * kSplatFixedPoint;
+                if (!(std::fabs(v) < 0x1p60)) {  // would overflow the accumulator
+                    rejected_.fetch_add(1, std::memory_order_relaxed);
+                    continue;
+                }
+                // Dithered rounding keeps the fixed-point sum unbiased; the dither is a hash
+                // of the value itself, so it does not depend on the thread schedule.
+                uint64_t bits;
+                std::memcpy(&bits, &v, sizeof bits);
+                double dither = double(mix64(bits ^ (uint64_t(base + c) << 40)) >> 11) * 0x1p-53;
+                splats_[base + c].fetch_add(int64_t(std::floor(v + dither)), std::memory_order_relaxed);
+            }
+        }
+}
+
+Image Film::image(double lightPaths) const {
+    const double splatScale = splatFilter_ && lightPaths > 0 ? double(xRes_) * double(yRes_) / lightPaths : 0.0;
     Image img(bounds_.width(), bounds_.height());
     for (int y = 0; y < bounds_.height(); ++y)
         for (int x = 0; x < bounds_.width(); ++x) {
@@ -15,15 +60,39 @@ Image Film::image() const {
             Spectrum v;
             if (p.weight != 0)
                 v = Spectrum(float(p.sum[0] / p.weight), float(p.sum[1] / p.weight), float(p.sum[2] / p.weight));
+            if (splatScale > 0) {
+                size_t i = size_t(y) * bounds_.width() + x;
+                for (int c = 0; c < 3; ++c) v[c] += float((splatValue(i, 0, c) + splatValue(i, 1, c)) * splatScale);
+            }
             if (!v.isFinite()) v = Spectrum();
             img.set(x, y, v);
         }
     return img;
 }
 
-Film::ErrorEstimate Film::errorEstimate() const {
+Film::ErrorEstimate Film::errorEstimate(double lightPaths) const {
     ErrorEstimate e;
     if (pixels_.empty()) return e;
+    if (splatFilter_) {
+        // Two independent half estimates H0, H1 of the pixel: Var((H0+H1)/2) ~ (H0-H1)^2/4.
+        const double halfScale = lightPaths > 0 ? 2 * double(xRes_) * double(yRes_) / lightPaths : 0.0;
+        for (size_t i = 0; i < pixels_.size(); ++i) {
+            const Pixel& p = pixels_[i];
+            double h[2];
+            for (int k = 0; k < 2; ++k) {
+                h[k] = p.halfWeight[k] != 0 ? p.halfY[k] / p.halfWeight[k] : 0.0;
+                Spectrum s(float(splatValue(i, k, 0)), float(splatValue(i, k, 1)), float(splatValue(i, k, 2)));
+                h[k] += s.luminance() * halfScale;
+            }
+            double m = 0.5 * (h[0] + h[1]);
+            double v = 0.25 * (h[0] - h[1]) * (h[0] - h[1]);
+            e.meanVariance += v;
+            e.meanRelativeVariance += v / (m * m + 1e-3);
+        }
+        e.meanVariance /= double(pixels_.size());
+        e.meanRelativeVariance /= double(pixels_.size());
+        return e;
+    }
     for (const Pixel& p : pixels_) {
         double n = double(p.samples);
         if (n < 2) continue;

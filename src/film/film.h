@@ -5,6 +5,8 @@
 #include <atomic>
 #include <cmath>
 #include <vector>
+#include <memory>
+#include "film/filter.h"
 #include "image/image.h"
 #include "math/spectrum.h"
 
@@ -27,7 +29,11 @@ inline PixelBounds cropWindowToPixels(int xRes, int yRes, const float crop[4]) {
 
 class Film {
 public:
-    Film(int xRes, int yRes, PixelBounds bounds);
+    // With a filter the film also accepts splats (light-path contributions that land
+    // anywhere on the film, thesis §10.2's t = 1 strategies); then the render error is
+    // measured from two independent half-buffers (even and odd sample indices), because
+    // a pixel's splats do not come from its own samples.
+    Film(int xRes, int yRes, PixelBounds bounds, const Filter* splatFilter = nullptr);
 
     int xRes() const { return xRes_; }
     int yRes() const { return yRes_; }
@@ -35,7 +41,7 @@ public:
 
     // Not thread-safe per pixel: callers own disjoint pixels (tiles). A non-finite L
     // counts as a black sample with its weight (as pbrt-v4 does) and is tallied.
-    void addSample(int px, int py, Spectrum L, float weight) {
+    void addSample(int px, int py, Spectrum L, float weight, int sampleIndex = 0) {
         size_t i = index(px, py);
         if (!L.isFinite()) {
             L = Spectrum();
@@ -50,10 +56,21 @@ public:
         double y = L.luminance();
         p.sumY += y;
         p.sumY2 += y * y;
+        if (splatFilter_) {
+            p.halfY[sampleIndex & 1] += y * weight;
+            p.halfWeight[sampleIndex & 1] += weight;
+        }
     }
 
-    // The image of the crop region: each pixel the weighted mean of its samples.
-    Image image() const;
+    // Thread-safe and order-independent: splats accumulate in 64-bit fixed point, so the
+    // image is bit-identical whatever the thread schedule. pFilm is a raster position.
+    void addSplat(Vec2 pFilm, Spectrum L, int sampleIndex);
+    bool acceptsSplats() const { return splatFilter_ != nullptr; }
+
+    // The image of the crop region: each pixel the weighted mean of its samples, plus the
+    // splats normalised by the number of light paths traced (each carries importance
+    // for the whole film, so a pixel's share is xRes*yRes / lightPaths).
+    Image image(double lightPaths = 0) const;
     long long rejectedSamples() const { return rejected_.load(); }
 
     // The render's own error, as the thesis defines it (§2.4): per pixel, the variance of the
@@ -64,7 +81,7 @@ public:
         double meanVariance = 0;
         double meanRelativeVariance = 0;
     };
-    ErrorEstimate errorEstimate() const;
+    ErrorEstimate errorEstimate(double lightPaths = 0) const;
     // Mean number of samples per pixel so far.
     double meanSamplesPerPixel() const;
 
@@ -76,13 +93,21 @@ private:
         // Luminance moments in double precision: no division on the per-sample path, and no
         // cancellation problem at the magnitudes and counts a render has.
         double sumY = 0, sumY2 = 0;
+        double halfY[2] = {0, 0}, halfWeight[2] = {0, 0};  // splatting films only
     };
+    static constexpr double kSplatFixedPoint = 268435456.0;  // 2^28 units per radiance unit
+    double splatValue(size_t pixel, int half, int c) const {
+        return double(splats_[(pixel * 2 + size_t(half)) * 3 + size_t(c)].load(std::memory_order_relaxed)) /
+               kSplatFixedPoint;
+    }
     size_t index(int px, int py) const { return size_t(py - bounds_.y0) * bounds_.width() + (px - bounds_.x0); }
 
     int xRes_, yRes_;
     PixelBounds bounds_;
     std::vector<Pixel> pixels_;
     std::atomic<long long> rejected_{0};
+    const Filter* splatFilter_ = nullptr;
+    std::unique_ptr<std::atomic<int64_t>[]> splats_;  // [pixel][half][channel]
 };
 
 }  // namespace ps

@@ -30,6 +30,8 @@ public:
     void interaction(const Ray& r, float t, int prim, float u, float v, SurfaceInteraction& si) const override;
     float area(int prim) const override;
     ShapeSample sampleArea(int prim, Vec2 u) const override;
+    // Partial spheres sample the full sphere and reject points outside the part.
+    float pdfArea(int) const override { return 1.0f / (4 * kPi * sceneRadius_ * sceneRadius_); }
     std::optional<ShapeSample> sampleToward(int prim, Vec3 ref, Vec2 u) const override;
     float pdfToward(int prim, Vec3 ref, Vec3 hitP, Vec3 hitN) const override;
 

@@ -28,6 +28,11 @@ public:
     virtual float area(int prim) const = 0;
     // Uniform by area over the primitive.
     virtual ShapeSample sampleArea(int prim, Vec2 u) const = 0;
+    // The area density sampleArea uses on the primitive.
+    virtual float pdfArea(int prim) const {
+        float a = area(prim);
+        return a > 0 ? 1 / a : 0.0f;
+    }
     // Sample a point as seen from ref; pdf in solid angle at ref. Default: area sampling.
     virtual std::optional<ShapeSample> sampleToward(int prim, Vec3 ref, Vec2 u) const;
     // Solid-angle pdf at ref of sampleToward producing the point hit (dist2 = |hit - ref|^2).

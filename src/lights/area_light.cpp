@@ -1,5 +1,8 @@
 #include "lights/area_light.h"
 
+#include "math/frame.h"
+#include "math/warp.h"
+
 namespace ps {
 
 std::optional<LightLiSample> DiffuseAreaLight::sampleLi(const LightSampleContext& ctx, Vec2 u) const {
@@ -13,6 +16,41 @@ std::optional<LightLiSample> DiffuseAreaLight::sampleLi(const LightSampleContext
 float DiffuseAreaLight::pdfLi(const LightSampleContext& ctx, Vec3, const SurfaceInteraction* hit) const {
     if (!hit) return 0;
     return shape_->pdfToward(prim_, ctx.p, hit->p, hit->ng);
+}
+
+// Uniform by area, cosine-weighted about the emitting side's normal (either side with
+// probability 1/2 when two-sided).
+std::optional<LightLeSample> DiffuseAreaLight::sampleLe(Vec2 uPos, Vec2 uDir) const {
+    ShapeSample s = shape_->sampleArea(prim_, uPos);
+    if (!(s.pdf > 0)) return std::nullopt;
+    Vec3 n = s.n;
+    float sidePdf = 1;
+    if (twoSided_) {
+        sidePdf = 0.5f;
+        if (uDir.x < 0.5f) {
+            uDir.x *= 2;
+        } else {
+            uDir.x = std::min((uDir.x - 0.5f) * 2, 0x1.fffffep-1f);
+            n = -n;
+        }
+    }
+    Vec3 wLocal = sampleCosineHemisphere(uDir);
+    if (!(wLocal.z > 0)) return std::nullopt;
+    Vec3 w = Frame::fromNormal(n).toWorld(wLocal);
+    LightLeSample ls;
+    ls.L = Lemit_;
+    ls.ray = spawnRay(s.p, s.n, w);
+    ls.ray.o = s.p;  // the vertex is on the light; callers offset when they trace
+    ls.n = s.n;
+    ls.pdfPos = s.pdf;
+    ls.pdfDir = sidePdf * cosineHemispherePdf(wLocal.z);
+    return ls;
+}
+
+void DiffuseAreaLight::pdfLe(Vec3, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const {
+    *pdfPos = shape_->pdfArea(prim_);
+    float c = dot(n, w);
+    *pdfDir = twoSided_ ? 0.5f * std::fabs(c) * kInvPi : cosineHemispherePdf(c);
 }
 
 }  // namespace ps

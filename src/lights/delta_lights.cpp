@@ -1,5 +1,8 @@
 #include "lights/delta_lights.h"
 
+#include "lights/infinity_disk.h"
+#include "math/warp.h"
+
 namespace ps {
 
 std::optional<LightLiSample> PointLight::sampleLi(const LightSampleContext& ctx, Vec2) const {
@@ -7,6 +10,16 @@ std::optional<LightLiSample> PointLight::sampleLi(const LightSampleContext& ctx,
     float d2 = lengthSquared(d);
     if (!(d2 > 0)) return std::nullopt;
     return LightLiSample{I_ / d2, d / std::sqrt(d2), 1.0f, pos_, {}};
+}
+
+std::optional<LightLeSample> PointLight::sampleLe(Vec2, Vec2 uDir) const {
+    return LightLeSample{I_, Ray{pos_, sampleUniformSphere(uDir)}, {}, 1.0f, uniformSpherePdf()};
+}
+
+// The position is a delta (density 0 for every other strategy); directions are uniform.
+void PointLight::pdfLe(Vec3, Vec3, Vec3, float* pdfPos, float* pdfDir) const {
+    *pdfPos = 0;
+    *pdfDir = uniformSpherePdf();
 }
 
 static float smoothStep(float x, float a, float b) {
@@ -30,6 +43,19 @@ std::optional<LightLiSample> SpotLight::sampleLi(const LightSampleContext& ctx, 
     return LightLiSample{I / d2, wi, 1.0f, pos_, {}};
 }
 
+// Directions uniform in the whole cone; the falloff weights the intensity.
+std::optional<LightLeSample> SpotLight::sampleLe(Vec2, Vec2 uDir) const {
+    Vec3 w = frame_.toWorld(sampleUniformCone(uDir, cosEnd_));
+    Spectrum I = intensity(w);
+    if (I.isBlack()) return std::nullopt;
+    return LightLeSample{I, Ray{pos_, w}, {}, 1.0f, uniformConePdf(cosEnd_)};
+}
+
+void SpotLight::pdfLe(Vec3, Vec3, Vec3 w, float* pdfPos, float* pdfDir) const {
+    *pdfPos = 0;
+    *pdfDir = dot(w, frame_.n) >= cosEnd_ ? uniformConePdf(cosEnd_) : 0.0f;
+}
+
 // Integral of the smoothstep falloff over the sphere (PBRT-CONVENTIONS §3).
 Spectrum SpotLight::phi() const {
     return I_ * (2 * kPi * ((1 - cosStart_) + (cosStart_ - cosEnd_) / 2));
@@ -38,6 +64,16 @@ Spectrum SpotLight::phi() const {
 std::optional<LightLiSample> DistantLight::sampleLi(const LightSampleContext& ctx, Vec2) const {
     Vec3 pOutside = ctx.p + w_ * (2 * sceneRadius_ + length(ctx.p - sceneCenter_));
     return LightLiSample{L_, w_, 1.0f, pOutside, {}};
+}
+
+std::optional<LightLeSample> DistantLight::sampleLe(Vec2 uPos, Vec2) const {
+    return LightLeSample{L_, rayFromInfinityDisk(w_, sceneCenter_, sceneRadius_, uPos), {},
+                         infinityDiskPdf(sceneRadius_), 1.0f};
+}
+
+void DistantLight::pdfLe(Vec3, Vec3, Vec3, float* pdfPos, float* pdfDir) const {
+    *pdfPos = infinityDiskPdf(sceneRadius_);
+    *pdfDir = 0;  // a delta direction: never chosen by another strategy
 }
 
 }  // namespace ps

@@ -10,6 +10,9 @@ class PointLight final : public Light {
 public:
     PointLight(Vec3 pos, Spectrum I) : Light(LightType::DeltaPosition), pos_(pos), I_(I) {}
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
+    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
+    void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
+    Spectrum L(Vec3, Vec3, Vec2, Vec3) const override { return I_; }
     Spectrum phi() const override { return I_ * (4 * kPi); }
 
 private:
@@ -24,6 +27,9 @@ public:
         : Light(LightType::DeltaPosition), pos_(pos), frame_(Frame::fromNormal(normalize(axis))), I_(I),
           cosStart_(cosFalloffStart), cosEnd_(cosFalloffEnd) {}
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
+    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
+    void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
+    Spectrum L(Vec3, Vec3, Vec2, Vec3 w) const override { return intensity(w); }
     Spectrum phi() const override;
     // Intensity towards world direction w leaving the light.
     Spectrum intensity(Vec3 w) const;
@@ -40,6 +46,8 @@ public:
     // wLight: unit direction towards the light (light travels along -wLight).
     DistantLight(Vec3 wLight, Spectrum L) : Light(LightType::DeltaDirection), w_(wLight), L_(L) {}
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
+    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
+    void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
     Spectrum phi() const override { return L_ * (kPi * sceneRadius_ * sceneRadius_); }
     void preprocess(Vec3 c, float r) override { sceneCenter_ = c; sceneRadius_ = r; }
 

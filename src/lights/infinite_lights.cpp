@@ -1,5 +1,6 @@
 #include "lights/infinite_lights.h"
 
+#include "lights/infinity_disk.h"
 #include "math/equal_area.h"
 #include "math/warp.h"
 
@@ -12,6 +13,18 @@ std::optional<LightLiSample> UniformInfiniteLight::sampleLi(const LightSampleCon
 
 float UniformInfiniteLight::pdfLi(const LightSampleContext&, Vec3, const SurfaceInteraction*) const {
     return uniformSpherePdf();
+}
+
+// Direction as in sampleLi, origin on the disk at infinity.
+std::optional<LightLeSample> UniformInfiniteLight::sampleLe(Vec2 uPos, Vec2 uDir) const {
+    Vec3 wl = sampleUniformSphere(uDir);
+    return LightLeSample{L_, rayFromInfinityDisk(wl, sceneCenter_, sceneRadius_, uPos), {},
+                         infinityDiskPdf(sceneRadius_), uniformSpherePdf()};
+}
+
+void UniformInfiniteLight::pdfLe(Vec3, Vec3, Vec3, float* pdfPos, float* pdfDir) const {
+    *pdfPos = infinityDiskPdf(sceneRadius_);
+    *pdfDir = uniformSpherePdf();
 }
 
 ImageInfiniteLight::ImageInfiniteLight(Image image, float scale, const Transform& worldFromLight, Layout layout)
@@ -72,6 +85,18 @@ float ImageInfiniteLight::pdfLi(const LightSampleContext&, Vec3 wi, const Surfac
     Vec3 w = normalize(worldFromLight_.inverse().vector(wi));
     Vec2 uv = directionToUV(w);
     return uvPdfToSolidAngle(distribution_.pdf(uv), uv);
+}
+
+std::optional<LightLeSample> ImageInfiniteLight::sampleLe(Vec2 uPos, Vec2 uDir) const {
+    auto li = sampleLi(LightSampleContext{sceneCenter_, {}}, uDir);
+    if (!li) return std::nullopt;
+    return LightLeSample{li->L, rayFromInfinityDisk(li->wi, sceneCenter_, sceneRadius_, uPos), {},
+                         infinityDiskPdf(sceneRadius_), li->pdf};
+}
+
+void ImageInfiniteLight::pdfLe(Vec3, Vec3, Vec3 w, float* pdfPos, float* pdfDir) const {
+    *pdfPos = infinityDiskPdf(sceneRadius_);
+    *pdfDir = pdfLi(LightSampleContext{}, -w, nullptr);
 }
 
 Spectrum ImageInfiniteLight::phi() const {

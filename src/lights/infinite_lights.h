@@ -14,6 +14,8 @@ public:
     explicit UniformInfiniteLight(Spectrum L) : Light(LightType::Infinite), L_(L) {}
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
     float pdfLi(const LightSampleContext& ctx, Vec3 wi, const SurfaceInteraction* hit) const override;
+    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
+    void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
     Spectrum Le(const Ray&) const override { return L_; }
     Spectrum phi() const override { return L_ * (4 * kPi * kPi * sceneRadius_ * sceneRadius_); }
     void preprocess(Vec3 c, float r) override { sceneCenter_ = c; sceneRadius_ = r; }
@@ -30,6 +32,8 @@ public:
     ImageInfiniteLight(Image image, float scale, const Transform& worldFromLight, Layout layout);
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
     float pdfLi(const LightSampleContext& ctx, Vec3 wi, const SurfaceInteraction* hit) const override;
+    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
+    void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
     Spectrum Le(const Ray& r) const override { return lookup(normalize(r.d)); }
     Spectrum phi() const override;
     void preprocess(Vec3 c, float r) override { sceneCenter_ = c; sceneRadius_ = r; }

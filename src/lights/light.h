@@ -24,6 +24,16 @@ struct LightLiSample {
     Vec3 nLight;     // its normal (zero for non-surface lights)
 };
 
+// A ray leaving a light (light tracing and BDPT start their subpaths here, thesis §10.2).
+struct LightLeSample {
+    Spectrum L;       // radiance along the ray (area, infinite, distant) or intensity (point, spot)
+    Ray ray;          // unit direction; for lights at infinity the origin is on a disk
+                      // tangent to the scene's bounding sphere, facing along ray.d
+    Vec3 n;           // surface normal at the origin (area lights); zero otherwise
+    float pdfPos = 0; // area density of the origin (1 for delta positions)
+    float pdfDir = 0; // solid-angle density of the direction (1 for delta directions)
+};
+
 class Light {
 public:
     explicit Light(LightType type) : type_(type) {}
@@ -38,10 +48,22 @@ public:
         (void)ctx; (void)wi; (void)hit;
         return 0;
     }
-    // Area lights: radiance leaving surface point (p, n, uv) in direction w.
+    // Radiance leaving surface point (p, n, uv) of an area light in direction w; for point
+    // and spot lights, the intensity towards w.
     virtual Spectrum L(Vec3 p, Vec3 n, Vec2 uv, Vec3 w) const { (void)p; (void)n; (void)uv; (void)w; return {}; }
     // Infinite lights: radiance arriving along a ray that escapes the scene.
     virtual Spectrum Le(const Ray& r) const { (void)r; return {}; }
+    // Samples an emitted ray (uPos picks the origin, uDir the direction).
+    virtual std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const = 0;
+    // Densities of sampleLe choosing the ray leaving p (normal n) along unit direction w.
+    // Lights at infinity ignore p and n: pdfPos is the disk's, pdfDir that of -w's choice.
+    virtual void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const {
+        (void)p; (void)n; (void)w;
+        *pdfPos = *pdfDir = 0;
+    }
+    // True for lights infinitely far away (infinite and distant): their subpaths start on a
+    // disk at infinity, and their connections carry no 1/d^2.
+    bool atInfinity() const { return type_ == LightType::Infinite || type_ == LightType::DeltaDirection; }
     // Emitted power (for choosing lights in proportion to it).
     virtual Spectrum phi() const = 0;
     // Lights that depend on the scene's extent learn it here.

@@ -49,31 +49,47 @@ private:
 // Owen-scrambled Sobol points per pixel, padded across dimensions: every 1-D and 2-D
 // request uses the first one or two Sobol dimensions with its own scramble seed, keyed by
 // (pixel, dimension, seed). Each pixel's samples are stratified in every requested 1-D and
-// 2-D projection (a (0,2)-net for power-of-two counts); different dimensions are
-// decorrelated by the independent scrambles (pbrt-v4's "paddedsobol").
+// 2-D projection (a (0,2)-net for power-of-two counts). Different dimensions must also be
+// decorrelated: two Owen scrambles of the same point keep its leading bits in lockstep
+// (they differ by a prefix-dependent flip), so each dimension also visits the pixel's
+// samples in its own order, a nested (Owen) permutation of the index within blocks of the
+// power-of-two sample count (Burley 2020's shuffling; pbrt-v4's "paddedsobol").
 class PaddedSobolSampler final : public Sampler {
 public:
-    explicit PaddedSobolSampler(uint64_t seed) : seed_(seed) {}
+    explicit PaddedSobolSampler(uint64_t seed, int samplesPerPixel = 16) : seed_(seed) {
+        while ((1 << log2Samples_) < samplesPerPixel && log2Samples_ < 31) ++log2Samples_;
+    }
     Kind kind() const override { return Kind::PaddedSobol; }
     void startPixelSample(int px, int py, int sampleIndex) override {
         pixelHash_ = hashCombine(mix64((uint64_t(uint32_t(px)) << 32) | uint32_t(py)), seed_);
         index_ = uint32_t(sampleIndex);
-        index1Reversed_ = sobolDim1Reversed(index_);
         dimension_ = 0;
     }
     float get1D() override {
         uint64_t h = dimensionSeed(dimension_++);
-        return fixedToFloat(owenScrambleReversed(index_, uint32_t(h)));
+        return fixedToFloat(owenScrambleReversed(shuffledIndex(uint32_t(h >> 32)), uint32_t(h)));
     }
     Vec2 get2D() override {
         uint64_t h = dimensionSeed(dimension_);
         dimension_ += 2;
-        return {fixedToFloat(owenScrambleReversed(index_, uint32_t(h))),
-                fixedToFloat(owenScrambleReversed(index1Reversed_, uint32_t(h >> 32)))};
+        uint64_t h2 = h * 0x9e3779b97f4a7c15ULL;
+        uint32_t i = shuffledIndex(uint32_t(h2 >> 32));
+        return {fixedToFloat(owenScrambleReversed(i, uint32_t(h))),
+                fixedToFloat(owenScrambleReversed(sobolDim1Reversed(i), uint32_t(h >> 32)))};
     }
-    std::unique_ptr<Sampler> clone() const override { return std::make_unique<PaddedSobolSampler>(seed_); }
+    std::unique_ptr<Sampler> clone() const override {
+        return std::make_unique<PaddedSobolSampler>(seed_, 1 << log2Samples_);
+    }
 
 private:
+    // The sample index permuted within its block of 2^log2Samples_ (nested uniform
+    // scrambling of the block-local index, read as a log2Samples_-bit fraction).
+    uint32_t shuffledIndex(uint32_t seed) const {
+        if (log2Samples_ == 0) return index_;
+        uint32_t mask = (1u << log2Samples_) - 1;
+        uint32_t local = owenScramble((index_ & mask) << (32 - log2Samples_), seed) >> (32 - log2Samples_);
+        return (index_ & ~mask) | local;
+    }
     // Scramble seeds per dimension from the (already well mixed) pixel hash: a cheap
     // multiply-xorshift finaliser suffices on the hot path.
     uint64_t dimensionSeed(uint64_t dim) const {
@@ -85,8 +101,9 @@ private:
     }
 
     uint64_t seed_;
+    int log2Samples_ = 0;
     uint64_t pixelHash_ = 0;
-    uint32_t index_ = 0, index1Reversed_ = 0;
+    uint32_t index_ = 0;
     uint64_t dimension_ = 0;
 };
 

@@ -151,13 +151,23 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
     if (s.maxDepth < 0) throw InputError(desc.integrator.loc, "Integrator: \"maxdepth\" must be >= 0");
     s.regularize = ip.getBool("regularize", false);
     ip.getString("lightsampler", "bvh");  // any unbiased light choice gives the same image
+    bool known = true;
     if (it == "path" || it == "volpath") {
         s.integrator = "path";
+    } else if (it == "bdpt") {
+        s.integrator = "bdpt";
+        // pbrt-v4's debugging outputs of single strategies are ours only on the command line.
+        for (const char* p : {"visualizestrategies", "visualizeweights"})
+            if (ip.getBool(p, false)) warning(desc.integrator.loc, std::string("Integrator \"bdpt\": \"") + p +
+                                                                   "\" is not supported; use --bdpt-strategies");
+    } else if (it == "lightpath") {
+        s.integrator = "light";
     } else {
+        known = false;
         warning(desc.integrator.loc, "Integrator \"" + it + "\" is not available yet; using \"path\"");
         s.integrator = "path";
     }
-    if (it == "path" || it == "volpath") ip.reportUnused("Integrator \"" + it + "\"");
+    if (known) ip.reportUnused("Integrator \"" + it + "\"");
 
     auto seedOpt = desc.options.find("seed");
     if (seedOpt != desc.options.end()) s.seed = std::strtoull(seedOpt->second.c_str(), nullptr, 10);

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 #include "geometry/ray.h"
+#include "film/film.h"
 #include "math/spectrum.h"
 #include "mc/sampler.h"
 #include "render/scene.h"
@@ -14,22 +15,38 @@ namespace ps {
 // Per-thread counters, summed at the end of a render.
 struct PathStats {
     uint64_t cameraPaths = 0;
+    uint64_t lightPaths = 0;  // light subpaths (light tracing, BDPT)
     uint64_t rays = 0;        // closest-hit rays, camera rays included
     uint64_t shadowRays = 0;  // visibility tests
     uint64_t guarded = 0;     // non-finite values caught at their source
     PathStats& operator+=(const PathStats& o) {
-        cameraPaths += o.cameraPaths; rays += o.rays; shadowRays += o.shadowRays; guarded += o.guarded;
+        cameraPaths += o.cameraPaths; lightPaths += o.lightPaths; rays += o.rays; shadowRays += o.shadowRays; guarded += o.guarded;
         return *this;
     }
+};
+
+// What one camera sample's estimator works with.
+struct SampleContext {
+    Sampler& sampler;
+    ScratchBuffer& scratch;
+    PathStats& stats;
+    Film& film;           // for splats (light-path contributions landing on any pixel)
+    int sampleIndex = 0;  // the pixel sample's index (splats alternate half-buffers by it)
 };
 
 class Integrator {
 public:
     virtual ~Integrator() = default;
-    virtual Spectrum Li(const Ray& ray, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats) const = 0;
+    // The estimate for the camera ray's own pixel; light-path strategies may also splat.
+    virtual Spectrum Li(const Ray& ray, SampleContext& ctx) const = 0;
+    // True if the integrator splats; each camera sample then also traces one light path,
+    // and the film normalises splats by the number of samples taken.
+    virtual bool splats() const { return false; }
 };
 
-// Names: "path". Throws InputError for an unknown name.
-std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scene& scene);
+// Names: "path", "light", "bdpt"; mis (BDPT's weighting): "power", "balance" or "none"
+// (uniform weights). Throws InputError for an unknown name.
+std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scene& scene,
+                                             const std::string& mis = "power");
 
 }  // namespace ps

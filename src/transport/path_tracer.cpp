@@ -1,7 +1,6 @@
 #include "transport/path_tracer.h"
 
 #include "mc/mis.h"
-#include "util/error.h"
 
 namespace ps {
 
@@ -26,7 +25,10 @@ Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& fra
     return f * ls->L * (powerHeuristic(pLight, pBsdf) / pLight);
 }
 
-Spectrum PathTracer::Li(const Ray& ray, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats) const {
+Spectrum PathTracer::Li(const Ray& ray, SampleContext& ctx) const {
+    Sampler& sampler = ctx.sampler;
+    ScratchBuffer& scratch = ctx.scratch;
+    PathStats& stats = ctx.stats;
     switch (sampler.kind()) {
         case Sampler::Kind::PaddedSobol: return estimate(ray, static_cast<PaddedSobolSampler&>(sampler), scratch, stats);
         case Sampler::Kind::Independent: return estimate(ray, static_cast<IndependentSampler&>(sampler), scratch, stats);
@@ -125,11 +127,6 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
         }
     }
     return L;
-}
-
-std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scene& scene) {
-    if (name == "path") return std::make_unique<PathTracer>(scene, scene.settings().maxDepth);
-    throw InputError("unknown integrator \"" + name + "\" (available: path)");
 }
 
 }  // namespace ps

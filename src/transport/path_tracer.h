@@ -9,7 +9,7 @@ namespace ps {
 class PathTracer final : public Integrator {
 public:
     PathTracer(const Scene& scene, int maxDepth) : scene_(scene), maxDepth_(maxDepth) {}
-    Spectrum Li(const Ray& ray, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats) const override;
+    Spectrum Li(const Ray& ray, SampleContext& ctx) const override;
 
 private:
     // The estimator, instantiated per concrete sampler so its calls inline on the hot path.

@@ -113,9 +113,10 @@ private:
 
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options) {
     const PixelBounds& bounds = scene.pixelBounds();
-    Film film(scene.camera().params().xRes, scene.camera().params().yRes, bounds);
-    std::vector<Tile> tiles = makeTiles(bounds);
     const Filter& filter = scene.filter();
+    Film film(scene.camera().params().xRes, scene.camera().params().yRes, bounds,
+              integrator.splats() ? &filter : nullptr);
+    std::vector<Tile> tiles = makeTiles(bounds);
     const float imagingRatio = scene.settings().imagingRatio;
     const int spp = std::max(1, options.spp);
     const bool hasLens = scene.camera().params().lensRadius > 0;
@@ -156,9 +157,10 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
                                 cs.pFilm = {px + 0.5f + fs.offset.x, py + 0.5f + fs.offset.y};
                                 cs.pLens = hasLens ? st.sampler->get2D() : Vec2(0.5f, 0.5f);
                                 Ray ray = scene.camera().generateRay(cs);
-                                Spectrum L = integrator.Li(ray, *st.sampler, st.scratch, st.stats);
+                                SampleContext ctx{*st.sampler, st.scratch, st.stats, film, si};
+                                Spectrum L = integrator.Li(ray, ctx);
                                 st.scratch.reset();
-                                film.addSample(px, py, L * imagingRatio, fs.weight);
+                                film.addSample(px, py, L * imagingRatio, fs.weight, si);
                             }
                     samplesDone.fetch_add((long long)(t.x1 - t.x0) * (t.y1 - t.y0) * (s1 - s0), std::memory_order_relaxed);
                 });
@@ -169,11 +171,13 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
         result.seconds = monitor.elapsed();
     }
     for (const ThreadState& st : states) result.stats += st.stats;
-    result.image = film.image();
     result.meanSpp = film.meanSamplesPerPixel();
+    // Every camera sample traced one light path; the imaging ratio scales splats as well.
+    const double lightPaths = result.meanSpp * double(bounds.area()) / imagingRatio;
+    result.image = film.image(lightPaths);
     result.stoppedEarly = result.meanSpp < spp;
     result.rejectedSamples = film.rejectedSamples();
-    result.error = film.errorEstimate();
+    result.error = film.errorEstimate(lightPaths);
     result.efficiency = efficiency(result.error.meanRelativeVariance, result.seconds);
     return result;
 }

@@ -41,11 +41,15 @@ TEST(ExactScenes, DiffuseSphereUnderUniformSky) {
     expectWithin4Sigma(wholeImage(r.image), exact);
 }
 
+static double cornerFormFactor(double a, double b, double h);
+
 // Inside a closed sphere emitting Le with albedo r: pixel = Le * sum_{k=0..d} r^k.
-class ClosedFurnace : public ::testing::TestWithParam<int> {};
+// Every integrator (path, light and bidirectional) must reproduce it.
+class ClosedFurnace : public ::testing::TestWithParam<std::tuple<const char*, int>> {};
 
 TEST_P(ClosedFurnace, EmittingSphereSeenFromInside) {
-    int maxDepth = GetParam();
+    const char* integrator = std::get<0>(GetParam());
+    int maxDepth = std::get<1>(GetParam());
     std::string scene = R"(
         LookAt 0 0 0  0 0 1  0 1 0
         Camera "perspective" "float fov" [ 60 ]
@@ -58,14 +62,96 @@ TEST_P(ClosedFurnace, EmittingSphereSeenFromInside) {
         ReverseOrientation
         Shape "sphere" "float radius" [ 1 ]
     )";
-    RenderResult r = renderString(scene, 256);
+    RenderResult r = renderString(scene, 256, 7, 0, integrator);
     double sum = 0;
     for (int k = 0; k <= maxDepth; ++k) sum += std::pow(0.6, k);
     const double exact[3] = {0.5 * sum, 0.25 * sum, 1.0 * sum};
     expectWithin4Sigma(wholeImage(r.image), exact);
 }
 
-INSTANTIATE_TEST_SUITE_P(Depths, ClosedFurnace, ::testing::Values(0, 1, 2, 5, 20));
+INSTANTIATE_TEST_SUITE_P(Depths, ClosedFurnace,
+                         ::testing::Combine(::testing::Values("path", "light", "bdpt"), ::testing::Values(0, 1, 2, 5, 20)),
+                         [](const ::testing::TestParamInfo<ClosedFurnace::ParamType>& i) {
+                             return std::string(std::get<0>(i.param)) + "_" + std::to_string(std::get<1>(i.param));
+                         });
+
+// The other exact scenes with light tracing and BDPT, where light tracing can reach the
+// camera's view (not the tiny footprints below, which only the camera can find).
+TEST(ExactScenes, BidirectionalDiffuseSphereUnderUniformSky) {
+    const char* scene = R"(
+        LookAt 0 0 5  0 0 0  0 1 0
+        Camera "perspective" "float fov" [ 10 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 5 ]
+        WorldBegin
+        LightSource "infinite" "rgb L" [ 0.8 0.9 1.0 ]
+        Material "diffuse" "rgb reflectance" [ 0.5 0.3 0.7 ]
+        Shape "sphere" "float radius" [ 1 ]
+    )";
+    const double exact[3] = {0.5 * 0.8, 0.3 * 0.9, 0.7 * 1.0};
+    for (const char* integrator : {"light", "bdpt"}) {
+        SCOPED_TRACE(integrator);
+        int spp = std::string(integrator) == "light" ? 512 : 64;
+        expectWithin4Sigma(wholeImage(renderString(scene, spp, 7, 0, integrator).image), exact);
+    }
+}
+
+TEST(ExactScenes, BidirectionalDirectlySeenLight) {
+    const char* scene = R"(
+        LookAt 0 0 0  0 0 1  0 1 0
+        Camera "perspective" "float fov" [ 30 ]
+        Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
+        PixelFilter "box"
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 1 2 3 ]
+          ReverseOrientation
+          Shape "disk" "float height" [ 3 ] "float radius" [ 10 ]
+        AttributeEnd
+    )";
+    // BDPT sees it by the camera ray alone (s + t = 2 has one strategy): exact. Light tracing
+    // splats points of the disk through the lens: unbiased, with noise.
+    RegionStats b = wholeImage(renderString(scene, 4, 7, 0, "bdpt").image);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(b.mean[c], c + 1.0, 1e-5);
+    const double exact[3] = {1, 2, 3};
+    expectWithin4Sigma(wholeImage(renderString(scene, 8192, 7, 0, "light").image), exact);
+}
+
+TEST(ExactScenes, BidirectionalPlaneUnderLights) {
+    const char* rect = R"(
+        LookAt 0 0.5 0   0 0 0   0 0 1
+        Camera "perspective" "float fov" [ 0.5 ]
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 1 ]
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 2 3 4 ]
+          Shape "bilinearmesh" "point3 P" [ -1 1 -0.5   1 1 -0.5   -1 1 0.5   1 1 0.5 ]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+        Shape "trianglemesh" "point3 P" [ -20 0 -20  20 0 -20  20 0 20  -20 0 20 ]
+            "integer indices" [ 0 1 2 0 2 3 ]
+    )";
+    double f = 4 * cornerFormFactor(1.0, 0.5, 1.0);
+    const double exactRect[3] = {0.5 * 2 * f, 0.5 * 3 * f, 0.5 * 4 * f};
+    expectWithin4Sigma(wholeImage(renderString(rect, 256, 7, 0, "bdpt").image), exactRect);
+    const char* point = R"(
+        LookAt 0 0.5 0   0 0 0   0 0 1
+        Camera "perspective" "float fov" [ 0.5 ]
+        Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 3 ]
+        WorldBegin
+        LightSource "point" "rgb I" [ 2 3 4 ] "point3 from" [ 0 2 0 ]
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+        Shape "trianglemesh" "point3 P" [ -20 0 -20  20 0 -20  20 0 20  -20 0 20 ]
+            "integer indices" [ 0 1 2 0 2 3 ]
+    )";
+    const double exactPoint[3] = {0.5 * 2 / (M_PI * 4), 0.5 * 3 / (M_PI * 4), 0.5 * 4 / (M_PI * 4)};
+    expectWithin4Sigma(wholeImage(renderString(point, 64, 7, 0, "bdpt").image), exactPoint);
+}
 
 // Irradiance below the centre of a parallel rectangle of radiance L, 2a x 2b at height h:
 // four corner form factors F = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + (X<->Y)].

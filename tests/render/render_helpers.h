@@ -4,6 +4,7 @@
 #pragma once
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "render/scene_builder.h"
 #include "scene/parser.h"
@@ -55,5 +56,42 @@ inline RegionStats regionStats(const Image& img, int x0, int x1, int y0, int y1)
 }
 
 inline RegionStats wholeImage(const Image& img) { return regionStats(img, 0, img.width, 0, img.height); }
+
+}  // namespace ps::test
+
+namespace ps::test {
+
+// Luminance of B x B blocks of pixels, averaged over K independent renders (seeds seed0..);
+// the spread across renders gives each block's standard error without assuming that
+// pixels within a block share one value.
+struct BlockMeans {
+    std::vector<double> mean, stdErr;
+};
+
+inline BlockMeans blockMeans(const std::string& scene, const std::string& integrator, int spp, int renders,
+                             int blocksPerSide, uint64_t seed0 = 100) {
+    std::vector<double> s, s2;
+    for (int k = 0; k < renders; ++k) {
+        RenderResult r = renderString(scene, spp, seed0 + uint64_t(k), 0, integrator);
+        int bw = r.image.width / blocksPerSide, bh = r.image.height / blocksPerSide;
+        s.resize(size_t(blocksPerSide) * blocksPerSide, 0.0);
+        s2.resize(s.size(), 0.0);
+        for (int by = 0; by < blocksPerSide; ++by)
+            for (int bx = 0; bx < blocksPerSide; ++bx) {
+                RegionStats rs = regionStats(r.image, bx * bw, bx * bw + bw, by * bh, by * bh + bh);
+                double y = 0.2126 * rs.mean[0] + 0.7152 * rs.mean[1] + 0.0722 * rs.mean[2];
+                s[size_t(by) * blocksPerSide + bx] += y;
+                s2[size_t(by) * blocksPerSide + bx] += y * y;
+            }
+    }
+    BlockMeans b;
+    for (size_t i = 0; i < s.size(); ++i) {
+        double m = s[i] / renders;
+        double var = std::max(0.0, (s2[i] / renders - m * m) * renders / (renders - 1));
+        b.mean.push_back(m);
+        b.stdErr.push_back(std::sqrt(var / renders));
+    }
+    return b;
+}
 
 }  // namespace ps::test

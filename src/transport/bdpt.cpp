@@ -1,0 +1,171 @@
+#include "transport/bdpt.h"
+
+#include <new>
+
+namespace ps {
+
+namespace {
+
+// Temporarily replaces fields of a vertex and restores them on scope exit, so the MIS
+// computation can see the path as the connection made it without copying subpaths.
+class VertexOverride {
+public:
+    explicit VertexOverride(PathVertex* v) : v_(v) {
+        if (v_) saved_ = *v_;
+    }
+    ~VertexOverride() {
+        if (v_) *v_ = saved_;
+    }
+    VertexOverride(const VertexOverride&) = delete;
+    VertexOverride& operator=(const VertexOverride&) = delete;
+
+private:
+    PathVertex* v_;
+    PathVertex saved_;
+};
+
+}  // namespace
+
+BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex* camera, int s, int t,
+                                                   Sampler& sampler, PathStats& stats, bool weighted) const {
+    Connection c;
+    const Scene& scene = paths_.scene();
+    // An escaped camera ray is an endpoint only for s = 0.
+    if (t > 1 && s != 0 && camera[t - 1].isInfiniteLight()) return c;
+    PathVertex sampled;
+    Spectrum L;
+    if (s == 0) {
+        // The camera subpath found an emitter on its own.
+        const PathVertex& pt = camera[t - 1];
+        if (pt.isLight()) L = paths_.Le(pt, camera[t - 2]) * pt.beta;
+    } else if (t == 1) {
+        // Connect the light subpath to a sampled lens point and splat (thesis §10.2).
+        const PathVertex& qs = light[s - 1];
+        if (!qs.connectible()) return c;
+        auto cs = scene.camera().sampleWi(qs.p, sampler.get2D());
+        if (!cs) return c;
+        sampled.kind = VertexKind::Camera;
+        sampled.mode = TransportMode::Radiance;
+        sampled.p = cs->pLens;
+        sampled.beta = Spectrum(cs->We / cs->pdf);
+        L = qs.beta * paths_.f(qs, sampled, TransportMode::Importance) * sampled.beta;
+        if (qs.onSurface()) L *= std::fabs(dot(cs->wi, qs.ns));
+        if (!L.isBlack() && !paths_.visible(qs, sampled, stats)) L = Spectrum();
+        c.pRaster = cs->pRaster;
+    } else if (s == 1) {
+        // Next-event estimation: a light point sampled as seen from the camera vertex.
+        const PathVertex& pt = camera[t - 1];
+        if (!pt.connectible()) return c;
+        float pmf;
+        const Light* lt = scene.sampleLight(sampler.get1D(), &pmf);
+        Vec2 u = sampler.get2D();
+        if (!lt || !(pmf > 0)) return c;
+        auto ls = lt->sampleLi(LightSampleContext{pt.p, pt.ng}, u);
+        if (!ls || ls->L.isBlack() || !(ls->pdf > 0)) return c;
+        sampled.kind = VertexKind::Light;
+        sampled.mode = TransportMode::Importance;
+        sampled.light = lt;
+        sampled.infinite = lt->atInfinity();
+        sampled.p = ls->pLight;
+        sampled.ng = sampled.ns = ls->nLight;
+        sampled.beta = ls->L / (ls->pdf * pmf);
+        sampled.pdfFwd = paths_.pdfLightOrigin(sampled, pt);
+        L = pt.beta * paths_.f(pt, sampled, TransportMode::Radiance) * sampled.beta;
+        if (pt.onSurface()) L *= std::fabs(dot(ls->wi, pt.ns));
+        if (!L.isBlack() && !paths_.visible(pt, sampled, stats)) L = Spectrum();
+    } else {
+        // Both subpaths contribute a vertex; join them deterministically.
+        const PathVertex& qs = light[s - 1];
+        const PathVertex& pt = camera[t - 1];
+        if (!qs.connectible() || !pt.connectible()) return c;
+        L = qs.beta * paths_.f(qs, pt, TransportMode::Importance) * paths_.f(pt, qs, TransportMode::Radiance) * pt.beta;
+        if (!L.isBlack()) L *= paths_.G(qs, pt, stats);
+    }
+    if (L.isBlack()) return c;
+    if (!L.isFinite()) {
+        ++stats.guarded;
+        return c;
+    }
+    c.L = L;
+    c.weight = weighted ? misWeight(light, camera, sampled, s, t) : 1.0f;
+    return c;
+}
+
+// The weight of strategy (s, t) relative to every other strategy (s', t') with s' + t' = s + t
+// that could have produced the same path (thesis §10.2.3, eq. 10.9): the ratio of each
+// other strategy's density to this one's follows from walking along the path and
+// exchanging one vertex's forward density for its reverse density at a time.
+float BDPTIntegrator::misWeight(PathVertex* light, PathVertex* camera, const PathVertex& sampled, int s,
+                                int t) const {
+    if (s + t == 2) return 1;
+    PathVertex* qs = s > 0 ? &light[s - 1] : nullptr;
+    PathVertex* pt = t > 0 ? &camera[t - 1] : nullptr;
+    PathVertex* qsMinus = s > 1 ? &light[s - 2] : nullptr;
+    PathVertex* ptMinus = t > 1 ? &camera[t - 2] : nullptr;
+
+    VertexOverride keepQs(qs), keepPt(pt), keepQsMinus(qsMinus), keepPtMinus(ptMinus);
+    if (s == 1) *qs = sampled;
+    if (t == 1) *pt = sampled;
+    // The connection vertices were reached by a deterministic join, not a specular bounce.
+    if (pt) pt->delta = false;
+    if (qs) qs->delta = false;
+    // Densities with which the other side's walk would have produced each end.
+    if (pt) pt->pdfRev = s > 0 ? paths_.pdf(*qs, qsMinus, *pt, false) : paths_.pdfLightOrigin(*pt, *ptMinus);
+    if (ptMinus) ptMinus->pdfRev = s > 0 ? paths_.pdf(*pt, qs, *ptMinus, true) : paths_.pdfLight(*pt, *ptMinus);
+    if (qs) qs->pdfRev = paths_.pdf(*pt, ptMinus, *qs, false);
+    if (qsMinus) qsMinus->pdfRev = paths_.pdf(*qs, pt, *qsMinus, true);
+
+    // Delta densities are stored as 0; they cancel in the ratios (remapped to 1), and the
+    // strategies that would need to sample a delta vertex by connection are excluded.
+    auto remap = [](float f) { return f != 0 ? f : 1.0f; };
+    auto term = [&](float r, bool possible) -> double {
+        (void)possible;
+        if (heuristic_ == MisHeuristic::Uniform) return 1.0;
+        return heuristic_ == MisHeuristic::Power ? double(r) * r : double(r);
+    };
+    double sum = 0;
+    float r = 1;
+    for (int i = t - 1; i > 0; --i) {
+        r *= remap(camera[i].pdfRev) / remap(camera[i].pdfFwd);
+        if (!camera[i].delta && !camera[i - 1].delta) sum += term(r, camera[i].pdfRev != 0);
+    }
+    r = 1;
+    for (int i = s - 1; i >= 0; --i) {
+        r *= remap(light[i].pdfRev) / remap(light[i].pdfFwd);
+        bool deltaBefore = i > 0 ? light[i - 1].delta : light[0].isDeltaLight();
+        if (!light[i].delta && !deltaBefore) sum += term(r, light[i].pdfRev != 0);
+    }
+    if (!std::isfinite(sum)) return 0;
+    return float(1 / (1 + sum));
+}
+
+Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
+    ScratchBuffer& scratch = ctx.scratch;
+    auto allocPath = [&](int n) {
+        auto* p = static_cast<PathVertex*>(scratch.allocBytes(sizeof(PathVertex) * size_t(n), alignof(PathVertex)));
+        for (int i = 0; i < n; ++i) new (&p[i]) PathVertex();
+        return p;
+    };
+    PathVertex* camera = allocPath(paths_.maxCameraVertices());
+    PathVertex* light = allocPath(paths_.maxLightVertices());
+    int nCamera = paths_.cameraSubpath(ray, ctx.sampler, scratch, ctx.stats, camera);
+    int nLight = paths_.lightSubpath(ctx.sampler, scratch, ctx.stats, light);
+
+    Spectrum L;
+    const int maxDepth = paths_.maxDepth();
+    for (int t = 1; t <= nCamera; ++t)
+        for (int s = 0; s <= nLight; ++s) {
+            int depth = s + t - 2;
+            // (1,1) would see a light through the lens by sampling both ends; the camera
+            // ray finding the light (0,2) covers those paths with weight 1.
+            if ((s == 1 && t == 1) || depth < 0 || depth > maxDepth) continue;
+            Connection c = connect(light, camera, s, t, ctx.sampler, ctx.stats);
+            if (c.weight == 0) continue;
+            Spectrum contribution = c.L * c.weight;
+            if (t == 1) ctx.film.addSplat(c.pRaster, contribution, ctx.sampleIndex);
+            else L += contribution;
+        }
+    return L;
+}
+
+}  // namespace ps

@@ -1,0 +1,41 @@
+// Bidirectional path tracing (thesis ch. 10): one camera and one light subpath per pixel
+// sample, every connection strategy (s light vertices, t camera vertices) evaluated and
+// combined by multiple importance sampling (thesis ch. 9). Strategies with t = 1 land on
+// other pixels and are splatted.
+#pragma once
+#include "transport/integrator.h"
+#include "transport/subpaths.h"
+
+namespace ps {
+
+// How the strategies that can produce a path are weighted (thesis §9.2): the balance
+// heuristic, the power heuristic (exponent 2), or uniformly (1 / number of strategies).
+enum class MisHeuristic { Balance, Power, Uniform };
+
+class BDPTIntegrator final : public Integrator {
+public:
+    BDPTIntegrator(const Scene& scene, int maxDepth, MisHeuristic heuristic = MisHeuristic::Power)
+        : paths_(scene, maxDepth), heuristic_(heuristic) {}
+    Spectrum Li(const Ray& ray, SampleContext& ctx) const override;
+    bool splats() const override { return true; }
+
+    // One strategy's contribution for the subpath prefixes (s, t), unweighted, and its MIS
+    // weight. For t = 1, *pRaster receives the film position. Exposed for tests.
+    struct Connection {
+        Spectrum L;          // unweighted contribution
+        float weight = 0;    // MIS weight
+        Vec2 pRaster;
+    };
+    Connection connect(PathVertex* light, PathVertex* camera, int s, int t, Sampler& sampler, PathStats& stats,
+                       bool weighted = true) const;
+    // The MIS weight of strategy (s, t) for the path its vertices form. `sampled` replaces
+    // light[0] (s = 1) or camera[0] (t = 1): the vertex the connection itself sampled.
+    float misWeight(PathVertex* light, PathVertex* camera, const PathVertex& sampled, int s, int t) const;
+    const Subpaths& subpaths() const { return paths_; }
+
+private:
+    Subpaths paths_;
+    MisHeuristic heuristic_;
+};
+
+}  // namespace ps

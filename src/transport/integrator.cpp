@@ -1,0 +1,26 @@
+#include "transport/integrator.h"
+
+#include "transport/bdpt.h"
+#include "transport/light_tracer.h"
+#include "transport/path_tracer.h"
+#include "util/error.h"
+
+namespace ps {
+
+std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scene& scene, const std::string& mis) {
+    MisHeuristic heuristic = MisHeuristic::Power;
+    if (mis == "balance") heuristic = MisHeuristic::Balance;
+    else if (mis == "none") heuristic = MisHeuristic::Uniform;
+    else if (mis != "power") throw InputError("unknown MIS heuristic \"" + mis + "\" (available: power, balance, none)");
+    int maxDepth = scene.settings().maxDepth;
+    if (name == "path") return std::make_unique<PathTracer>(scene, maxDepth);
+    if (name == "light" || name == "bdpt") {
+        if (!scene.camera().hasImportance())
+            throw InputError("integrator \"" + name + "\" connects light paths to the lens and needs a perspective camera");
+        if (name == "light") return std::make_unique<LightTracer>(scene, maxDepth);
+        return std::make_unique<BDPTIntegrator>(scene, maxDepth, heuristic);
+    }
+    throw InputError("unknown integrator \"" + name + "\" (available: path, light, bdpt)");
+}
+
+}  // namespace ps

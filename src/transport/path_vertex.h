@@ -1,0 +1,62 @@
+// Path vertices in the area-measure formulation of the path integral (thesis ch. 8):
+// each vertex of a camera or light subpath keeps its throughput and the densities, in area
+// measure at this vertex, with which the forward walk and the reverse (adjoint) walk would
+// generate it. Shared by light tracing and bidirectional path tracing (thesis ch. 10).
+#pragma once
+#include <cstdint>
+#include "geometry/interaction.h"
+#include "lights/light.h"
+#include "materials/bxdf.h"
+#include "math/frame.h"
+#include "math/spectrum.h"
+
+namespace ps {
+
+enum class VertexKind : uint8_t { Camera, Light, Surface };
+
+struct PathVertex {
+    VertexKind kind = VertexKind::Surface;
+    TransportMode mode = TransportMode::Radiance;  // which subpath built it
+    bool delta = false;     // scattered by a specular lobe, or a delta light's position
+    bool infinite = false;  // at infinity: a light vertex of an infinite or distant light,
+                            // or where a camera ray escaped
+    Spectrum beta;          // throughput of the subpath up to and including this vertex
+    Vec3 p;
+    Vec3 ng, ns;            // zero for points without a surface (pinhole, point lights)
+    Vec3 wo;                // unit direction towards the previous vertex of its subpath
+    Vec2 uv;
+    Frame frame;            // shading frame (surfaces)
+    const BxDF* bxdf = nullptr;    // surfaces
+    const Light* light = nullptr;  // the emitter at a light vertex or an emissive surface
+    float pdfFwd = 0;       // density of this vertex from its subpath's walk
+    float pdfRev = 0;       // density of this vertex from the opposite walk
+
+    bool onSurface() const { return ng.x != 0 || ng.y != 0 || ng.z != 0; }
+    // An escaped camera ray, or an emitter found by the camera subpath, or a light vertex.
+    bool isLight() const { return kind == VertexKind::Light || (kind == VertexKind::Surface && light); }
+    bool isDeltaLight() const { return kind == VertexKind::Light && light && light->isDelta(); }
+    bool isInfiniteLight() const { return kind == VertexKind::Light && infinite; }
+    // Whether a deterministic connection to another vertex can be made here.
+    bool connectible() const {
+        switch (kind) {
+            case VertexKind::Camera: return true;
+            case VertexKind::Light: return !light || light->type() != LightType::DeltaDirection;
+            case VertexKind::Surface: return bxdf && (bxdf->flags() & (kDiffuse | kGlossy));
+        }
+        return false;
+    }
+};
+
+// A solid-angle density at `from` of choosing the direction to `to`, as an area density at
+// `to` (thesis eq. 8.10); vertices at infinity keep solid-angle densities.
+inline float solidAngleToArea(const PathVertex& from, float pdf, const PathVertex& to) {
+    if (to.isInfiniteLight()) return pdf;
+    Vec3 w = to.p - from.p;
+    float d2 = lengthSquared(w);
+    if (!(d2 > 0)) return 0;
+    float invDist2 = 1 / d2;
+    if (to.onSurface()) pdf *= std::fabs(dot(to.ng, w * std::sqrt(invDist2)));
+    return pdf * invDist2;
+}
+
+}  // namespace ps

@@ -1,0 +1,259 @@
+#include "transport/subpaths.h"
+
+#include "lights/infinity_disk.h"
+
+namespace ps {
+
+namespace {
+
+TransportMode adjoint(TransportMode m) {
+    return m == TransportMode::Radiance ? TransportMode::Importance : TransportMode::Radiance;
+}
+
+Vec3 directionTo(const PathVertex& from, const PathVertex& to) { return normalize(to.p - from.p); }
+
+}  // namespace
+
+int Subpaths::cameraSubpath(const Ray& ray, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats,
+                            PathVertex* path) const {
+    PathVertex& cam = path[0];
+    cam = PathVertex{};
+    cam.kind = VertexKind::Camera;
+    cam.mode = TransportMode::Radiance;
+    cam.p = ray.o;
+    cam.beta = Spectrum(1.0f);
+    float pdfPos, pdfDir;
+    scene_.camera().pdfWe(ray, &pdfPos, &pdfDir);
+    ++stats.cameraPaths;
+    if (!(pdfDir > 0)) return 1;
+    return 1 + randomWalk(ray, cam.beta, pdfDir, sampler, scratch, stats, path + 1, maxCameraVertices() - 1,
+                          TransportMode::Radiance);
+}
+
+int Subpaths::lightSubpath(Sampler& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const {
+    ++stats.lightPaths;
+    float uLight = sampler.get1D();
+    Vec2 uPos = sampler.get2D();
+    Vec2 uDir = sampler.get2D();
+    float pmf;
+    const Light* light = scene_.sampleLight(uLight, &pmf);
+    if (!light || !(pmf > 0)) return 0;
+    auto les = light->sampleLe(uPos, uDir);
+    if (!les || !(les->pdfPos > 0) || !(les->pdfDir > 0) || les->L.isBlack()) return 0;
+
+    PathVertex& v = path[0];
+    v = PathVertex{};
+    v.kind = VertexKind::Light;
+    v.mode = TransportMode::Importance;
+    v.light = light;
+    v.infinite = light->atInfinity();
+    v.p = les->ray.o;
+    v.ng = v.ns = les->n;
+    v.beta = les->L;
+    v.pdfFwd = pmf * les->pdfPos;
+    float cosLight = v.onSurface() ? std::fabs(dot(les->n, les->ray.d)) : 1.0f;
+    Spectrum beta = les->L * (cosLight / (pmf * les->pdfPos * les->pdfDir));
+    if (!beta.isFinite()) {
+        ++stats.guarded;
+        return 0;
+    }
+    Ray ray = v.onSurface() ? spawnRay(les->ray.o, les->n, les->ray.d) : les->ray;
+    int n = randomWalk(ray, beta, les->pdfDir, sampler, scratch, stats, path + 1, maxLightVertices() - 1,
+                       TransportMode::Importance);
+    // From a disk at infinity the second vertex's density is the disk's area density
+    // projected onto its surface, and the first is the directional density (thesis §10.2).
+    if (v.infinite) {
+        if (n > 0) {
+            path[1].pdfFwd = les->pdfPos;
+            if (path[1].onSurface()) path[1].pdfFwd *= std::fabs(dot(les->ray.d, path[1].ng));
+        }
+        v.pdfFwd = infiniteLightDensity(-les->ray.d);
+    }
+    return 1 + n;
+}
+
+int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, Sampler& sampler, ScratchBuffer& scratch,
+                         PathStats& stats, PathVertex* path, int maxVertices, TransportMode mode) const {
+    if (maxVertices <= 0) return 0;
+    int bounces = 0, passThroughs = 0;
+    Spectrum scatter(1.0f);  // the walk's own throughput, for Russian roulette
+    float etaScale = 1;
+    while (true) {
+        SurfaceInteraction si;
+        ++stats.rays;
+        PathVertex& prev = path[bounces - 1];
+        PathVertex& v = path[bounces];
+        if (!scene_.intersect(ray, si)) {
+            // A camera ray leaving the scene ends on the infinite lights (the s = 0 strategy).
+            if (mode == TransportMode::Radiance && !scene_.infiniteLights().empty()) {
+                v = PathVertex{};
+                v.kind = VertexKind::Light;
+                v.mode = mode;
+                v.infinite = true;
+                v.p = ray.o + ray.d;
+                v.wo = -ray.d;
+                v.beta = beta;
+                v.pdfFwd = pdfFwd;
+                ++bounces;
+            }
+            break;
+        }
+        MaterialEvalContext mctx;
+        mctx.p = si.p;
+        mctx.n = si.ns;
+        mctx.uv = si.uv;
+        mctx.wo = si.wo;
+        mctx.dpdu = si.dpdu;
+        const Material* material = si.material ? si.material->resolve(mctx) : nullptr;
+        const BxDF* bxdf = material ? material->bxdf(mctx, scratch) : nullptr;
+        if (!bxdf) {
+            // `interface`: not a vertex; the ray continues and the density stays per solid angle.
+            if (++passThroughs > 1024) break;  // a degenerate stack of coincident interfaces
+            ray = spawnRay(si.p, si.ng, ray.d);
+            continue;
+        }
+        v = PathVertex{};
+        v.kind = VertexKind::Surface;
+        v.mode = mode;
+        v.p = si.p;
+        v.ng = si.ng;
+        v.ns = si.ns;
+        v.wo = si.wo;
+        v.uv = si.uv;
+        v.frame = si.shadingFrame();
+        v.bxdf = bxdf;
+        v.light = si.areaLight;
+        v.beta = beta;
+        v.pdfFwd = solidAngleToArea(prev, pdfFwd, v);
+        if (++bounces >= maxVertices) break;
+
+        Vec3 woLocal = v.frame.toLocal(si.wo);
+        if (woLocal.z == 0) break;
+        float uc = sampler.get1D();
+        Vec2 u = sampler.get2D();
+        auto bs = bxdf->sample(woLocal, uc, u, mode);
+        if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) break;
+        Vec3 wi = v.frame.toWorld(bs->wi);
+        Spectrum weight = bs->f * (absCosTheta(bs->wi) / bs->pdf);
+        if (mode == TransportMode::Importance) weight *= adjointShadingFactor(si.wo, wi, si.ns, si.ng);
+        if (!weight.isFinite()) {
+            ++stats.guarded;
+            break;
+        }
+        beta *= weight;
+        scatter *= weight;
+        // Layered BxDFs only know their pdf up to a factor; MIS needs the true density.
+        pdfFwd = bs->pdfIsProportional ? bxdf->pdf(woLocal, bs->wi, mode) : bs->pdf;
+        float pdfRev = bxdf->pdf(bs->wi, woLocal, adjoint(mode));
+        if (bs->isSpecular()) {
+            // Delta lobes: no other strategy can produce this vertex's neighbours' densities.
+            v.delta = true;
+            pdfFwd = pdfRev = 0;
+        }
+        if (mode == TransportMode::Radiance && bs->isTransmission()) etaScale *= sqr(bs->eta);
+        prev.pdfRev = solidAngleToArea(v, pdfRev, prev);
+        ray = spawnRay(si.p, si.ng, wi);
+        if (beta.isBlack()) break;
+
+        // Russian roulette on the walk's own throughput (radiance scaling of refraction undone),
+        // after the second scattering as in the path tracer (thesis §2.5.3.2).
+        float m = (scatter * etaScale).maxComponent();
+        if (m < 1 && bounces > 1) {
+            float q = std::max(0.0f, 1 - m);
+            if (sampler.get1D() < q) break;
+            beta /= 1 - q;
+            scatter /= 1 - q;
+        }
+    }
+    return bounces;
+}
+
+Spectrum Subpaths::f(const PathVertex& v, const PathVertex& next, TransportMode mode) const {
+    if (v.kind != VertexKind::Surface || !v.bxdf) return {};
+    Vec3 wi = directionTo(v, next);
+    Spectrum fv = v.bxdf->f(v.frame.toLocal(v.wo), v.frame.toLocal(wi), mode);
+    if (mode == TransportMode::Importance) fv *= adjointShadingFactor(v.wo, wi, v.ns, v.ng);
+    return fv;
+}
+
+float Subpaths::pdf(const PathVertex& v, const PathVertex* prev, const PathVertex& next, bool reverse) const {
+    if (v.kind == VertexKind::Light) return pdfLight(v, next);
+    Vec3 wn = next.p - v.p;
+    if (!(lengthSquared(wn) > 0)) return 0;
+    wn = normalize(wn);
+    float pdfDir;
+    if (v.kind == VertexKind::Camera) {
+        float pdfPos;
+        scene_.camera().pdfWe(Ray{v.p, wn}, &pdfPos, &pdfDir);
+    } else {
+        if (!prev || !v.bxdf) return 0;
+        Vec3 wp = directionTo(v, *prev);
+        TransportMode mode = reverse ? adjoint(v.mode) : v.mode;
+        pdfDir = v.bxdf->pdf(v.frame.toLocal(wp), v.frame.toLocal(wn), mode);
+    }
+    return solidAngleToArea(v, pdfDir, next);
+}
+
+float Subpaths::pdfLightOrigin(const PathVertex& v, const PathVertex& to) const {
+    Vec3 w = directionTo(v, to);
+    if (v.isInfiniteLight()) return infiniteLightDensity(-w);
+    if (!v.light) return 0;
+    float pdfPos, pdfDir;
+    v.light->pdfLe(v.p, v.ng, w, &pdfPos, &pdfDir);
+    return scene_.lightPmf(v.light) * pdfPos;
+}
+
+float Subpaths::pdfLight(const PathVertex& v, const PathVertex& to) const {
+    Vec3 w = to.p - v.p;
+    float d2 = lengthSquared(w);
+    if (!(d2 > 0)) return 0;
+    w = w / std::sqrt(d2);
+    float pdf;
+    if (v.isInfiniteLight()) {
+        pdf = infinityDiskPdf(scene_.boundsRadius());
+    } else {
+        if (!v.light) return 0;
+        float pdfPos, pdfDir;
+        v.light->pdfLe(v.p, v.ng, w, &pdfPos, &pdfDir);
+        pdf = pdfDir / d2;
+    }
+    if (to.onSurface()) pdf *= std::fabs(dot(to.ng, w));
+    return pdf;
+}
+
+Spectrum Subpaths::Le(const PathVertex& v, const PathVertex& to) const {
+    if (!v.isLight()) return {};
+    Vec3 w = directionTo(v, to);
+    if (v.isInfiniteLight()) {
+        Spectrum L;
+        for (const Light* light : scene_.infiniteLights()) L += light->Le(Ray{v.p, -w});
+        return L;
+    }
+    return v.light->L(v.p, v.ng, v.uv, w);
+}
+
+bool Subpaths::visible(const PathVertex& a, const PathVertex& b, PathStats& stats) const {
+    ++stats.shadowRays;
+    return !scene_.occluded(spawnRayTo(a.p, a.ng, b.p));
+}
+
+float Subpaths::G(const PathVertex& a, const PathVertex& b, PathStats& stats) const {
+    Vec3 d = a.p - b.p;
+    float d2 = lengthSquared(d);
+    if (!(d2 > 0)) return 0;
+    d = d / std::sqrt(d2);
+    float g = 1 / d2;
+    if (a.onSurface()) g *= std::fabs(dot(a.ns, d));
+    if (b.onSurface()) g *= std::fabs(dot(b.ns, d));
+    if (g == 0 || !visible(a, b, stats)) return 0;
+    return g;
+}
+
+float Subpaths::infiniteLightDensity(Vec3 wToLight) const {
+    float pdf = 0;
+    for (const Light* light : scene_.infiniteLights())
+        pdf += scene_.lightPmf(light) * light->pdfLi(LightSampleContext{}, wToLight, nullptr);
+    return pdf;
+}
+
+}  // namespace ps

@@ -1,0 +1,70 @@
+// Camera and light subpaths and the vertex queries that connect them (thesis ch. 10):
+// random walks that record area-measure densities in both directions, the BSDF seen at a
+// vertex (adjoint under importance transport, thesis ch. 5), emitted radiance, the
+// densities of light emission, and the geometry term with visibility.
+#pragma once
+#include "mc/sampler.h"
+#include "render/scene.h"
+#include "transport/integrator.h"
+#include "transport/path_vertex.h"
+#include "util/scratch.h"
+
+namespace ps {
+
+class Subpaths {
+public:
+    Subpaths(const Scene& scene, int maxDepth) : scene_(scene), maxDepth_(maxDepth) {}
+    int maxDepth() const { return maxDepth_; }
+    // Room a caller must provide: camera subpaths hold the lens vertex and up to maxDepth + 1
+    // surface or escape vertices; light subpaths the light vertex and maxDepth surfaces.
+    int maxCameraVertices() const { return maxDepth_ + 2; }
+    int maxLightVertices() const { return maxDepth_ + 1; }
+
+    // Vertex 0 on the lens, then the walk; returns the number of vertices.
+    int cameraSubpath(const Ray& ray, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats,
+                      PathVertex* path) const;
+    // Vertex 0 on a light chosen by power, then the walk; returns the number of vertices.
+    int lightSubpath(Sampler& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const;
+
+    // The BSDF at surface vertex v for light between v.wo and the direction to `next`,
+    // including the adjoint shading-normal factor under importance transport.
+    Spectrum f(const PathVertex& v, const PathVertex& next, TransportMode mode) const;
+    // Area density at `next` of sampling it from v (prev: the vertex before v in the
+    // direction of sampling). `reverse` when sampling against v's own subpath, which uses
+    // the adjoint BSDF's density.
+    float pdf(const PathVertex& v, const PathVertex* prev, const PathVertex& next, bool reverse) const;
+    // Area density of a light subpath starting at emitter vertex v (towards `to`),
+    // including the choice of the light.
+    float pdfLightOrigin(const PathVertex& v, const PathVertex& to) const;
+    // Area density at `to` of the direction a light subpath from v would sample.
+    float pdfLight(const PathVertex& v, const PathVertex& to) const;
+    // Radiance emitted at light vertex v towards `to`.
+    Spectrum Le(const PathVertex& v, const PathVertex& to) const;
+    // Geometry term between two vertices with shading cosines, zero if occluded.
+    float G(const PathVertex& a, const PathVertex& b, PathStats& stats) const;
+    // Mutual visibility of two points.
+    bool visible(const PathVertex& a, const PathVertex& b, PathStats& stats) const;
+    // Density of choosing direction wToLight from all infinite lights together.
+    float infiniteLightDensity(Vec3 wToLight) const;
+
+    const Scene& scene() const { return scene_; }
+
+private:
+    int randomWalk(Ray ray, Spectrum beta, float pdfDir, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats,
+                   PathVertex* path, int maxVertices, TransportMode mode) const;
+
+    const Scene& scene_;
+    int maxDepth_;
+};
+
+// The adjoint BSDF's shading-normal factor (thesis §5.3, the adjoint of a BSDF with
+// shading normals): a particle arriving from wo and leaving along wi carries
+// f_s(wo, wi) |wo.Ns| |wi.Ng| / (|wo.Ng| |wi.Ns|) in place of f_s, so that light tracing
+// with shading cosines |wi.Ns| estimates the same measurement as path tracing.
+inline float adjointShadingFactor(Vec3 wo, Vec3 wi, Vec3 ns, Vec3 ng) {
+    float denom = std::fabs(dot(wo, ng)) * std::fabs(dot(wi, ns));
+    if (!(denom > 0)) return 0;
+    return std::fabs(dot(wo, ns)) * std::fabs(dot(wi, ng)) / denom;
+}
+
+}  // namespace ps

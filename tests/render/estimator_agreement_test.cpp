@@ -1,0 +1,194 @@
+// Agreement of independent estimators (thesis ch. 10's strongest check): path tracing,
+// light tracing and BDPT estimate the same image, so each block's mean over independent
+// renders must agree within 4 standard errors (measured from the spread of the renders).
+// Light tracing cannot see specular surfaces or the environment directly (no camera
+// connection through a delta lobe), so scenes showing those compare path tracing and BDPT.
+#include <gtest/gtest.h>
+
+#include "render_helpers.h"
+
+using namespace ps;
+using namespace ps::test;
+
+namespace {
+
+constexpr int kBlocks = 4;
+
+// A 1 x 1 x 1 box open towards the camera, with coloured side walls, a ceiling light and
+// whatever `contents` adds; `light` replaces the ceiling light when given.
+std::string box(const std::string& contents, const std::string& integratorDepth = "5", const std::string& light = "") {
+    std::string ceilingLight = light.empty() ? R"(
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 6 6 6 ]
+          Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
+        AttributeEnd)"
+                                             : light;
+    return R"(
+        LookAt 0 0.5 2.2  0 0.5 0  0 1 0
+        Camera "perspective" "float fov" [ 30 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ )" +
+           integratorDepth + R"( ]
+        WorldBegin)" + ceilingLight + R"(
+        Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]
+        Shape "bilinearmesh" "point3 P" [ -0.5 0 0.5   0.5 0 0.5   -0.5 0 -0.5   0.5 0 -0.5 ]
+        Shape "bilinearmesh" "point3 P" [ -0.5 1 -0.5   0.5 1 -0.5   -0.5 1 0.5   0.5 1 0.5 ]
+        Shape "bilinearmesh" "point3 P" [ -0.5 0 -0.5   0.5 0 -0.5   -0.5 1 -0.5   0.5 1 -0.5 ]
+        Material "diffuse" "rgb reflectance" [ 0.7 0.1 0.1 ]
+        Shape "bilinearmesh" "point3 P" [ -0.5 0 0.5   -0.5 0 -0.5   -0.5 1 0.5   -0.5 1 -0.5 ]
+        Material "diffuse" "rgb reflectance" [ 0.1 0.7 0.1 ]
+        Shape "bilinearmesh" "point3 P" [ 0.5 0 -0.5   0.5 0 0.5   0.5 1 -0.5   0.5 1 0.5 ]
+    )" + contents;
+}
+
+struct Case {
+    const char* name;
+    std::string scene;
+    std::vector<std::string> integrators;  // the first is compared with each other one
+    int spp;
+};
+
+void expectAgreement(const Case& c) {
+    const int K = 8;
+    std::vector<BlockMeans> results;
+    for (const std::string& integ : c.integrators) results.push_back(blockMeans(c.scene, integ, c.spp, K, kBlocks));
+    const BlockMeans& a = results[0];
+    double imageMean = 0;
+    for (double m : a.mean) imageMean += m / a.mean.size();
+    ASSERT_GT(imageMean, 0.01) << "the scene must be lit";
+    for (size_t k = 1; k < results.size(); ++k) {
+        const BlockMeans& b = results[k];
+        int failures = 0;
+        double worst = 0;
+        for (size_t i = 0; i < a.mean.size(); ++i) {
+            double se = std::sqrt(a.stdErr[i] * a.stdErr[i] + b.stdErr[i] * b.stdErr[i]);
+            double z = std::fabs(a.mean[i] - b.mean[i]) / std::max(se, 1e-12);
+            worst = std::max(worst, z);
+            // The comparison must be able to fail: the noise must be small against the image.
+            EXPECT_LT(se, 0.08 * imageMean + 0.08 * a.mean[i]) << c.integrators[k] << " block " << i << " too noisy";
+            if (std::fabs(a.mean[i] - b.mean[i]) > 4 * se + 1e-5) {
+                ++failures;
+                ADD_FAILURE() << c.name << ": " << c.integrators[0] << " vs " << c.integrators[k] << " block " << i
+                              << ": " << a.mean[i] << " +- " << a.stdErr[i] << " vs " << b.mean[i] << " +- "
+                              << b.stdErr[i];
+            }
+        }
+        std::printf("  %s: %s vs %s: largest |diff| %.2f sigma, %d blocks beyond 4 sigma\n", c.name,
+                    c.integrators[0].c_str(), c.integrators[k].c_str(), worst, failures);
+    }
+}
+
+}  // namespace
+
+TEST(EstimatorAgreement, DiffuseBox) {
+    expectAgreement({"diffuse box", box(R"(
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ]
+        Shape "sphere" "float radius" [ 0.2 ]
+    )"), {"path", "light", "bdpt"}, 16});
+}
+
+// The sphere itself is out of view (above the frame); its caustic on the floor is in it.
+TEST(EstimatorAgreement, GlassSphereCaustic) {
+    std::string scene = R"(
+        LookAt 0 0.25 2  0 0 0  0 1 0
+        Camera "perspective" "float fov" [ 20 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 6 ]
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 8 8 8 ]
+          Shape "bilinearmesh" "point3 P" [ -0.4 3 -0.4   0.4 3 -0.4   -0.4 3 0.4   0.4 3 0.4 ]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [ 0.8 0.8 0.8 ]
+        Shape "bilinearmesh" "point3 P" [ -3 0 3   3 0 3   -3 0 -3   3 0 -3 ]
+        AttributeBegin
+          Material "dielectric" "float eta" [ 1.5 ]
+          Translate 0 1.1 0
+          Shape "sphere" "float radius" [ 0.5 ]
+        AttributeEnd
+    )";
+    expectAgreement({"glass caustic", scene, {"bdpt", "light", "path"}, 64});
+}
+
+TEST(EstimatorAgreement, GlossyConductor) {
+    expectAgreement({"rough conductor", box(R"(
+        Material "conductor" "spectrum eta" "metal-Cu-eta" "spectrum k" "metal-Cu-k" "float roughness" [ 0.25 ]
+        Shape "sphere" "float radius" [ 0.3 ]
+    )"), {"path", "light", "bdpt"}, 16});
+}
+
+// A smooth mirror shows the light: light tracing cannot connect through it.
+TEST(EstimatorAgreement, AreaLightSeenInMirror) {
+    expectAgreement({"mirror", box(R"(
+        Material "conductor" "rgb reflectance" [ 0.9 0.9 0.9 ] "float roughness" [ 0 ]
+        Shape "bilinearmesh" "point3 P" [ -0.45 0.01 0.3   0.45 0.01 0.3   -0.45 0.01 -0.45   0.45 0.01 -0.45 ]
+    )"), {"path", "bdpt"}, 16});
+}
+
+// The environment is seen directly at the image's top: path tracing against BDPT; light
+// tracing on the same scene seen from above (ground and object only).
+TEST(EstimatorAgreement, EnvironmentLitObject) {
+    auto scene = [](const char* lookAt) {
+        return std::string(lookAt) + R"(
+        Camera "perspective" "float fov" [ 40 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 4 ]
+        WorldBegin
+        LightSource "infinite" "rgb L" [ 0.6 0.7 0.9 ]
+        Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]
+        Shape "bilinearmesh" "point3 P" [ -1.5 0 1.5   1.5 0 1.5   -1.5 0 -1.5   1.5 0 -1.5 ]
+        Material "diffuse" "rgb reflectance" [ 0.8 0.4 0.2 ]
+        Translate 0 0.4 0
+        Shape "sphere" "float radius" [ 0.4 ]
+    )";
+    };
+    expectAgreement({"environment (side)", scene("LookAt 0 0.6 3  0 0.4 0  0 1 0"), {"path", "bdpt"}, 16});
+    expectAgreement({"environment (above)", scene("LookAt 0 3 0.01  0 0 0  0 1 0"), {"path", "light", "bdpt"}, 16});
+}
+
+TEST(EstimatorAgreement, PointAndSpotLights) {
+    std::string lights = R"(
+        LightSource "point" "rgb I" [ 0.6 0.6 0.6 ] "point3 from" [ -0.2 0.8 0.1 ]
+        LightSource "spotlight" "rgb I" [ 2 2 2 ] "point3 from" [ 0.3 0.9 0.3 ] "point3 to" [ 0 0 0 ]
+            "float coneangle" [ 30 ] "float conedelta" [ 10 ])";
+    expectAgreement({"point and spot", box(R"(
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ]
+        Shape "sphere" "float radius" [ 0.2 ]
+    )", "5", lights), {"path", "light", "bdpt"}, 16});
+}
+
+// Non-symmetric scattering (thesis ch. 5): a coarse octahedron with smooth vertex normals
+// (shading normals far from the geometric ones) lit through a refractive slab. Light
+// tracing needs the adjoint BSDF (the shading-normal factor, and no 1/eta^2 radiance
+// scaling) to agree with path tracing here.
+TEST(EstimatorAgreement, SmoothNormalsAndRefractiveSlab) {
+    std::string scene = R"(
+        LookAt 0 0.6 2.5  0 0.3 0  0 1 0
+        Camera "perspective" "float fov" [ 25 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 5 ]
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 5 5 5 ]
+          Shape "bilinearmesh" "point3 P" [ -0.8 3 -0.8   0.8 3 -0.8   -0.8 3 0.8   0.8 3 0.8 ]
+        AttributeEnd
+        AttributeBegin
+          Material "dielectric" "float eta" [ 1.5 ]
+          Shape "trianglemesh" "point3 P" [ -1.2 1.5 -1.2  1.2 1.5 -1.2  1.2 1.5 1.2  -1.2 1.5 1.2
+                                            -1.2 1.7 -1.2  1.2 1.7 -1.2  1.2 1.7 1.2  -1.2 1.7 1.2 ]
+              "integer indices" [ 0 2 1  0 3 2   4 5 6  4 6 7   0 1 5  0 5 4   1 2 6  1 6 5   2 3 7  2 7 6   3 0 4  3 4 7 ]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]
+        Shape "bilinearmesh" "point3 P" [ -3 0 3   3 0 3   -3 0 -3   3 0 -3 ]
+        Material "diffuse" "rgb reflectance" [ 0.8 0.5 0.3 ]
+        Translate 0 0.36 0
+        Shape "trianglemesh" "point3 P" [ 0.35 0 0  -0.35 0 0  0 0.35 0  0 -0.35 0  0 0 0.35  0 0 -0.35 ]
+            "normal N" [ 1 0 0  -1 0 0  0 1 0  0 -1 0  0 0 1  0 0 -1 ]
+            "integer indices" [ 0 2 4  2 1 4  1 3 4  3 0 4  2 0 5  1 2 5  3 1 5  0 3 5 ]
+    )";
+    expectAgreement({"smooth normals, slab", scene, {"path", "light", "bdpt"}, 32});
+}
