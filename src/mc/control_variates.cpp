@@ -6,6 +6,7 @@ McEstimate estimateControlVariate(const Integrand& f, const ControlFunction& con
                                   const PointSet& points) {
     Stopwatch clock;
     RunningStats s;
+    clearUpperVectorState();
     for (int i = 0; i < points.n; ++i) {
         std::span<const double> u = points.point(i);
         s.add(f(u) - beta * (control.g(u) - control.integral));

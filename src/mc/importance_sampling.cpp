@@ -8,6 +8,7 @@ McEstimate estimateImportance(const Integrand& f, const ImportanceDensity& densi
     Stopwatch clock;
     RunningStats s;
     std::vector<double> x(static_cast<size_t>(points.dims));
+    clearUpperVectorState();
     for (int i = 0; i < points.n; ++i) {
         density.sample(points.point(i), x);
         double p = density.pdf(x);

@@ -60,10 +60,13 @@ void latinHypercube(PointSet& p, Rng& rng) {
 void sobol(PointSet& p, Rng& rng) {
     if (p.dims > kSobolMaxDims) throw std::invalid_argument("sobol points: at most 10 dimensions");
     for (int d = 0; d < p.dims; ++d) {
-        uint32_t seed = rng.nextU32();
+        uint32_t seed = rng.nextU32(), v = 0;
         for (int i = 0; i < p.n; ++i) {
-            uint32_t v = owenScramble(sobolSample(uint32_t(i), d), seed);
-            p.data[size_t(i) * p.dims + d] = (double(v) + rng.uniformDouble()) * 0x1p-32;
+            // Natural order, incrementally: i -> i+1 flips bits 0..t, t = ctz(i+1), so the
+            // point changes by the xor of columns 0..t (sobolSample(i, d) == v).
+            if (i > 0) v ^= sobolSample((2u << __builtin_ctz(uint32_t(i))) - 1, d);
+            uint32_t x = owenScramble(v, seed);
+            p.data[size_t(i) * p.dims + d] = (double(x) + rng.uniformDouble()) * 0x1p-32;
         }
     }
 }

@@ -13,6 +13,7 @@ RegressionEstimate estimateRegression(const Integrand& f, const std::vector<Cont
     // Design matrix rows [1, g_1 - G_1, ...]; accumulate X^T X and X^T y in one pass.
     std::vector<double> rows(size_t(n) * p), y(static_cast<size_t>(n)), xtx(size_t(p) * p, 0.0), xty(size_t(p), 0.0);
     RunningStats plain;
+    clearUpperVectorState();
     for (int i = 0; i < n; ++i) {
         std::span<const double> u = points.point(i);
         double* r = &rows[size_t(i) * p];

@@ -9,6 +9,7 @@ McEstimate estimateRoulette(const Integrand& f, int dims, double q, const PointS
     Stopwatch clock;
     RunningStats s;
     int64_t evaluations = 0;
+    clearUpperVectorState();
     for (int i = 0; i < points.n; ++i) {
         std::span<const double> u = points.point(i);
         if (u[size_t(dims)] < q) {
@@ -28,6 +29,7 @@ McEstimate estimateSplitting(const Integrand& f, int dims, int prefix, int k, co
     RunningStats s;
     std::vector<double> x(static_cast<size_t>(dims));
     const int suffix = dims - prefix;
+    clearUpperVectorState();
     for (int i = 0; i < points.n; ++i) {
         std::span<const double> u = points.point(i);
         std::copy_n(u.begin(), prefix, x.begin());
