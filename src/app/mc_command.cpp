@@ -49,6 +49,14 @@ std::string fmt(const char* f, double v) {
     return buf;
 }
 
+// FNV-1a: a stable hash of a name, so a seed gives the same numbers on every platform
+// (std::hash is implementation-defined).
+uint64_t nameHash(const std::string& s) {
+    uint64_t h = 0xcbf29ce484222325ULL;
+    for (unsigned char c : s) h = (h ^ c) * 0x100000001b3ULL;
+    return h;
+}
+
 void writeFile(const std::string& path, const std::string& text) {
     std::ofstream out(path, std::ios::binary);
     out << text;
@@ -104,8 +112,10 @@ int McCommand::run() {
             for (const std::string& tn : names) {
                 const Technique& tech = *findTechnique(tn);
                 if (!tech.applies(t)) continue;
-                uint64_t key = hashCombine(hashCombine(seed_, std::hash<std::string>{}(t.name) ^ uint64_t(dims)),
-                                           std::hash<std::string>{}(tech.name));
+                // Each (integrand, dims, technique) has its own streams: adding a technique to the
+                // list does not change the others' numbers.
+                uint64_t key = hashCombine(hashCombine(hashCombine(seed_, nameHash(t.name)), uint64_t(dims)),
+                                           nameHash(tech.name));
                 ConvergenceStudy study = studyConvergence(
                     [&](int n, Rng& rng) { return tech.run(t, n, rng); }, t.exact, ns, runs_, key);
                 const ConvergencePoint& last = study.points.back();

@@ -21,7 +21,7 @@ private:
     std::vector<int> dims_{2, 6};
     std::vector<std::string> techniques_{"all"};
     std::vector<int> ns_{64, 256, 1024, 4096, 16384};
-    int runs_ = 16;
+    int runs_ = 32;
     uint64_t seed_ = 1;
     std::string jsonFile_, svgFile_;
 };

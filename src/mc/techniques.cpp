@@ -125,8 +125,7 @@ const std::vector<Technique> kTechniques = {
                                                      splittingPointDims(t.dims, prefix, kSplitting), rng));
          });
      }},
-    {"two-stage", "adaptive: pilots allocate the rest over grid cells (unbiased)",
-     [](const TestIntegrand&) { return true; },
+    {"two-stage", "adaptive: pilots allocate the rest over grid cells (unbiased)", always,
      [](const TestIntegrand& t, int n, Rng& rng) {
          return timed([&] { return estimateTwoStage(t.f, t.dims, twoStageOptions(t.dims, n), rng); });
      }},
