@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "app/exit_codes.h"
+#include "app/mc_command.h"
 #include "app/render_command.h"
 #include "util/error.h"
 
@@ -15,6 +16,8 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     ps::RenderCommand render;
     render.attach(app);
+    ps::McCommand mc;
+    mc.attach(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -22,7 +25,7 @@ int main(int argc, char** argv) {
         return code == 0 ? ps::kExitOk : ps::kExitBadInput;
     }
     try {
-        return render.run();
+        return mc.parsed() ? mc.run() : render.run();
     } catch (const ps::InputError& e) {
         std::fprintf(stderr, "%s\n", e.what());
         return ps::kExitBadInput;

@@ -2,10 +2,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -155,4 +157,40 @@ TEST_F(Cli, InterruptWritesImageSoFar) {
     ASSERT_TRUE(fs::exists(out));
     ps::Image img = ps::readImage(out);
     EXPECT_EQ(img.width, 32);
+}
+
+TEST_F(Cli, McWritesJsonAndSvgAndRejectsUnknownNames) {
+    std::string json = (dir / "mc.json").string(), svg = (dir / "mc.svg").string();
+    Result r = run("mc --integrand exp --dims 2 --n 64 128 256 --runs 8 --json " + json + " --svg " + svg);
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("| independent |"), std::string::npos) << r.out;
+    std::ifstream in(json);
+    nlohmann::json j = nlohmann::json::parse(in);  // throws if malformed
+    EXPECT_EQ(j["runs"], 8);
+    EXPECT_EQ(j["n"], nlohmann::json({64, 128, 256}));
+    ASSERT_EQ(j["results"].size(), 1u);
+    const nlohmann::json& res = j["results"][0];
+    EXPECT_EQ(res["integrand"], "exp");
+    EXPECT_EQ(res["dims"], 2);
+    EXPECT_NEAR(res["exact"].get<double>(), (M_E - 1) * (M_E - 1), 1e-12);
+    ASSERT_GE(res["techniques"].size(), 10u);
+    for (const nlohmann::json& t : res["techniques"]) {
+        EXPECT_TRUE(t.contains("name") && t.contains("slope"));
+        ASSERT_EQ(t["points"].size(), 3u) << t["name"];
+        for (const char* key : {"n", "evaluations", "mean", "standard_error", "rmse", "seconds", "efficiency"})
+            EXPECT_TRUE(t["points"][0].contains(key)) << key;
+    }
+    std::ifstream s(svg);
+    std::string text((std::istreambuf_iterator<char>(s)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text.rfind("<svg", 0), 0u);
+    EXPECT_NE(text.find("<polyline"), std::string::npos);
+    EXPECT_NE(text.find("</svg>"), std::string::npos);
+
+    EXPECT_EQ(run("mc --integrand nope").status, 2);
+    EXPECT_EQ(run("mc --technique nope").status, 2);
+    EXPECT_EQ(run("mc --dims 11").status, 2);
+    Result help = run("mc --help");
+    EXPECT_EQ(help.status, 0);
+    for (const char* opt : {"--integrand", "--dims", "--technique", "--n", "--runs", "--seed", "--json", "--svg"})
+        EXPECT_NE(help.out.find(opt), std::string::npos) << opt;
 }

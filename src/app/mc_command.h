@@ -1,0 +1,29 @@
+// `pathspace mc`: the Monte Carlo toolbox on test integrands with known integrals. For each
+// integrand and dimension, every technique runs R times at each sample count N; the table
+// shows the largest N and the convergence rate fitted over all of them.
+#pragma once
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ps {
+
+class McCommand {
+public:
+    void attach(CLI::App& app);
+    bool parsed() const { return cmd_ && cmd_->parsed(); }
+    int run();  // exit status
+
+private:
+    CLI::App* cmd_ = nullptr;
+    std::vector<std::string> integrands_{"all"};
+    std::vector<int> dims_{2, 6};
+    std::vector<std::string> techniques_{"all"};
+    std::vector<int> ns_{64, 256, 1024, 4096, 16384};
+    int runs_ = 32;
+    uint64_t seed_ = 1;
+    std::string jsonFile_, svgFile_;
+};
+
+}  // namespace ps
