@@ -35,18 +35,21 @@ void Film::addSplat(Vec2 pFilm, Spectrum L, int sampleIndex) {
             float w = splatFilter_->evaluate({pFilm.x - (x + 0.5f), pFilm.y - (y + 0.5f)}) * invIntegral;
             if (w == 0) continue;
             size_t base = (index(x, y) * 2 + size_t(sampleIndex & 1)) * 3;
+            double v[3] = {double(L[0]) * w * kSplatFixedPoint, double(L[1]) * w * kSplatFixedPoint,
+                           double(L[2]) * w * kSplatFixedPoint};
+            if (!(std::fabs(v[0]) < 0x1p60 && std::fabs(v[1]) < 0x1p60 && std::fabs(v[2]) < 0x1p60)) {
+                rejected_.fetch_add(1, std::memory_order_relaxed);  // would overflow the accumulator
+                continue;
+            }
+            // Dithered rounding keeps the fixed-point sum unbiased; the dither is a hash of
+            // the value itself (21 bits per channel), so it does not depend on the thread schedule.
+            uint64_t bits;
+            std::memcpy(&bits, &v[0], sizeof bits);
+            uint64_t h = mix64(bits ^ (uint64_t(base) << 40) ^ uint64_t(std::fabs(v[1]) + std::fabs(v[2])));
             for (int c = 0; c < 3; ++c) {
-                double v = double(L[c]) * w * kSplatFixedPoint;
-                if (!(std::fabs(v) < 0x1p60)) {  // would overflow the accumulator
-                    rejected_.fetch_add(1, std::memory_order_relaxed);
-                    continue;
-                }
-                // Dithered rounding keeps the fixed-point sum unbiased; the dither is a hash
-                // of the value itself, so it does not depend on the thread schedule.
-                uint64_t bits;
-                std::memcpy(&bits, &v, sizeof bits);
-                double dither = double(mix64(bits ^ (uint64_t(base + c) << 40)) >> 11) * 0x1p-53;
-                splats_[base + c].fetch_add(int64_t(std::floor(v + dither)), std::memory_order_relaxed);
+                double dither = double((h >> (21 * c)) & 0x1fffff) * 0x1p-21;
+                int64_t q = int64_t(std::floor(v[c] + dither));
+                if (q != 0) splats_[base + c].fetch_add(q, std::memory_order_relaxed);
             }
         }
 }

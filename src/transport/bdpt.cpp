@@ -1,23 +1,44 @@
 #include "transport/bdpt.h"
 
 #include <new>
+#include <optional>
 
 namespace ps {
 
 namespace {
 
-// Temporarily replaces fields of a vertex and restores them on scope exit, so the MIS
-// computation can see the path as the connection made it without copying subpaths.
-class VertexOverride {
+// Saves the fields the MIS computation changes (and the whole vertex a connection
+// replaced) and restores them on scope exit, so the weights can see the path as the
+// connection made it without copying subpaths.
+class MisFieldsGuard {
 public:
-    explicit VertexOverride(PathVertex* v) : v_(v) {
-        if (v_) saved_ = *v_;
+    explicit MisFieldsGuard(PathVertex* v) : v_(v) {
+        if (v_) {
+            pdfRev_ = v_->pdfRev;
+            delta_ = v_->delta;
+        }
     }
-    ~VertexOverride() {
-        if (v_) *v_ = saved_;
+    ~MisFieldsGuard() {
+        if (v_) {
+            v_->pdfRev = pdfRev_;
+            v_->delta = delta_;
+        }
     }
-    VertexOverride(const VertexOverride&) = delete;
-    VertexOverride& operator=(const VertexOverride&) = delete;
+    MisFieldsGuard(const MisFieldsGuard&) = delete;
+    MisFieldsGuard& operator=(const MisFieldsGuard&) = delete;
+
+private:
+    PathVertex* v_;
+    float pdfRev_ = 0;
+    bool delta_ = false;
+};
+
+class VertexReplacement {
+public:
+    VertexReplacement(PathVertex* v, const PathVertex& with) : v_(v), saved_(*v) { *v_ = with; }
+    ~VertexReplacement() { *v_ = saved_; }
+    VertexReplacement(const VertexReplacement&) = delete;
+    VertexReplacement& operator=(const VertexReplacement&) = delete;
 
 private:
     PathVertex* v_;
@@ -103,9 +124,10 @@ float BDPTIntegrator::misWeight(PathVertex* light, PathVertex* camera, const Pat
     PathVertex* qsMinus = s > 1 ? &light[s - 2] : nullptr;
     PathVertex* ptMinus = t > 1 ? &camera[t - 2] : nullptr;
 
-    VertexOverride keepQs(qs), keepPt(pt), keepQsMinus(qsMinus), keepPtMinus(ptMinus);
-    if (s == 1) *qs = sampled;
-    if (t == 1) *pt = sampled;
+    std::optional<VertexReplacement> replaced;
+    if (s == 1) replaced.emplace(qs, sampled);
+    if (t == 1) replaced.emplace(pt, sampled);
+    MisFieldsGuard keepQs(qs), keepPt(pt), keepQsMinus(qsMinus), keepPtMinus(ptMinus);
     // The connection vertices were reached by a deterministic join, not a specular bounce.
     if (pt) pt->delta = false;
     if (qs) qs->delta = false;
