@@ -5,10 +5,12 @@
 // colours that was measured and is documented in the README (largest measured differences
 // beyond 4 sigma, relative to block + image mean, Cornell box: R 0.047, G 0.013, B 0.105;
 // veach-mis: R 0.018, G 0.005, B 0.002; allowances are those plus a third or more).
-// veach-bidir is pbrt-v4's BDPT at 512 spp, itself visibly noisy, against our path tracer
-// whose noise there is heavy-tailed (light arrives indirectly): image means agree within
-// 0.4%, blocks within R 0.091, G 0.064, B 0.023 beyond 4 sigma; allowances R 0.12, G 0.09,
-// B 0.04 cover the reference's own noise, which the 4-sigma term does not include.
+// veach-bidir and caustic-glass are pbrt-v4's BDPT references, rendered here by our BDPT:
+// veach-bidir's image means agree within 0.06%, blocks within 0.019 beyond 4 sigma
+// (allowance 0.03, which also covers the 512-spp reference's own noise). caustic-glass
+// comes out 1.8% darker in every channel (blocks within 0.021 beyond 4 sigma; allowance
+// 0.035); our path tracer shows the same offset in the regions it can render (the spot
+// light's blackbody spectrum and the coated-diffuse floor as RGB), so it is not BDPT's.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -108,7 +110,8 @@ TEST_P(PbrtReference, BlockMeansAgree) {
 INSTANTIATE_TEST_SUITE_P(Shared, PbrtReference,
                          ::testing::Values(Reference{"cornell-box/scene-v4-256.pbrt", "cornell-box-path-4096spp.pfm", 16, 8, {0.06, 0.02, 0.14}},
                                            Reference{"veach-mis/scene-v4-320x180.pbrt", "veach-mis-path-4096spp.pfm", 32, 8, {0.025, 0.01, 0.01}},
-                                           Reference{"veach-bidir/scene-v4-256.pbrt", "veach-bidir-bdpt-512spp.pfm", 32, 8, {0.12, 0.09, 0.04}}),
+                                           Reference{"veach-bidir/scene-v4-256.pbrt", "veach-bidir-bdpt-512spp.pfm", 16, 8, {0.03, 0.03, 0.03}},
+                                           Reference{"caustic-glass/caustic-glass-v4-210x300.pbrt", "caustic-glass-bdpt-1024spp.pfm", 16, 8, {0.035, 0.035, 0.035}}),
                          [](const ::testing::TestParamInfo<Reference>& i) {
                              std::string s = i.param.image;
                              for (char& ch : s)
