@@ -13,6 +13,7 @@
 #include "image/image.h"
 #include "render/scene_builder.h"
 #include "scene/parser.h"
+#include "transport/bdpt.h"
 #include "transport/renderer.h"
 #include "util/error.h"
 
@@ -58,6 +59,10 @@ void RenderCommand::attach(CLI::App& app) {
                      "splatted through the lens), bdpt (bidirectional path tracing, every strategy with MIS). "
                      "pbrt names volpath, lightpath map to them")
         ->check(CLI::IsMember({"path", "volpath", "light", "lightpath", "bdpt"}));
+    cmd_->add_option("--bdpt-strategies", strategiesDir_,
+                     "With --integrator bdpt: also write, into this directory, one EXR per strategy (s light "
+                     "vertices, t camera vertices) up to path depth 5, MIS-weighted (s<S>_t<T>.exr) and "
+                     "unweighted (s<S>_t<T>_unweighted.exr); the weighted ones sum to the image");
     cmd_->add_option("--mis", mis_, "BDPT's weighting of strategies: power (default), balance, none (uniform)")
         ->check(CLI::IsMember({"power", "balance", "none"}));
     cmd_->add_option("--sampler", sampler_,
@@ -94,6 +99,22 @@ int RenderCommand::run() {
     if (outputs.empty()) outputs.push_back(std::filesystem::path(settings.outputFile).filename().string());
     for (const std::string& o : outputs) checkWritable(o);
     std::unique_ptr<Integrator> integrator = createIntegrator(settings.integrator, *scene, mis_);
+    BDPTIntegrator* bdpt = nullptr;
+    if (!strategiesDir_.empty()) {
+        bdpt = dynamic_cast<BDPTIntegrator*>(integrator.get());
+        if (!bdpt) throw InputError("--bdpt-strategies needs --integrator bdpt (the scene asks for \"" +
+                                    settings.integrator + "\")");
+        std::error_code ec;
+        std::filesystem::create_directories(strategiesDir_, ec);
+        if (ec) throw InputError("--bdpt-strategies: cannot create \"" + strategiesDir_ + "\": " + ec.message());
+        checkWritable((std::filesystem::path(strategiesDir_) / "s0_t2.exr").string());
+        const int depth = std::min(settings.maxDepth, 5);
+        const double bytes = double(scene->pixelBounds().area()) * (depth + 1) * (depth + 2) * 12.0;
+        if (bytes > 8e9)
+            throw InputError("--bdpt-strategies: the per-strategy images would need " + std::to_string(int(bytes / 1e9)) +
+                             " GB; use --crop or a smaller film");
+        bdpt->recordStrategies(depth);
+    }
 
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
@@ -109,6 +130,9 @@ int RenderCommand::run() {
     RenderResult r = render(*scene, *integrator, opts);
 
     for (const std::string& o : outputs) writeImage(o, r.image);
+    if (bdpt)
+        for (const auto& [name, image] : bdpt->strategyImages()->images(r.lightPaths))
+            writeImage((std::filesystem::path(strategiesDir_) / (name + ".exr")).string(), image);
 
     double secs = std::max(r.seconds, 1e-9);
     uint64_t rays = r.stats.rays + r.stats.shadowRays;

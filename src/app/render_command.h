@@ -21,6 +21,7 @@ private:
     int maxDepth_ = -1;
     std::string integrator_;
     std::string mis_ = "power";
+    std::string strategiesDir_;
     std::string sampler_;
     std::vector<std::string> outputs_;
     std::vector<float> crop_;

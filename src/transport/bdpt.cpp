@@ -1,5 +1,6 @@
 #include "transport/bdpt.h"
 
+#include <algorithm>
 #include <new>
 #include <optional>
 
@@ -161,6 +162,14 @@ float BDPTIntegrator::misWeight(PathVertex* light, PathVertex* camera, const Pat
     return float(1 / (1 + sum));
 }
 
+void BDPTIntegrator::recordStrategies(int maxDepth) {
+    const Scene& scene = paths_.scene();
+    const Camera::Params& cp = scene.camera().params();
+    strategies_ = std::make_unique<StrategyImages>(scene.pixelBounds(), cp.xRes, cp.yRes, scene.filter(),
+                                                   std::min(maxDepth, paths_.maxDepth()),
+                                                   scene.settings().imagingRatio);
+}
+
 Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
     ScratchBuffer& scratch = ctx.scratch;
     auto allocPath = [&](int n) {
@@ -174,6 +183,12 @@ Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
     int nLight = paths_.lightSubpath(ctx.sampler, scratch, ctx.stats, light);
 
     Spectrum L;
+    Spectrum* perStrategy = nullptr;
+    if (strategies_) {
+        size_t n = size_t(strategies_->slotCount()) * 2;
+        perStrategy = static_cast<Spectrum*>(scratch.allocBytes(sizeof(Spectrum) * n, alignof(Spectrum)));
+        for (size_t i = 0; i < n; ++i) new (&perStrategy[i]) Spectrum();
+    }
     const int maxDepth = paths_.maxDepth();
     for (int t = 1; t <= nCamera; ++t)
         for (int s = 0; s <= nLight; ++s) {
@@ -182,11 +197,21 @@ Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
             // ray finding the light (0,2) covers those paths with weight 1.
             if ((s == 1 && t == 1) || depth < 0 || depth > maxDepth) continue;
             Connection c = connect(light, camera, s, t, ctx.sampler, ctx.stats);
-            if (c.weight == 0) continue;
+            if (c.L.isBlack()) continue;
             Spectrum contribution = c.L * c.weight;
+            if (strategies_) {
+                if (t == 1) {
+                    strategies_->splat(s, c.pRaster, contribution, c.L, ctx.sampleIndex);
+                } else if (int k = strategies_->slot(s, t); k >= 0) {
+                    perStrategy[2 * k] = contribution;
+                    perStrategy[2 * k + 1] = c.L;
+                }
+            }
+            if (c.weight == 0) continue;
             if (t == 1) ctx.film.addSplat(c.pRaster, contribution, ctx.sampleIndex);
             else L += contribution;
         }
+    if (strategies_) strategies_->addCameraSample(ctx.px, ctx.py, ctx.filterWeight, perStrategy);
     return L;
 }
 

@@ -3,7 +3,9 @@
 // combined by multiple importance sampling (thesis ch. 9). Strategies with t = 1 land on
 // other pixels and are splatted.
 #pragma once
+#include <memory>
 #include "transport/integrator.h"
+#include "transport/strategy_images.h"
 #include "transport/subpaths.h"
 
 namespace ps {
@@ -32,10 +34,15 @@ public:
     // light[0] (s = 1) or camera[0] (t = 1): the vertex the connection itself sampled.
     float misWeight(PathVertex* light, PathVertex* camera, const PathVertex& sampled, int s, int t) const;
     const Subpaths& subpaths() const { return paths_; }
+    // Also record each strategy's contribution up to path depth maxDepth (memory: about
+    // 12 bytes per pixel per strategy image).
+    void recordStrategies(int maxDepth);
+    const StrategyImages* strategyImages() const { return strategies_.get(); }
 
 private:
     Subpaths paths_;
     MisHeuristic heuristic_;
+    std::unique_ptr<StrategyImages> strategies_;
 };
 
 }  // namespace ps

@@ -32,6 +32,8 @@ struct SampleContext {
     PathStats& stats;
     Film& film;           // for splats (light-path contributions landing on any pixel)
     int sampleIndex = 0;  // the pixel sample's index (splats alternate half-buffers by it)
+    int px = 0, py = 0;   // the pixel
+    float filterWeight = 1;  // the camera sample's filter weight f/pdf
 };
 
 class Integrator {

@@ -157,7 +157,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
                                 cs.pFilm = {px + 0.5f + fs.offset.x, py + 0.5f + fs.offset.y};
                                 cs.pLens = hasLens ? st.sampler->get2D() : Vec2(0.5f, 0.5f);
                                 Ray ray = scene.camera().generateRay(cs);
-                                SampleContext ctx{*st.sampler, st.scratch, st.stats, film, si};
+                                SampleContext ctx{*st.sampler, st.scratch, st.stats, film, si, px, py, fs.weight};
                                 Spectrum L = integrator.Li(ray, ctx);
                                 st.scratch.reset();
                                 film.addSample(px, py, L * imagingRatio, fs.weight, si);
@@ -173,7 +173,8 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     for (const ThreadState& st : states) result.stats += st.stats;
     result.meanSpp = film.meanSamplesPerPixel();
     // Every camera sample traced one light path; the imaging ratio scales splats as well.
-    const double lightPaths = result.meanSpp * double(bounds.area()) / imagingRatio;
+    const double lightPaths = imagingRatio > 0 ? result.meanSpp * double(bounds.area()) / imagingRatio : 0.0;
+    result.lightPaths = lightPaths;
     result.image = film.image(lightPaths);
     result.stoppedEarly = result.meanSpp < spp;
     result.rejectedSamples = film.rejectedSamples();

@@ -25,6 +25,7 @@ struct RenderResult {
     Image image;                 // the crop region, weighted mean per pixel
     double seconds = 0;
     double meanSpp = 0;          // samples actually taken per pixel, on average
+    double lightPaths = 0;       // splat normalisation: light paths traced / imaging ratio
     int targetSpp = 0;
     bool stoppedEarly = false;   // time budget or cancellation
     PathStats stats;

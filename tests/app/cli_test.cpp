@@ -194,3 +194,29 @@ TEST_F(Cli, McWritesJsonAndSvgAndRejectsUnknownNames) {
     for (const char* opt : {"--integrand", "--dims", "--technique", "--n", "--runs", "--seed", "--json", "--svg"})
         EXPECT_NE(help.out.find(opt), std::string::npos) << opt;
 }
+
+TEST_F(Cli, BdptStrategyImagesAndIntegratorChecks) {
+    std::string scene = write("s.pbrt", kSmallScene);
+    fs::path strategies = dir / "strategies";
+    Result r = run("render --quiet --integrator bdpt --maxdepth 2 --bdpt-strategies " + strategies.string() + " " + scene +
+                   " -o " + (dir / "b.exr").string());
+    ASSERT_EQ(r.status, 0) << r.out;
+    // Depths 0..2: (0,2); (0,3) (1,2) (2,1); (0,4) (1,3) (2,2) (3,1), weighted and unweighted.
+    for (const char* name : {"s0_t2", "s0_t3", "s1_t2", "s2_t1", "s0_t4", "s1_t3", "s2_t2", "s3_t1"}) {
+        EXPECT_TRUE(fs::exists(strategies / (std::string(name) + ".exr"))) << name;
+        EXPECT_TRUE(fs::exists(strategies / (std::string(name) + "_unweighted.exr"))) << name;
+    }
+    ps::Image s = ps::readImage((strategies / "s1_t2.exr").string());
+    EXPECT_EQ(s.width, 32);
+    // Strategy images only come from BDPT; light tracing and BDPT need a perspective camera.
+    Result wrong = run("render --quiet --integrator path --bdpt-strategies " + strategies.string() + " " + scene);
+    EXPECT_EQ(wrong.status, 2);
+    EXPECT_NE(wrong.out.find("--integrator bdpt"), std::string::npos) << wrong.out;
+    std::string ortho = write("o.pbrt", std::string(kSmallScene).replace(std::string(kSmallScene).find("perspective"), 11,
+                                                                           "orthographic"));
+    Result o = run("render --quiet --integrator light " + ortho + " -o " + (dir / "o.exr").string());
+    EXPECT_EQ(o.status, 2);
+    EXPECT_NE(o.out.find("perspective"), std::string::npos) << o.out;
+    Result l = run("render --quiet --integrator light --spp 2 " + scene + " -o " + (dir / "l.exr").string());
+    EXPECT_EQ(l.status, 0) << l.out;
+}

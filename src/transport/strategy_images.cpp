@@ -1,0 +1,63 @@
+#include "transport/strategy_images.h"
+
+namespace ps {
+
+StrategyImages::StrategyImages(PixelBounds bounds, int xRes, int yRes, const Filter& filter, int maxDepth,
+                               float imagingRatio)
+    : bounds_(bounds), maxDepth_(maxDepth), imagingRatio_(imagingRatio) {
+    for (int depth = 0; depth <= maxDepth; ++depth)
+        for (int t = 2; t <= depth + 2; ++t) strategies_.push_back({depth + 2 - t, t});
+    sums_.assign(strategies_.size() * 2 * size_t(bounds.area()) * 3, 0.0f);
+    weights_.assign(size_t(bounds.area()), 0.0);
+    for (int depth = 0; depth <= maxDepth; ++depth)
+        for (int k = 0; k < 2; ++k) splatFilms_.push_back(std::make_unique<Film>(xRes, yRes, bounds, &filter));
+}
+
+int StrategyImages::slot(int s, int t) const {
+    int depth = s + t - 2;
+    if (t < 2 || depth < 0 || depth > maxDepth_) return -1;
+    // Depth d occupies d + 1 slots (t = 2 .. d + 2) after those of smaller depths.
+    return depth * (depth + 1) / 2 + (t - 2);
+}
+
+void StrategyImages::addCameraSample(int px, int py, float filterWeight, const Spectrum* contributions) {
+    size_t pixel = size_t(py - bounds_.y0) * bounds_.width() + (px - bounds_.x0);
+    weights_[pixel] += filterWeight;
+    size_t area = size_t(bounds_.area());
+    for (size_t i = 0; i < strategies_.size() * 2; ++i) {
+        const Spectrum& c = contributions[i];
+        if (c.isBlack() || !c.isFinite()) continue;
+        float* p = &sums_[(i * area + pixel) * 3];
+        for (int ch = 0; ch < 3; ++ch) p[ch] += c[ch] * filterWeight * imagingRatio_;
+    }
+}
+
+void StrategyImages::splat(int s, Vec2 pRaster, Spectrum weighted, Spectrum unweighted, int sampleIndex) {
+    int depth = s - 1;
+    if (depth < 0 || depth > maxDepth_) return;
+    splatFilms_[size_t(depth) * 2]->addSplat(pRaster, weighted, sampleIndex);
+    splatFilms_[size_t(depth) * 2 + 1]->addSplat(pRaster, unweighted, sampleIndex);
+}
+
+std::vector<std::pair<std::string, Image>> StrategyImages::images(double lightPaths) const {
+    std::vector<std::pair<std::string, Image>> out;
+    size_t area = size_t(bounds_.area());
+    auto name = [](int s, int t, int k) {
+        return "s" + std::to_string(s) + "_t" + std::to_string(t) + (k ? "_unweighted" : "");
+    };
+    for (size_t i = 0; i < strategies_.size(); ++i)
+        for (int k = 0; k < 2; ++k) {
+            Image img(bounds_.width(), bounds_.height());
+            const float* src = &sums_[((i * 2 + size_t(k)) * area) * 3];
+            for (size_t p = 0; p < area; ++p)
+                for (int ch = 0; ch < 3; ++ch)
+                    img.rgb[p * 3 + ch] = weights_[p] != 0 ? float(src[p * 3 + ch] / weights_[p]) : 0.0f;
+            out.push_back({name(strategies_[i].first, strategies_[i].second, k), std::move(img)});
+        }
+    for (int depth = 1; depth <= maxDepth_; ++depth)  // (1, 1) is not a BDPT strategy
+        for (int k = 0; k < 2; ++k)
+            out.push_back({name(depth + 1, 1, k), splatFilms_[size_t(depth) * 2 + size_t(k)]->image(lightPaths)});
+    return out;
+}
+
+}  // namespace ps

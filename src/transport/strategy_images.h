@@ -1,0 +1,42 @@
+// Per-strategy images of BDPT (thesis fig. 10.3): for every (s, t) up to a path depth, the
+// contribution of that strategy alone, weighted by its MIS weight and unweighted. Each
+// unweighted image estimates the whole image of paths of its depth (when the strategy can
+// sample them all); the weighted ones sum to the BDPT image. Users debug scenes with them.
+#pragma once
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+#include "film/film.h"
+#include "film/filter.h"
+#include "image/image.h"
+#include "math/spectrum.h"
+
+namespace ps {
+
+class StrategyImages {
+public:
+    StrategyImages(PixelBounds bounds, int xRes, int yRes, const Filter& filter, int maxDepth, float imagingRatio);
+    int maxDepth() const { return maxDepth_; }
+    // Slots index strategies (s, t >= 2); -1 for strategies not recorded.
+    int slotCount() const { return int(strategies_.size()); }
+    int slot(int s, int t) const;
+    // One camera sample's contributions, [slot * 2 + 0] weighted and [slot * 2 + 1]
+    // unweighted. Pixels are owned by one thread at a time (tiles), as for the film.
+    void addCameraSample(int px, int py, float filterWeight, const Spectrum* contributions);
+    // Light-tracing strategies (t = 1) land anywhere; thread-safe.
+    void splat(int s, Vec2 pRaster, Spectrum weighted, Spectrum unweighted, int sampleIndex);
+    // Images named "s<S>_t<T>" and "s<S>_t<T>_unweighted".
+    std::vector<std::pair<std::string, Image>> images(double lightPaths) const;
+
+private:
+    PixelBounds bounds_;
+    int maxDepth_;
+    float imagingRatio_;
+    std::vector<std::pair<int, int>> strategies_;  // (s, t) by slot
+    std::vector<float> sums_;      // [slot][weighted/unweighted][pixel][rgb]
+    std::vector<double> weights_;  // per pixel: sum of filter weights of camera samples
+    std::vector<std::unique_ptr<Film>> splatFilms_;  // per depth: (s = depth + 1, t = 1) weighted, unweighted
+};
+
+}  // namespace ps
