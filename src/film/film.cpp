@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <tbb/task_arena.h>
+
 #include "mc/rng.h"
 
 namespace ps {
@@ -11,9 +13,24 @@ Film::Film(int xRes, int yRes, PixelBounds bounds, const Filter* splatFilter)
     : xRes_(xRes), yRes_(yRes), bounds_(bounds), pixels_(size_t(bounds.area())), splatFilter_(splatFilter) {
     if (splatFilter_) {
         size_t n = size_t(bounds.area()) * 6;
-        splats_.reset(new std::atomic<int64_t>[n]);
-        for (size_t i = 0; i < n; ++i) splats_[i].store(0, std::memory_order_relaxed);
+        perThreadSplats_ = double(n) * 8 * tbb::this_task_arena::max_concurrency() < 1024.0 * 1024 * 1024;
+        if (!perThreadSplats_) {
+            splats_.reset(new std::atomic<int64_t>[n]);
+            for (size_t i = 0; i < n; ++i) splats_[i].store(0, std::memory_order_relaxed);
+        }
     }
+}
+
+std::vector<int64_t> Film::mergedSplats() const {
+    size_t n = splatFilter_ ? size_t(bounds_.area()) * 6 : 0;
+    std::vector<int64_t> merged(n, 0);
+    if (!perThreadSplats_) {
+        for (size_t i = 0; i < n; ++i) merged[i] = splats_[i].load(std::memory_order_relaxed);
+        return merged;
+    }
+    for (const std::vector<int64_t>& t : threadSplats_)
+        for (size_t i = 0; i < t.size(); ++i) merged[i] += t[i];
+    return merged;
 }
 
 void Film::addSplat(Vec2 pFilm, Spectrum L, int sampleIndex) {
@@ -30,6 +47,11 @@ void Film::addSplat(Vec2 pFilm, Spectrum L, int sampleIndex) {
     int x1 = std::min(bounds_.x1 - 1, int(std::floor(pFilm.x - 0.5f + r.x)));
     int y0 = std::max(bounds_.y0, int(std::ceil(pFilm.y - 0.5f - r.y)));
     int y1 = std::min(bounds_.y1 - 1, int(std::floor(pFilm.y - 0.5f + r.y)));
+    std::vector<int64_t>* local = nullptr;
+    if (perThreadSplats_) {
+        local = &threadSplats_.local();
+        if (local->empty()) local->assign(size_t(bounds_.area()) * 6, 0);
+    }
     for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
             float w = splatFilter_->evaluate({pFilm.x - (x + 0.5f), pFilm.y - (y + 0.5f)}) * invIntegral;
@@ -49,13 +71,16 @@ void Film::addSplat(Vec2 pFilm, Spectrum L, int sampleIndex) {
             for (int c = 0; c < 3; ++c) {
                 double dither = double((h >> (21 * c)) & 0x1fffff) * 0x1p-21;
                 int64_t q = int64_t(std::floor(v[c] + dither));
-                if (q != 0) splats_[base + c].fetch_add(q, std::memory_order_relaxed);
+                if (q == 0) continue;
+                if (local) (*local)[base + c] += q;
+                else splats_[base + c].fetch_add(q, std::memory_order_relaxed);
             }
         }
 }
 
 Image Film::image(double lightPaths) const {
     const double splatScale = splatFilter_ && lightPaths > 0 ? double(xRes_) * double(yRes_) / lightPaths : 0.0;
+    const std::vector<int64_t> splats = mergedSplats();
     Image img(bounds_.width(), bounds_.height());
     for (int y = 0; y < bounds_.height(); ++y)
         for (int x = 0; x < bounds_.width(); ++x) {
@@ -65,7 +90,8 @@ Image Film::image(double lightPaths) const {
                 v = Spectrum(float(p.sum[0] / p.weight), float(p.sum[1] / p.weight), float(p.sum[2] / p.weight));
             if (splatScale > 0) {
                 size_t i = size_t(y) * bounds_.width() + x;
-                for (int c = 0; c < 3; ++c) v[c] += float((splatValue(i, 0, c) + splatValue(i, 1, c)) * splatScale);
+                for (int c = 0; c < 3; ++c)
+                    v[c] += float((splatValue(splats, i, 0, c) + splatValue(splats, i, 1, c)) * splatScale);
             }
             if (!v.isFinite()) v = Spectrum();
             img.set(x, y, v);
@@ -79,12 +105,14 @@ Film::ErrorEstimate Film::errorEstimate(double lightPaths) const {
     if (splatFilter_) {
         // Two independent half estimates H0, H1 of the pixel: Var((H0+H1)/2) ~ (H0-H1)^2/4.
         const double halfScale = lightPaths > 0 ? 2 * double(xRes_) * double(yRes_) / lightPaths : 0.0;
+        const std::vector<int64_t> splats = mergedSplats();
         for (size_t i = 0; i < pixels_.size(); ++i) {
             const Pixel& p = pixels_[i];
             double h[2];
             for (int k = 0; k < 2; ++k) {
                 h[k] = p.halfWeight[k] != 0 ? p.halfY[k] / p.halfWeight[k] : 0.0;
-                Spectrum s(float(splatValue(i, k, 0)), float(splatValue(i, k, 1)), float(splatValue(i, k, 2)));
+                Spectrum s(float(splatValue(splats, i, k, 0)), float(splatValue(splats, i, k, 1)),
+                           float(splatValue(splats, i, k, 2)));
                 h[k] += s.luminance() * halfScale;
             }
             double m = 0.5 * (h[0] + h[1]);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 #include <memory>
+#include <tbb/enumerable_thread_specific.h>
 #include "film/filter.h"
 #include "image/image.h"
 #include "math/spectrum.h"
@@ -96,9 +97,10 @@ private:
         double halfY[2] = {0, 0}, halfWeight[2] = {0, 0};  // splatting films only
     };
     static constexpr double kSplatFixedPoint = 268435456.0;  // 2^28 units per radiance unit
-    double splatValue(size_t pixel, int half, int c) const {
-        return double(splats_[(pixel * 2 + size_t(half)) * 3 + size_t(c)].load(std::memory_order_relaxed)) /
-               kSplatFixedPoint;
+    // The splat sums of every thread, merged (integer sums: the order does not matter).
+    std::vector<int64_t> mergedSplats() const;
+    static double splatValue(const std::vector<int64_t>& splats, size_t pixel, int half, int c) {
+        return double(splats[(pixel * 2 + size_t(half)) * 3 + size_t(c)]) / kSplatFixedPoint;
     }
     size_t index(int px, int py) const { return size_t(py - bounds_.y0) * bounds_.width() + (px - bounds_.x0); }
 
@@ -107,7 +109,12 @@ private:
     std::vector<Pixel> pixels_;
     std::atomic<long long> rejected_{0};
     const Filter* splatFilter_ = nullptr;
-    std::unique_ptr<std::atomic<int64_t>[]> splats_;  // [pixel][half][channel]
+    // Splat sums [pixel][half][channel]: per thread without atomics when they fit in memory
+    // (an atomic add per splat and channel costs more than the connection that made it),
+    // else one shared array of atomics.
+    bool perThreadSplats_ = false;
+    tbb::enumerable_thread_specific<std::vector<int64_t>> threadSplats_;
+    std::unique_ptr<std::atomic<int64_t>[]> splats_;
 };
 
 }  // namespace ps
