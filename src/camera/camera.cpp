@@ -22,6 +22,13 @@ Camera::Camera(const Params& p) : params_(p) {
     filmArea_ = std::fabs((sx1_ - sx0_) * (sy1_ - sy0_)) * tanHalfFov_ * tanHalfFov_;
 }
 
+void Camera::setFilterMargin(Vec2 m) {
+    margin_ = m;
+    float xr = float(params_.xRes), yr = float(params_.yRes);
+    filmArea_ = std::fabs((sx1_ - sx0_) * (sy1_ - sy0_)) * tanHalfFov_ * tanHalfFov_ * ((xr + 2 * m.x) / xr) *
+                ((yr + 2 * m.y) / yr);
+}
+
 bool Camera::rasterOf(Vec3 oCam, Vec3 dCam, Vec2* pRaster) const {
     // Every ray through a lens point focused at film point x passes through x's pinhole image
     // on the plane of focus (z = 1 for a pinhole), so that point names the film position.
@@ -31,7 +38,7 @@ bool Camera::rasterOf(Vec3 oCam, Vec3 dCam, Vec2* pRaster) const {
     float rx = (sx - sx0_) / (sx1_ - sx0_) * params_.xRes;
     float ry = (sy1_ - sy) / (sy1_ - sy0_) * params_.yRes;
     if (pRaster) *pRaster = {rx, ry};
-    return rx >= 0 && rx < params_.xRes && ry >= 0 && ry < params_.yRes;
+    return rx >= -margin_.x && rx < params_.xRes + margin_.x && ry >= -margin_.y && ry < params_.yRes + margin_.y;
 }
 
 float Camera::We(const Ray& r, Vec2* pRaster) const {

@@ -52,6 +52,10 @@ public:
     std::optional<CameraWiSample> sampleWi(Vec3 ref, Vec2 u) const;
     // The viewing direction in world space (the lens normal).
     Vec3 forward() const { return forward_; }
+    // The pixel filter's radius: camera samples (and light paths splatted onto the film)
+    // reach that far beyond the film's edge, so importance extends over the film widened by
+    // it on every side; splats are normalised by the widened film's pixel count to match.
+    void setFilterMargin(Vec2 rasterMargin);
 
 private:
     float lensArea() const { return params_.lensRadius > 0 ? kPi * params_.lensRadius * params_.lensRadius : 1.0f; }
@@ -61,7 +65,8 @@ private:
     Params params_;
     Transform cameraFromWorld_;
     Vec3 forward_;
-    float filmArea_ = 1;  // screen window area at z = 1
+    float filmArea_ = 1;  // screen window area at z = 1, widened by the filter margin
+    Vec2 margin_;         // filter radius in raster units
     float sx0_, sx1_, sy0_, sy1_;  // screen window
     float tanHalfFov_ = 1;
 };

@@ -79,7 +79,7 @@ void Film::addSplat(Vec2 pFilm, Spectrum L, int sampleIndex) {
 }
 
 Image Film::image(double lightPaths) const {
-    const double splatScale = splatFilter_ && lightPaths > 0 ? double(xRes_) * double(yRes_) / lightPaths : 0.0;
+    const double splatScale = splatFilter_ && lightPaths > 0 ? splatPixelCount() / lightPaths : 0.0;
     const std::vector<int64_t> splats = mergedSplats();
     Image img(bounds_.width(), bounds_.height());
     for (int y = 0; y < bounds_.height(); ++y)
@@ -104,7 +104,7 @@ Film::ErrorEstimate Film::errorEstimate(double lightPaths) const {
     if (pixels_.empty()) return e;
     if (splatFilter_) {
         // Two independent half estimates H0, H1 of the pixel: Var((H0+H1)/2) ~ (H0-H1)^2/4.
-        const double halfScale = lightPaths > 0 ? 2 * double(xRes_) * double(yRes_) / lightPaths : 0.0;
+        const double halfScale = lightPaths > 0 ? 2 * splatPixelCount() / lightPaths : 0.0;
         const std::vector<int64_t> splats = mergedSplats();
         for (size_t i = 0; i < pixels_.size(); ++i) {
             const Pixel& p = pixels_[i];

@@ -70,7 +70,8 @@ public:
 
     // The image of the crop region: each pixel the weighted mean of its samples, plus the
     // splats normalised by the number of light paths traced (each carries importance
-    // for the whole film, so a pixel's share is xRes*yRes / lightPaths).
+    // for the whole film, widened by the filter radius, so a pixel's share is that
+    // widened film's pixel count / lightPaths).
     Image image(double lightPaths = 0) const;
     long long rejectedSamples() const { return rejected_.load(); }
 
@@ -97,6 +98,12 @@ private:
         double halfY[2] = {0, 0}, halfWeight[2] = {0, 0};  // splatting films only
     };
     static constexpr double kSplatFixedPoint = 268435456.0;  // 2^28 units per radiance unit
+    // The film widened by the filter radius on every side, in pixels: the area over which
+    // camera importance is spread (see Camera::setFilterMargin).
+    double splatPixelCount() const {
+        Vec2 r = splatFilter_->radius();
+        return (double(xRes_) + 2 * r.x) * (double(yRes_) + 2 * r.y);
+    }
     // The splat sums of every thread, merged (integer sums: the order does not matter).
     std::vector<int64_t> mergedSplats() const;
     static double splatValue(const std::vector<int64_t>& splats, size_t pixel, int half, int c) {

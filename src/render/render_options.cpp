@@ -123,6 +123,7 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
 
     applyCamera(desc, scene, xRes, yRes);
     scene.setFilter(createFilter(desc.filter));
+    scene.camera().setFilterMargin(scene.filter().radius());
 
     // Sampler: pbrt's Sobol family maps to our padded Owen-scrambled Sobol sampler.
     const ParamSet& sp = desc.sampler.params;

@@ -46,6 +46,7 @@ public:
     const std::vector<std::unique_ptr<Light>>& lights() const { return lights_; }
     const std::vector<const Light*>& infiniteLights() const { return infiniteLights_; }
     const Camera& camera() const { return *camera_; }
+    Camera& camera() { return *camera_; }
     const Filter& filter() const { return *filter_; }
     const PixelBounds& pixelBounds() const { return pixelBounds_; }
     void setPixelBounds(const PixelBounds& b) { pixelBounds_ = b; }
