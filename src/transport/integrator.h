@@ -5,6 +5,7 @@
 #include <string>
 #include "geometry/ray.h"
 #include "film/film.h"
+#include "materials/material.h"
 #include "math/spectrum.h"
 #include "mc/sampler.h"
 #include "render/scene.h"
@@ -24,6 +25,20 @@ struct PathStats {
         return *this;
     }
 };
+
+// The BxDF at a surface hit (textures evaluated, `mix` resolved), allocated in scratch;
+// nullptr for `interface` materials, which do not scatter.
+inline const BxDF* surfaceBxDF(const SurfaceInteraction& si, ScratchBuffer& scratch) {
+    if (!si.material) return nullptr;
+    MaterialEvalContext ctx;
+    ctx.p = si.p;
+    ctx.n = si.ns;
+    ctx.uv = si.uv;
+    ctx.wo = si.wo;
+    ctx.dpdu = si.dpdu;
+    const Material* material = si.material->resolve(ctx);
+    return material ? material->bxdf(ctx, scratch) : nullptr;
+}
 
 // What one camera sample's estimator works with.
 struct SampleContext {

@@ -77,14 +77,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
             }
         }
 
-        MaterialEvalContext mctx;
-        mctx.p = si.p;
-        mctx.n = si.ns;
-        mctx.uv = si.uv;
-        mctx.wo = si.wo;
-        mctx.dpdu = si.dpdu;
-        const Material* material = si.material ? si.material->resolve(mctx) : nullptr;
-        const BxDF* bxdf = material ? material->bxdf(mctx, scratch) : nullptr;
+        const BxDF* bxdf = surfaceBxDF(si, scratch);
         if (!bxdf) {
             // `interface`: not a scattering event; continue straight through.
             specularBounce = true;

@@ -98,14 +98,7 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, Sampler& sampler,
             }
             break;
         }
-        MaterialEvalContext mctx;
-        mctx.p = si.p;
-        mctx.n = si.ns;
-        mctx.uv = si.uv;
-        mctx.wo = si.wo;
-        mctx.dpdu = si.dpdu;
-        const Material* material = si.material ? si.material->resolve(mctx) : nullptr;
-        const BxDF* bxdf = material ? material->bxdf(mctx, scratch) : nullptr;
+        const BxDF* bxdf = surfaceBxDF(si, scratch);
         if (!bxdf) {
             // `interface`: not a vertex; the ray continues and the density stays per solid angle.
             if (++passThroughs > 1024) break;  // a degenerate stack of coincident interfaces

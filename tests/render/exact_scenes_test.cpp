@@ -21,11 +21,47 @@ void expectWithin4Sigma(const RegionStats& r, const double expected[3], double m
     }
 }
 
-}  // namespace
+// Irradiance below the centre of a parallel rectangle of radiance L, 2a x 2b at height h:
+// four corner form factors F = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + (X<->Y)].
+double cornerFormFactor(double a, double b, double h) {
+    double X = a / h, Y = b / h;
+    double sx = std::sqrt(1 + X * X), sy = std::sqrt(1 + Y * Y);
+    return (X / sx * std::atan(Y / sx) + Y / sy * std::atan(X / sy)) / (2 * M_PI);
+}
 
-// A convex diffuse object under a uniform sky reflects a * L exactly (it never sees itself).
-TEST(ExactScenes, DiffuseSphereUnderUniformSky) {
-    const char* scene = R"(
+// A diffuse plane under a rectangular light, seen in a tiny spot by a camera between them.
+const char* kPlaneUnderRectangle = R"(
+        LookAt 0 0.5 0   0 0 0   0 0 1
+        Camera "perspective" "float fov" [ 0.5 ]
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 1 ]
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 2 3 4 ]
+          Shape "bilinearmesh" "point3 P" [ -1 1 -0.5   1 1 -0.5   -1 1 0.5   1 1 0.5 ]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+        Shape "trianglemesh" "point3 P" [ -20 0 -20  20 0 -20  20 0 20  -20 0 20 ]
+            "integer indices" [ 0 1 2 0 2 3 ]
+    )";
+
+// The same plane under a point light.
+const char* kPlaneUnderPoint = R"(
+        LookAt 0 0.5 0   0 0 0   0 0 1
+        Camera "perspective" "float fov" [ 0.5 ]
+        Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 3 ]
+        WorldBegin
+        LightSource "point" "rgb I" [ 2 3 4 ] "point3 from" [ 0 2 0 ]
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+        Shape "trianglemesh" "point3 P" [ -20 0 -20  20 0 -20  20 0 20  -20 0 20 ]
+            "integer indices" [ 0 1 2 0 2 3 ]
+    )";
+
+// A diffuse sphere filling the view under a uniform sky.
+const char* kSphereUnderSky = R"(
         LookAt 0 0 5  0 0 0  0 1 0
         Camera "perspective" "float fov" [ 10 ]
         Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
@@ -36,12 +72,16 @@ TEST(ExactScenes, DiffuseSphereUnderUniformSky) {
         Material "diffuse" "rgb reflectance" [ 0.5 0.3 0.7 ]
         Shape "sphere" "float radius" [ 1 ]
     )";
+
+}  // namespace
+
+// A convex diffuse object under a uniform sky reflects a * L exactly (it never sees itself).
+TEST(ExactScenes, DiffuseSphereUnderUniformSky) {
+    const char* scene = kSphereUnderSky;
     RenderResult r = renderString(scene, 64);
     const double exact[3] = {0.5 * 0.8, 0.3 * 0.9, 0.7 * 1.0};
     expectWithin4Sigma(wholeImage(r.image), exact);
 }
-
-static double cornerFormFactor(double a, double b, double h);
 
 // Inside a closed sphere emitting Le with albedo r: pixel = Le * sum_{k=0..d} r^k.
 // Every integrator (path, light and bidirectional) must reproduce it.
@@ -78,17 +118,7 @@ INSTANTIATE_TEST_SUITE_P(Depths, ClosedFurnace,
 // The other exact scenes with light tracing and BDPT, where light tracing can reach the
 // camera's view (not the tiny footprints below, which only the camera can find).
 TEST(ExactScenes, BidirectionalDiffuseSphereUnderUniformSky) {
-    const char* scene = R"(
-        LookAt 0 0 5  0 0 0  0 1 0
-        Camera "perspective" "float fov" [ 10 ]
-        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
-        PixelFilter "box"
-        Integrator "path" "integer maxdepth" [ 5 ]
-        WorldBegin
-        LightSource "infinite" "rgb L" [ 0.8 0.9 1.0 ]
-        Material "diffuse" "rgb reflectance" [ 0.5 0.3 0.7 ]
-        Shape "sphere" "float radius" [ 1 ]
-    )";
+    const char* scene = kSphereUnderSky;
     const double exact[3] = {0.5 * 0.8, 0.3 * 0.9, 0.7 * 1.0};
     for (const char* integrator : {"light", "bdpt"}) {
         SCOPED_TRACE(integrator);
@@ -119,65 +149,19 @@ TEST(ExactScenes, BidirectionalDirectlySeenLight) {
 }
 
 TEST(ExactScenes, BidirectionalPlaneUnderLights) {
-    const char* rect = R"(
-        LookAt 0 0.5 0   0 0 0   0 0 1
-        Camera "perspective" "float fov" [ 0.5 ]
-        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
-        PixelFilter "box"
-        Integrator "path" "integer maxdepth" [ 1 ]
-        WorldBegin
-        AttributeBegin
-          AreaLightSource "diffuse" "rgb L" [ 2 3 4 ]
-          Shape "bilinearmesh" "point3 P" [ -1 1 -0.5   1 1 -0.5   -1 1 0.5   1 1 0.5 ]
-        AttributeEnd
-        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
-        Shape "trianglemesh" "point3 P" [ -20 0 -20  20 0 -20  20 0 20  -20 0 20 ]
-            "integer indices" [ 0 1 2 0 2 3 ]
-    )";
+    const char* rect = kPlaneUnderRectangle;
     double f = 4 * cornerFormFactor(1.0, 0.5, 1.0);
     const double exactRect[3] = {0.5 * 2 * f, 0.5 * 3 * f, 0.5 * 4 * f};
     expectWithin4Sigma(wholeImage(renderString(rect, 256, 7, 0, "bdpt").image), exactRect);
-    const char* point = R"(
-        LookAt 0 0.5 0   0 0 0   0 0 1
-        Camera "perspective" "float fov" [ 0.5 ]
-        Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
-        PixelFilter "box"
-        Integrator "path" "integer maxdepth" [ 3 ]
-        WorldBegin
-        LightSource "point" "rgb I" [ 2 3 4 ] "point3 from" [ 0 2 0 ]
-        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
-        Shape "trianglemesh" "point3 P" [ -20 0 -20  20 0 -20  20 0 20  -20 0 20 ]
-            "integer indices" [ 0 1 2 0 2 3 ]
-    )";
+    const char* point = kPlaneUnderPoint;
     const double exactPoint[3] = {0.5 * 2 / (M_PI * 4), 0.5 * 3 / (M_PI * 4), 0.5 * 4 / (M_PI * 4)};
     expectWithin4Sigma(wholeImage(renderString(point, 64, 7, 0, "bdpt").image), exactPoint);
 }
 
-// Irradiance below the centre of a parallel rectangle of radiance L, 2a x 2b at height h:
-// four corner form factors F = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + (X<->Y)].
-static double cornerFormFactor(double a, double b, double h) {
-    double X = a / h, Y = b / h;
-    double sx = std::sqrt(1 + X * X), sy = std::sqrt(1 + Y * Y);
-    return (X / sx * std::atan(Y / sx) + Y / sy * std::atan(X / sy)) / (2 * M_PI);
-}
 
 TEST(ExactScenes, DiffusePlaneUnderRectangularLight) {
     // The camera sits between plane and light (it does not occlude) and sees a tiny spot.
-    const char* scene = R"(
-        LookAt 0 0.5 0   0 0 0   0 0 1
-        Camera "perspective" "float fov" [ 0.5 ]
-        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
-        PixelFilter "box"
-        Integrator "path" "integer maxdepth" [ 1 ]
-        WorldBegin
-        AttributeBegin
-          AreaLightSource "diffuse" "rgb L" [ 2 3 4 ]
-          Shape "bilinearmesh" "point3 P" [ -1 1 -0.5   1 1 -0.5   -1 1 0.5   1 1 0.5 ]
-        AttributeEnd
-        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
-        Shape "trianglemesh" "point3 P" [ -20 0 -20  20 0 -20  20 0 20  -20 0 20 ]
-            "integer indices" [ 0 1 2 0 2 3 ]
-    )";
+    const char* scene = kPlaneUnderRectangle;
     RenderResult r = renderString(scene, 256);
     double f = 4 * cornerFormFactor(1.0, 0.5, 1.0);
     const double exact[3] = {0.5 * 2 * f, 0.5 * 3 * f, 0.5 * 4 * f};
@@ -186,18 +170,7 @@ TEST(ExactScenes, DiffusePlaneUnderRectangularLight) {
 
 // A point light of intensity I at height h over a diffuse plane: L = rho I / (pi h^2).
 TEST(ExactScenes, DiffusePlaneUnderPointLight) {
-    const char* scene = R"(
-        LookAt 0 0.5 0   0 0 0   0 0 1
-        Camera "perspective" "float fov" [ 0.5 ]
-        Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
-        PixelFilter "box"
-        Integrator "path" "integer maxdepth" [ 3 ]
-        WorldBegin
-        LightSource "point" "rgb I" [ 2 3 4 ] "point3 from" [ 0 2 0 ]
-        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
-        Shape "trianglemesh" "point3 P" [ -20 0 -20  20 0 -20  20 0 20  -20 0 20 ]
-            "integer indices" [ 0 1 2 0 2 3 ]
-    )";
+    const char* scene = kPlaneUnderPoint;
     RenderResult r = renderString(scene, 16);
     RegionStats s = wholeImage(r.image);
     // Deterministic up to the footprint's cos^4 falloff (< 1e-5 relative here).
