@@ -13,6 +13,8 @@ inline uint64_t mix64(uint64_t v) {
     v ^= v >> 33;
     return v;
 }
+// The top 24 bits of a hash as a float in [0, 1).
+inline float hashToUniform(uint64_t h) { return float(h >> 40) * 0x1p-24f; }
 inline uint64_t hashCombine(uint64_t a, uint64_t b) { return mix64(a ^ (b + 0x9e3779b97f4a7c15ULL + (a << 6) + (a >> 2))); }
 
 class Rng {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 #include "math/vec.h"
 #include "mc/rng.h"
 #include "mc/permutation.h"
@@ -25,14 +26,24 @@ public:
     virtual std::unique_ptr<Sampler> clone() const = 0;
 };
 
+// The per-(pixel, seed) hash every sampler keys its randomisation on.
+inline uint64_t pixelHash(int px, int py, uint64_t seed) {
+    return hashCombine(mix64((uint64_t(uint32_t(px)) << 32) | uint32_t(py)), seed);
+}
+
+// Point s + j (j in [0,1) the jitter) of `count` equal strata of [0,1), kept below 1 after rounding.
+inline float jitteredStratum(uint32_t s, uint32_t count, float j) {
+    float u = (float(s) + j) / float(count);
+    return u < 1.0f ? u : 0x1.fffffep-1f;
+}
+
 // Independent uniform samples (thesis §2.7.1's baseline): one PCG stream per pixel sample.
 class IndependentSampler final : public Sampler {
 public:
     explicit IndependentSampler(uint64_t seed) : seed_(seed) {}
     Kind kind() const override { return Kind::Independent; }
     void startPixelSample(int px, int py, int sampleIndex) override {
-        uint64_t pixel = (uint64_t(uint32_t(px)) << 32) | uint32_t(py);
-        rng_.seed(hashCombine(mix64(pixel), seed_), mix64(uint64_t(sampleIndex) ^ (seed_ << 20)));
+        rng_.seed(pixelHash(px, py, seed_), mix64(uint64_t(sampleIndex) ^ (seed_ << 20)));
     }
     float get1D() override { return rng_.uniform(); }
     Vec2 get2D() override {
@@ -56,7 +67,7 @@ public:
     explicit PaddedSobolSampler(uint64_t seed) : seed_(seed) {}
     Kind kind() const override { return Kind::PaddedSobol; }
     void startPixelSample(int px, int py, int sampleIndex) override {
-        pixelHash_ = hashCombine(mix64((uint64_t(uint32_t(px)) << 32) | uint32_t(py)), seed_);
+        pixelHash_ = pixelHash(px, py, seed_);
         index_ = uint32_t(sampleIndex);
         index1Reversed_ = sobolDim1Reversed(index_);
         dimension_ = 0;
@@ -103,7 +114,7 @@ public:
         gridSide_ = (!lhs_ && m * m == n_) ? m : 0;
     }
     void startPixelSample(int px, int py, int sampleIndex) override {
-        pixelHash_ = hashCombine(mix64((uint64_t(uint32_t(px)) << 32) | uint32_t(py)), seed_);
+        pixelHash_ = pixelHash(px, py, seed_);
         index_ = uint32_t(sampleIndex);
         dimension_ = 0;
     }
@@ -126,12 +137,9 @@ public:
 private:
     // Beyond N samples the pattern repeats with fresh jitter (index_ / n_ enters the hash).
     float jitter(uint64_t h, uint64_t k) const {
-        return float(mix64(h ^ (uint64_t(index_) * 0x9e3779b97f4a7c15ULL) ^ (k << 62)) >> 40) * 0x1p-24f;
+        return hashToUniform(mix64(h ^ (uint64_t(index_) * 0x9e3779b97f4a7c15ULL) ^ (k << 62)));
     }
-    static float stratum(uint32_t s, uint32_t count, float j) {
-        float u = (float(s) + j) / float(count);
-        return u < 1.0f ? u : 0x1.fffffep-1f;
-    }
+    static float stratum(uint32_t s, uint32_t count, float j) { return jitteredStratum(s, count, j); }
     uint64_t seed_;
     uint32_t n_, gridSide_ = 0;
     bool lhs_;
@@ -140,8 +148,18 @@ private:
     uint64_t dimension_ = 0;
 };
 
-// Names: "independent", "sobol" (padded Owen-scrambled Sobol), "stratified", "lhs".
-// nullptr for other names. samplesPerPixel sizes the strata of the stratified samplers.
-std::unique_ptr<Sampler> createSampler(const std::string& name, uint64_t seed, int samplesPerPixel = 16);
+// Names: "independent", "sobol" (padded Owen-scrambled Sobol), "stratified", "lhs",
+// "orthogonal" (randomised orthogonal arrays), "halton" (Owen-scrambled Halton), "zsobol"
+// (Sobol indexed in Morton order across the image). nullptr for other names.
+// samplesPerPixel sizes the strata of the stratified samplers; resolution (the film's larger
+// side in pixels, 0 if unknown) tells ZSobol how many Morton digits to randomise.
+std::unique_ptr<Sampler> createSampler(const std::string& name, uint64_t seed, int samplesPerPixel = 16,
+                                       int resolution = 0);
+
+// Every name createSampler accepts, the default first.
+inline const std::vector<std::string>& samplerNames() {
+    static const std::vector<std::string> names = {"sobol", "zsobol", "halton", "orthogonal", "stratified", "lhs", "independent"};
+    return names;
+}
 
 }  // namespace ps

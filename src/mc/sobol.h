@@ -46,6 +46,13 @@ inline uint32_t owenScrambleReversed(uint32_t v, uint32_t seed) {
     return reverseBits32(v);
 }
 
+// 64-bit indices, for one sequence indexed across a whole image (ZSobol). To 32 output bits,
+// dimension 0 ignores index bits >= 32, and dimension 1's generator column j equals column
+// j mod 32 (Lucas: C(j, k) mod 2 for k < 32 depends on j mod 32 only), so the high word of
+// the index folds onto the low one. Both return the reversed form.
+inline uint32_t sobolDim0Reversed64(uint64_t index) { return uint32_t(index); }
+inline uint32_t sobolDim1Reversed64(uint64_t index) { return sobolDim1Reversed(uint32_t(index) ^ uint32_t(index >> 32)); }
+
 // Owen scrambling of a 32-bit fixed-point value: a hash of each prefix of bits decides
 // whether the next bit flips (the Laine-Karras construction with Burley's constants).
 inline uint32_t owenScramble(uint32_t v, uint32_t seed) { return owenScrambleReversed(reverseBits32(v), seed); }

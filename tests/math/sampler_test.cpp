@@ -60,7 +60,7 @@ TEST(Sobol, ScrambledPointIsUniform) {
 }
 
 TEST(Samplers, DeterministicPerPixelSample) {
-    for (const char* name : {"independent", "sobol", "stratified", "lhs"}) {
+    for (const std::string& name : samplerNames()) {
         auto a = createSampler(name, 42), b = createSampler(name, 42);
         a->startPixelSample(3, 4, 5);
         float a1 = a->get1D();

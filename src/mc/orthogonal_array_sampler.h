@@ -1,0 +1,103 @@
+// Randomised orthogonal arrays (Owen 1992, "Orthogonal arrays for computer experiments,
+// integration and visualization"), with Tang's (1993) Latin hypercube refinement: the
+// samples of a pixel are stratified in every 2-D projection (a p x p jittered grid) and in
+// every 1-D projection (p^2 strata), for any pair of dimensions in an array, not only for the
+// pairs a 2-D request asks for.
+#pragma once
+#include "mc/sampler.h"
+
+namespace ps {
+
+// Bose's construction of OA(p^2, p + 1, p, 2), p prime: row (a, b) of Z_p^2 holds the
+// symbol a + c b (mod p) in column c < p and b in column p. Any two columns map the rows
+// one-to-one onto Z_p^2 (their coefficient matrix is invertible mod p), so each symbol pair
+// occurs exactly once: strength 2.
+inline uint32_t boseSymbol(uint32_t a, uint32_t b, uint32_t column, uint32_t p) {
+    return column < p ? (a + column * b) % p : b;
+}
+// The p rows holding one symbol in a column differ in the coordinate the symbol leaves free.
+inline uint32_t boseRank(uint32_t a, uint32_t b, uint32_t column, uint32_t p) { return column < p ? b : a; }
+
+// The smallest prime p with p^2 >= n.
+inline uint32_t orthogonalArrayBase(uint32_t n) {
+    auto isPrime = [](uint32_t v) {
+        for (uint32_t d = 2; d * d <= v; ++d)
+            if (v % d == 0) return false;
+        return true;
+    };
+    uint32_t p = 2;
+    while (uint64_t(p) * p < n || !isPrime(p)) ++p;
+    return p;
+}
+
+// Randomisation, per (pixel, seed, array): rows are shuffled, the symbols of each column
+// permuted, the p rows sharing a symbol spread over its p sub-strata by another permutation,
+// and each point jittered within its sub-stratum. Every point is then uniform on [0,1) (the
+// estimate is unbiased) while the array's stratification survives.
+//
+// Dimensions are taken column by column; once an array's columns are used up the next
+// dimensions read a fresh, independently randomised array (padding). Sample index i reads
+// row i mod p^2; further rounds of p^2 samples re-randomise everything.
+//
+// When the sample count N is below p^2 only the first N rows are used. The row shuffle keeps
+// rows in groups of p that share b, and within such a group columns c < p hold every symbol
+// once, so a prefix of the rows stays balanced in those columns. Column p (= b) would not, so
+// it is only used when N = p^2.
+class OrthogonalArraySampler final : public Sampler {
+public:
+    OrthogonalArraySampler(uint64_t seed, int samplesPerPixel)
+        : seed_(seed), n_(uint32_t(samplesPerPixel < 1 ? 1 : samplesPerPixel)), p_(orthogonalArrayBase(n_)),
+          columns_(p_ * p_ == n_ ? p_ + 1 : p_) {}
+    uint32_t base() const { return p_; }
+    uint32_t columnsPerArray() const { return columns_; }
+
+    void startPixelSample(int px, int py, int sampleIndex) override {
+        pixelHash_ = pixelHash(px, py, seed_);
+        row_ = uint32_t(sampleIndex) % (p_ * p_);
+        round_ = uint32_t(sampleIndex) / (p_ * p_);
+        dimension_ = 0;
+    }
+    float get1D() override {
+        uint32_t array = dimension_ / columns_, column = dimension_ % columns_;
+        ++dimension_;
+        uint64_t key = arrayKey(array);
+        Row r = shuffledRow(key);
+        return value(r, key, column);
+    }
+    Vec2 get2D() override {
+        if (dimension_ % columns_ == columns_ - 1) ++dimension_;  // a pair never straddles two arrays
+        uint32_t array = dimension_ / columns_, column = dimension_ % columns_;
+        dimension_ += 2;
+        uint64_t key = arrayKey(array);
+        Row r = shuffledRow(key);
+        return {value(r, key, column), value(r, key, column + 1)};
+    }
+    std::unique_ptr<Sampler> clone() const override {
+        return std::make_unique<OrthogonalArraySampler>(seed_, int(n_));
+    }
+
+private:
+    struct Row {
+        uint32_t a, b;
+    };
+    uint64_t arrayKey(uint32_t array) const { return hashCombine(pixelHash_, (uint64_t(round_) << 32) | array); }
+    // Row index q p + t becomes (a, b) = (pi_q(t), tau(q)): a shuffle that keeps the groups of p.
+    Row shuffledRow(uint64_t key) const {
+        uint32_t q = row_ / p_, t = row_ % p_;
+        return {permuteIndex(t, p_, uint32_t(hashCombine(key, q))), permuteIndex(q, p_, uint32_t(key >> 32))};
+    }
+    float value(Row r, uint64_t key, uint32_t column) const {
+        uint64_t h = hashCombine(key, uint64_t(column) + 1);
+        uint32_t symbol = permuteIndex(boseSymbol(r.a, r.b, column, p_), p_, uint32_t(h));
+        uint32_t sub = permuteIndex(boseRank(r.a, r.b, column, p_), p_, uint32_t(hashCombine(h, symbol)));
+        float jitter = hashToUniform(hashCombine(h ^ 0x6a09e667f3bcc909ULL, row_));
+        return jitteredStratum(symbol * p_ + sub, p_ * p_, jitter);
+    }
+
+    uint64_t seed_;
+    uint32_t n_, p_, columns_;
+    uint64_t pixelHash_ = 0;
+    uint32_t row_ = 0, round_ = 0, dimension_ = 0;
+};
+
+}  // namespace ps

@@ -1,0 +1,108 @@
+// One Owen-scrambled Sobol sequence for the whole image, indexed in Morton (Z) order of the
+// pixels (Ahmed & Wonka 2020, "Screen-space blue-noise diffusion of Monte Carlo sampling
+// error via hierarchical ordering of pixels"; pbrt-v4's ZSobolSampler). Pixel (x, y) with
+// N = 2^m samples owns the index block [morton(x, y) N, (morton(x, y) + 1) N), an aligned
+// block of a (0,2)-sequence and hence a (0,m,2)-net. The base-4 digits of the index are
+// permuted, each by a permutation chosen by a hash of the digits above it and of the
+// dimension: the map stays one-to-one and keeps each pixel's block aligned (so its net),
+// while neighbouring pixels get complementary parts of the sequence, which spreads the
+// error over the image as blue noise instead of white noise.
+#pragma once
+#include <array>
+#include "mc/sampler.h"
+
+namespace ps {
+
+// Interleaves the bits of x (even bits) and y (odd bits).
+inline uint64_t encodeMorton2(uint32_t x, uint32_t y) {
+    auto spread = [](uint64_t v) {
+        v = (v | (v << 16)) & 0x0000ffff0000ffffULL;
+        v = (v | (v << 8)) & 0x00ff00ff00ff00ffULL;
+        v = (v | (v << 4)) & 0x0f0f0f0f0f0f0f0fULL;
+        v = (v | (v << 2)) & 0x3333333333333333ULL;
+        return (v | (v << 1)) & 0x5555555555555555ULL;
+    };
+    return spread(x) | (spread(y) << 1);
+}
+
+// The 24 permutations of {0, 1, 2, 3}, for one table look-up per base-4 digit.
+inline constexpr std::array<std::array<uint8_t, 4>, 24> kPermutations4 = [] {
+    std::array<std::array<uint8_t, 4>, 24> table{};
+    int n = 0;
+    for (uint8_t a = 0; a < 4; ++a)
+        for (uint8_t b = 0; b < 4; ++b)
+            for (uint8_t c = 0; c < 4; ++c)
+                if (a != b && a != c && b != c) table[n++] = {a, b, c, uint8_t(6 - a - b - c)};
+    return table;
+}();
+
+class ZSobolSampler final : public Sampler {
+public:
+    // resolution: the film's larger side; 0 if unknown (then 2^16 is assumed).
+    ZSobolSampler(uint64_t seed, int samplesPerPixel, int resolution) : seed_(seed), resolution_(resolution) {
+        while ((1 << log2Spp_) < samplesPerPixel && log2Spp_ < 30) ++log2Spp_;
+        int log2Res = 0;
+        while ((1 << log2Res) < (resolution > 0 ? resolution : 1 << 16) && log2Res < 16) ++log2Res;
+        base4Digits_ = log2Res + (log2Spp_ + 1) / 2;
+    }
+    uint32_t samplesPerPixel() const { return 1u << log2Spp_; }
+
+    void startPixelSample(int px, int py, int sampleIndex) override {
+        uint32_t i = uint32_t(sampleIndex);
+        mortonIndex_ = (encodeMorton2(uint32_t(px), uint32_t(py)) << log2Spp_) | (i & ((1u << log2Spp_) - 1));
+        // Beyond N samples the pixel keeps its block and takes fresh scrambles.
+        scrambleKey_ = hashCombine(seed_, i >> log2Spp_);
+        dimension_ = 0;
+    }
+    float get1D() override {
+        uint64_t index = permutedIndex(dimension_);
+        uint64_t h = hashCombine(scrambleKey_, dimension_++);
+        return fixedToFloat(owenScrambleReversed(sobolDim0Reversed64(index), uint32_t(h)));
+    }
+    Vec2 get2D() override {
+        uint64_t index = permutedIndex(dimension_);
+        uint64_t h = hashCombine(scrambleKey_, dimension_);
+        dimension_ += 2;
+        return {fixedToFloat(owenScrambleReversed(sobolDim0Reversed64(index), uint32_t(h))),
+                fixedToFloat(owenScrambleReversed(sobolDim1Reversed64(index), uint32_t(h >> 32)))};
+    }
+    std::unique_ptr<Sampler> clone() const override {
+        return std::make_unique<ZSobolSampler>(seed_, int(samplesPerPixel()), resolution_);
+    }
+
+    // The Sobol index of the current pixel sample in a dimension (exposed for tests).
+    uint64_t permutedIndex(uint64_t dimension) const {
+        // With m odd the lowest index bit is a base-2 digit of its own, so base-4 digits
+        // still line up with the pixel's Morton digits.
+        const int odd = log2Spp_ & 1;
+        const int top = 2 * base4Digits_ - odd;
+        const uint64_t key = mix64(seed_ ^ (dimension * 0x9e3779b97f4a7c15ULL));
+        // Bits above the randomised digits (pixels beyond the stated resolution) pass
+        // through unchanged, which keeps the map one-to-one for any pixel.
+        uint64_t result = top < 64 ? (mortonIndex_ >> top) << top : 0;
+        for (int d = base4Digits_ - 1; d >= odd; --d) {
+            int shift = 2 * d - odd;
+            uint32_t digit = uint32_t(mortonIndex_ >> shift) & 3;
+            uint32_t perm = uint32_t((uint64_t(digitHash(mortonIndex_ >> (shift + 2), key) >> 32) * 24) >> 32);
+            result |= uint64_t(kPermutations4[perm][digit]) << shift;
+        }
+        if (odd) result |= (mortonIndex_ & 1) ^ (digitHash(mortonIndex_ >> 1, key) >> 63);
+        return result;
+    }
+
+private:
+    // A cheap multiply-xorshift hash: called once per digit on the hot path.
+    static uint64_t digitHash(uint64_t higherDigits, uint64_t key) {
+        uint64_t v = (higherDigits ^ key) * 0xbf58476d1ce4e5b9ULL;
+        v ^= v >> 31;
+        return v * 0x94d049bb133111ebULL;
+    }
+
+    uint64_t seed_;
+    int resolution_;
+    int log2Spp_ = 0, base4Digits_ = 0;
+    uint64_t mortonIndex_ = 0, scrambleKey_ = 0;
+    uint64_t dimension_ = 0;
+};
+
+}  // namespace ps
