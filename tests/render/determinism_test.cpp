@@ -32,7 +32,7 @@ const char* kScene = R"(
 }  // namespace
 
 TEST(Determinism, SameSeedSameImageAcrossThreadCounts) {
-    for (const char* sampler : {"sobol", "stratified", "lhs", "independent"}) {
+    for (const std::string& sampler : samplerNames()) {
         SceneDescription desc = parseSceneString(kScene);
         auto scene = buildScene(desc);
         auto integrator = createIntegrator("path", *scene);

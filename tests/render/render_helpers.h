@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "mc/sampler.h"
 #include "render/scene_builder.h"
 #include "scene/parser.h"
 #include "transport/renderer.h"
