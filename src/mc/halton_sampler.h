@@ -12,7 +12,7 @@ namespace ps {
 class HaltonSampler final : public Sampler {
 public:
     HaltonSampler(uint64_t seed, int samplesPerPixel)
-        : seed_(seed), lastIndex_(uint64_t(samplesPerPixel > 1 ? samplesPerPixel - 1 : 0)) {}
+        : seed_(seed), lastIndex_(uint32_t(samplesPerPixel > 1 ? samplesPerPixel - 1 : 0)) {}
     void startPixelSample(int px, int py, int sampleIndex) override {
         pixelHash_ = pixelHash(px, py, seed_);
         index_ = uint32_t(sampleIndex);
@@ -37,7 +37,8 @@ private:
         return owenScrambledRadicalInverse(index_, lastIndex_, kPrimes[dimension], h);
     }
 
-    uint64_t seed_, lastIndex_;
+    uint64_t seed_;
+    uint32_t lastIndex_;
     uint64_t pixelHash_ = 0;
     uint32_t index_ = 0, dimension_ = 0;
 };

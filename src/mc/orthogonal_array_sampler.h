@@ -55,49 +55,59 @@ public:
         pixelHash_ = pixelHash(px, py, seed_);
         row_ = uint32_t(sampleIndex) % (p_ * p_);
         round_ = uint32_t(sampleIndex) / (p_ * p_);
-        dimension_ = 0;
+        array_ = 0;
+        column_ = 0;
+        rowReady_ = false;
     }
-    float get1D() override {
-        uint32_t array = dimension_ / columns_, column = dimension_ % columns_;
-        ++dimension_;
-        uint64_t key = arrayKey(array);
-        Row r = shuffledRow(key);
-        return value(r, key, column);
-    }
+    float get1D() override { return value(takeColumns(1)); }
     Vec2 get2D() override {
-        if (dimension_ % columns_ == columns_ - 1) ++dimension_;  // a pair never straddles two arrays
-        uint32_t array = dimension_ / columns_, column = dimension_ % columns_;
-        dimension_ += 2;
-        uint64_t key = arrayKey(array);
-        Row r = shuffledRow(key);
-        return {value(r, key, column), value(r, key, column + 1)};
+        uint32_t c = takeColumns(2);  // a pair never straddles two arrays
+        return {value(c), value(c + 1)};
     }
     std::unique_ptr<Sampler> clone() const override {
         return std::make_unique<OrthogonalArraySampler>(seed_, int(n_));
     }
 
 private:
-    struct Row {
-        uint32_t a, b;
-    };
-    uint64_t arrayKey(uint32_t array) const { return hashCombine(pixelHash_, (uint64_t(round_) << 32) | array); }
-    // Row index q p + t becomes (a, b) = (pi_q(t), tau(q)): a shuffle that keeps the groups of p.
-    Row shuffledRow(uint64_t key) const {
-        uint32_t q = row_ / p_, t = row_ % p_;
-        return {permuteIndex(t, p_, uint32_t(hashCombine(key, q))), permuteIndex(q, p_, uint32_t(key >> 32))};
+    // Reserves `count` consecutive columns of one array, moving to the next array when the
+    // current one has fewer left, and returns the first. The array's key and this sample's
+    // shuffled row in it are computed once per array.
+    uint32_t takeColumns(uint32_t count) {
+        if (column_ + count > columns_) {
+            ++array_;
+            column_ = 0;
+            rowReady_ = false;
+        }
+        if (!rowReady_) {
+            rowReady_ = true;
+            arrayKey_ = hashCombine(pixelHash_, (uint64_t(round_) << 32) | array_);
+            // Row index q p + t becomes (a, b) = (pi_q(t), tau(q)): a shuffle that keeps the groups of p.
+            uint32_t q = row_ / p_, t = row_ % p_;
+            a_ = permuteIndex(t, p_, uint32_t(arrayKey_) + q * 0x9e3779b9u);
+            b_ = permuteIndex(q, p_, uint32_t(arrayKey_ >> 32));
+        }
+        uint32_t c = column_;
+        column_ += count;
+        return c;
     }
-    float value(Row r, uint64_t key, uint32_t column) const {
-        uint64_t h = hashCombine(key, uint64_t(column) + 1);
-        uint32_t symbol = permuteIndex(boseSymbol(r.a, r.b, column, p_), p_, uint32_t(h));
-        uint32_t sub = permuteIndex(boseRank(r.a, r.b, column, p_), p_, uint32_t(hashCombine(h, symbol)));
-        float jitter = hashToUniform(hashCombine(h ^ 0x6a09e667f3bcc909ULL, row_));
-        return jitteredStratum(symbol * p_ + sub, p_ * p_, jitter);
+    // Kensler's permutations take related seeds (seed + k * odd constant) as independent ones,
+    // so one hash per column feeds the symbol and sub-stratum permutations and the jitter.
+    float value(uint32_t column) const {
+        uint64_t h = mix64(arrayKey_ ^ (uint64_t(column + 1) * 0xd1b54a32d192ed03ULL));
+        uint32_t symbol = permuteIndex(boseSymbol(a_, b_, column, p_), p_, uint32_t(h));
+        uint32_t sub = permuteIndex(boseRank(a_, b_, column, p_), p_, uint32_t(h >> 32) + symbol * 0x9e3779b9u);
+        uint64_t j = (h ^ (uint64_t(row_ + 1) * 0x9e3779b97f4a7c15ULL)) * 0xbf58476d1ce4e5b9ULL;
+        return jitteredStratum(symbol * p_ + sub, p_ * p_, hashToUniform(j ^ (j >> 31)));
     }
 
     uint64_t seed_;
     uint32_t n_, p_, columns_;
     uint64_t pixelHash_ = 0;
-    uint32_t row_ = 0, round_ = 0, dimension_ = 0;
+    uint32_t row_ = 0, round_ = 0;
+    uint32_t array_ = 0, column_ = 0;  // the next column to read
+    bool rowReady_ = false;
+    uint32_t a_ = 0, b_ = 0;  // this sample's row in the current array
+    uint64_t arrayKey_ = 0;
 };
 
 }  // namespace ps

@@ -41,7 +41,8 @@ inline double radicalInverse(uint64_t index, uint32_t base) {
 // (the largest index the caller will use together) are thus scrambled consistently. Below
 // that, every digit of every such index is 0 and the nested permutations would produce i.i.d.
 // uniform digits, so the remaining tail is drawn as one uniform value.
-inline float owenScrambledRadicalInverse(uint64_t index, uint64_t limit, uint32_t base, uint64_t seed) {
+// (32-bit indices: the divisions by the base are the loop's main cost.)
+inline float owenScrambledRadicalInverse(uint32_t index, uint32_t limit, uint32_t base, uint64_t seed) {
     double inv = 1.0 / base, scale = inv, result = 0;
     uint64_t h = seed;
     for (; index | limit; index /= base, limit /= base, scale *= inv) {

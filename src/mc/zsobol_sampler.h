@@ -49,10 +49,18 @@ public:
 
     void startPixelSample(int px, int py, int sampleIndex) override {
         uint32_t i = uint32_t(sampleIndex);
-        mortonIndex_ = (encodeMorton2(uint32_t(px), uint32_t(py)) << log2Spp_) | (i & ((1u << log2Spp_) - 1));
+        uint64_t pixel = encodeMorton2(uint32_t(px), uint32_t(py));
+        mortonIndex_ = (pixel << log2Spp_) | (i & ((1u << log2Spp_) - 1));
         // Beyond N samples the pixel keeps its block and takes fresh scrambles.
         scrambleKey_ = hashCombine(seed_, i >> log2Spp_);
         dimension_ = 0;
+        if (pixel != cachedPixel_) {
+            cachedPixel_ = pixel;
+            if (++generation_ == 0) {  // wrapped: forget every stamp
+                cacheStamp_.fill(0);
+                generation_ = 1;
+            }
+        }
     }
     float get1D() override {
         uint64_t index = permutedIndex(dimension_);
@@ -71,26 +79,47 @@ public:
     }
 
     // The Sobol index of the current pixel sample in a dimension (exposed for tests).
-    uint64_t permutedIndex(uint64_t dimension) const {
+    uint64_t permutedIndex(uint64_t dimension) {
         // With m odd the lowest index bit is a base-2 digit of its own, so base-4 digits
-        // still line up with the pixel's Morton digits.
-        const int odd = log2Spp_ & 1;
-        const int top = 2 * base4Digits_ - odd;
+        // still line up with the pixel's Morton digits, which start at digit (m + 1) / 2.
+        const int odd = log2Spp_ & 1, firstPixelDigit = (log2Spp_ + 1) / 2;
         const uint64_t key = mix64(seed_ ^ (dimension * 0x9e3779b97f4a7c15ULL));
-        // Bits above the randomised digits (pixels beyond the stated resolution) pass
-        // through unchanged, which keeps the map one-to-one for any pixel.
-        uint64_t result = top < 64 ? (mortonIndex_ >> top) << top : 0;
-        for (int d = base4Digits_ - 1; d >= odd; --d) {
-            int shift = 2 * d - odd;
-            uint32_t digit = uint32_t(mortonIndex_ >> shift) & 3;
-            uint32_t perm = uint32_t((uint64_t(digitHash(mortonIndex_ >> (shift + 2), key) >> 32) * 24) >> 32);
-            result |= uint64_t(kPermutations4[perm][digit]) << shift;
+        // The pixel's digits depend on the pixel and dimension only: samples of one pixel
+        // reuse them (memoisation; the values do not depend on the order of requests).
+        uint64_t result;
+        if (dimension < kCachedDimensions && cacheStamp_[dimension] == generation_) {
+            result = cachedPixelDigits_[dimension];
+        } else {
+            result = permuteDigits(firstPixelDigit, base4Digits_, odd, key);
+            // Bits above the randomised digits (pixels beyond the stated resolution) pass
+            // through unchanged, which keeps the map one-to-one for any pixel.
+            const int top = 2 * base4Digits_ - odd;
+            if (top < 64) result |= (mortonIndex_ >> top) << top;
+            if (dimension < kCachedDimensions) {
+                cachedPixelDigits_[dimension] = result;
+                cacheStamp_[dimension] = generation_;
+            }
         }
+        result |= permuteDigits(odd, firstPixelDigit, odd, key);
         if (odd) result |= (mortonIndex_ & 1) ^ (digitHash(mortonIndex_ >> 1, key) >> 63);
         return result;
     }
 
 private:
+    static constexpr uint64_t kCachedDimensions = 64;
+
+    // Base-4 digits [from, to) of the Morton index, each permuted by a permutation chosen by
+    // the digits above it and the dimension's key.
+    uint64_t permuteDigits(int from, int to, int odd, uint64_t key) const {
+        uint64_t result = 0;
+        for (int d = from; d < to; ++d) {
+            int shift = 2 * d - odd;
+            uint32_t digit = uint32_t(mortonIndex_ >> shift) & 3;
+            uint32_t perm = uint32_t((uint64_t(digitHash(mortonIndex_ >> (shift + 2), key) >> 32) * 24) >> 32);
+            result |= uint64_t(kPermutations4[perm][digit]) << shift;
+        }
+        return result;
+    }
     // A cheap multiply-xorshift hash: called once per digit on the hot path.
     static uint64_t digitHash(uint64_t higherDigits, uint64_t key) {
         uint64_t v = (higherDigits ^ key) * 0xbf58476d1ce4e5b9ULL;
@@ -103,6 +132,10 @@ private:
     int log2Spp_ = 0, base4Digits_ = 0;
     uint64_t mortonIndex_ = 0, scrambleKey_ = 0;
     uint64_t dimension_ = 0;
+    uint64_t cachedPixel_ = ~0ULL;
+    uint32_t generation_ = 0;
+    std::array<uint32_t, kCachedDimensions> cacheStamp_{};
+    std::array<uint64_t, kCachedDimensions> cachedPixelDigits_{};
 };
 
 }  // namespace ps
