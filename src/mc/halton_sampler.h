@@ -31,10 +31,10 @@ public:
 
 private:
     float sample(uint32_t dimension) const {
-        uint64_t h = hashCombine(pixelHash_, dimension);
+        uint64_t h = mixWithKey(pixelHash_, dimension);
         // Beyond the prime table (paths of hundreds of bounces), plain independent values.
-        if (dimension >= uint32_t(kPrimeCount)) return hashToUniform(hashCombine(h, index_));
-        return owenScrambledRadicalInverse(index_, lastIndex_, kPrimes[dimension], h);
+        if (dimension >= uint32_t(kPrimeCount)) return hashToUniform(mixWithKey(h, index_));
+        return owenScrambledRadicalInverse(index_, lastIndex_, kPrimeDivisors[dimension], h);
     }
 
     uint64_t seed_;

@@ -31,7 +31,7 @@ inline uint32_t orthogonalArrayBase(uint32_t n) {
 }
 
 // Randomisation, per (pixel, seed, array): rows are shuffled, the symbols of each column
-// permuted, the p rows sharing a symbol spread over its p sub-strata by another permutation,
+// permuted (random affine permutations of Z_p, see permutePrime), the p rows sharing a symbol spread over its p sub-strata by another permutation,
 // and each point jittered within its sub-stratum. Every point is then uniform on [0,1) (the
 // estimate is unbiased) while the array's stratification survives.
 //
@@ -47,7 +47,7 @@ class OrthogonalArraySampler final : public Sampler {
 public:
     OrthogonalArraySampler(uint64_t seed, int samplesPerPixel)
         : seed_(seed), n_(uint32_t(samplesPerPixel < 1 ? 1 : samplesPerPixel)), p_(orthogonalArrayBase(n_)),
-          columns_(p_ * p_ == n_ ? p_ + 1 : p_) {}
+          columns_(p_ * p_ == n_ ? p_ + 1 : p_), pDivisor_(p_) {}
     uint32_t base() const { return p_; }
     uint32_t columnsPerArray() const { return columns_; }
 
@@ -83,25 +83,25 @@ private:
             arrayKey_ = hashCombine(pixelHash_, (uint64_t(round_) << 32) | array_);
             // Row index q p + t becomes (a, b) = (pi_q(t), tau(q)): a shuffle that keeps the groups of p.
             uint32_t q = row_ / p_, t = row_ % p_;
-            a_ = permuteIndex(t, p_, uint32_t(arrayKey_) + q * 0x9e3779b9u);
-            b_ = permuteIndex(q, p_, uint32_t(arrayKey_ >> 32));
+            a_ = permutePrime(t, pDivisor_, mixWithKey(arrayKey_, (1ULL << 40) + q));  // apart from column keys
+            b_ = permutePrime(q, pDivisor_, arrayKey_);
         }
         uint32_t c = column_;
         column_ += count;
         return c;
     }
-    // Kensler's permutations take related seeds (seed + k * odd constant) as independent ones,
-    // so one hash per column feeds the symbol and sub-stratum permutations and the jitter.
+    // Per column: the symbol permutation, one sub-stratum permutation per symbol, and the
+    // jitter per row, all from cheap hashes of the array's key.
     float value(uint32_t column) const {
-        uint64_t h = mix64(arrayKey_ ^ (uint64_t(column + 1) * 0xd1b54a32d192ed03ULL));
-        uint32_t symbol = permuteIndex(boseSymbol(a_, b_, column, p_), p_, uint32_t(h));
-        uint32_t sub = permuteIndex(boseRank(a_, b_, column, p_), p_, uint32_t(h >> 32) + symbol * 0x9e3779b9u);
-        uint64_t j = (h ^ (uint64_t(row_ + 1) * 0x9e3779b97f4a7c15ULL)) * 0xbf58476d1ce4e5b9ULL;
-        return jitteredStratum(symbol * p_ + sub, p_ * p_, hashToUniform(j ^ (j >> 31)));
+        uint64_t h = mixWithKey(arrayKey_, column);
+        uint32_t symbol = permutePrime(boseSymbol(a_, b_, column, p_), pDivisor_, h);
+        uint32_t sub = permutePrime(boseRank(a_, b_, column, p_), pDivisor_, mixWithKey(h, symbol + 1));
+        return jitteredStratum(symbol * p_ + sub, p_ * p_, hashToUniform(mixWithKey(h, 0x100000000ULL + row_)));
     }
 
     uint64_t seed_;
     uint32_t n_, p_, columns_;
+    FastDivisor pDivisor_;
     uint64_t pixelHash_ = 0;
     uint32_t row_ = 0, round_ = 0;
     uint32_t array_ = 0, column_ = 0;  // the next column to read

@@ -85,15 +85,8 @@ public:
     std::unique_ptr<Sampler> clone() const override { return std::make_unique<PaddedSobolSampler>(seed_); }
 
 private:
-    // Scramble seeds per dimension from the (already well mixed) pixel hash: a cheap
-    // multiply-xorshift finaliser suffices on the hot path.
-    uint64_t dimensionSeed(uint64_t dim) const {
-        uint64_t h = pixelHash_ ^ (dim * 0x9e3779b97f4a7c15ULL);
-        h *= 0xbf58476d1ce4e5b9ULL;
-        h ^= h >> 31;
-        h *= 0x94d049bb133111ebULL;
-        return h ^ (h >> 29);
-    }
+    // Scramble seeds per dimension from the (already well mixed) pixel hash.
+    uint64_t dimensionSeed(uint64_t dim) const { return mixWithKey(pixelHash_, dim); }
 
     uint64_t seed_;
     uint64_t pixelHash_ = 0;

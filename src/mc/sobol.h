@@ -31,11 +31,17 @@ inline uint32_t sobolDim1(uint32_t index) {
 // bits below it, which multiplication only carries upwards). Points computed directly in
 // reversed form save two reversals: owenScrambleReversed(sobolDim1Reversed(i), seed) ==
 // owenScramble(sobolDim1(i), seed), and for dimension 0 the reversed point is i itself.
+//
+// In reversed form output bit r is the XOR of the index bits j with C(j, r) odd, which by
+// Lucas' theorem are the j whose set bits include r's: a superset-XOR transform, done in
+// five word-wide steps instead of a loop over the index bits.
 inline uint32_t sobolDim1Reversed(uint32_t index) {
-    uint32_t result = 0, v = 1;
-    for (; index; index >>= 1, v ^= v << 1)
-        if (index & 1) result ^= v;
-    return result;
+    uint32_t x = index;
+    x ^= (x >> 1) & 0x55555555u;
+    x ^= (x >> 2) & 0x33333333u;
+    x ^= (x >> 4) & 0x0F0F0F0Fu;
+    x ^= (x >> 8) & 0x00FF00FFu;
+    return x ^ ((x >> 16) & 0x0000FFFFu);
 }
 inline uint32_t owenScrambleReversed(uint32_t v, uint32_t seed) {
     v ^= v * 0x3d20adeau;

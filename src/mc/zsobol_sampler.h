@@ -39,7 +39,8 @@ inline constexpr std::array<std::array<uint8_t, 4>, 24> kPermutations4 = [] {
 class ZSobolSampler final : public Sampler {
 public:
     // resolution: the film's larger side; 0 if unknown (then 2^16 is assumed).
-    ZSobolSampler(uint64_t seed, int samplesPerPixel, int resolution) : seed_(seed), resolution_(resolution) {
+    ZSobolSampler(uint64_t seed, int samplesPerPixel, int resolution)
+        : seed_(seed), seedKey_(mix64(seed)), resolution_(resolution) {
         while ((1 << log2Spp_) < samplesPerPixel && log2Spp_ < 30) ++log2Spp_;
         int log2Res = 0;
         while ((1 << log2Res) < (resolution > 0 ? resolution : 1 << 16) && log2Res < 16) ++log2Res;
@@ -64,12 +65,12 @@ public:
     }
     float get1D() override {
         uint64_t index = permutedIndex(dimension_);
-        uint64_t h = hashCombine(scrambleKey_, dimension_++);
+        uint64_t h = mixWithKey(scrambleKey_, dimension_++);
         return fixedToFloat(owenScrambleReversed(sobolDim0Reversed64(index), uint32_t(h)));
     }
     Vec2 get2D() override {
         uint64_t index = permutedIndex(dimension_);
-        uint64_t h = hashCombine(scrambleKey_, dimension_);
+        uint64_t h = mixWithKey(scrambleKey_, dimension_);
         dimension_ += 2;
         return {fixedToFloat(owenScrambleReversed(sobolDim0Reversed64(index), uint32_t(h))),
                 fixedToFloat(owenScrambleReversed(sobolDim1Reversed64(index), uint32_t(h >> 32)))};
@@ -83,7 +84,8 @@ public:
         // With m odd the lowest index bit is a base-2 digit of its own, so base-4 digits
         // still line up with the pixel's Morton digits, which start at digit (m + 1) / 2.
         const int odd = log2Spp_ & 1, firstPixelDigit = (log2Spp_ + 1) / 2;
-        const uint64_t key = mix64(seed_ ^ (dimension * 0x9e3779b97f4a7c15ULL));
+        // digitHash finishes the mixing, as SplitMix64 does for seed + k * golden ratio.
+        const uint64_t key = seedKey_ + dimension * 0x9e3779b97f4a7c15ULL;
         // The pixel's digits depend on the pixel and dimension only: samples of one pixel
         // reuse them (memoisation; the values do not depend on the order of requests).
         uint64_t result;
@@ -127,7 +129,7 @@ private:
         return v * 0x94d049bb133111ebULL;
     }
 
-    uint64_t seed_;
+    uint64_t seed_, seedKey_;
     int resolution_;
     int log2Spp_ = 0, base4Digits_ = 0;
     uint64_t mortonIndex_ = 0, scrambleKey_ = 0;

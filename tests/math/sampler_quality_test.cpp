@@ -169,6 +169,18 @@ TEST(Halton, PrimeTable) {
     EXPECT_EQ(kPrimes[1023], 8161u);
 }
 
+TEST(Halton, FastDivisionIsExact) {
+    Rng rng(12);
+    for (uint32_t d : {1u, 2u, 3u, 7u, 641u, 8161u, 65537u, 0xfffffffbu}) {
+        FastDivisor f(d);
+        for (uint32_t n : {0u, 1u, d - 1, d, d + 1, 0xffffffffu, 0xfffffffeu}) EXPECT_EQ(f.quotient(n), n / d) << n << "/" << d;
+        for (int k = 0; k < 100000; ++k) {
+            uint32_t n = rng.nextU32();
+            ASSERT_EQ(f.quotient(n), n / d) << n << "/" << d;
+        }
+    }
+}
+
 // Scrambled points keep the radical inverse's stratification: the first b^k samples of the
 // dimension with base b hit each of the b^k intervals exactly once, for every k.
 TEST(Halton, ScrambledDimensionsStayStratified) {
