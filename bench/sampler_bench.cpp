@@ -58,10 +58,13 @@ double meanSquaredError(const Image& a, const Image& b) {
     return sum / double(a.rgb.size());
 }
 
-// The reference depends on everything that changes the converged image; its file name
-// carries a hash of those, so a changed setting renders a new one.
+// The reference depends on everything that changes its image; its file name carries a hash
+// of those, so a changed setting renders a new one. Bump kReferenceVersion when the
+// reference's sampler or the renderer changes.
+constexpr int kReferenceVersion = 2;
 std::string referencePath(const std::string& dir, const std::string& scene, int spp, int maxDepth) {
-    std::string key = std::filesystem::absolute(scene).string() + "|" + std::to_string(spp) + "|" +
+    std::string key = std::to_string(kReferenceVersion) + "|" + std::filesystem::absolute(scene).string() + "|" +
+                      std::to_string(spp) + "|" +
                       std::to_string(maxDepth) + "|" + std::to_string(std::filesystem::file_size(scene));
     uint64_t h = 1469598103934665603ULL;  // FNV-1a
     for (unsigned char c : key) h = (h ^ c) * 1099511628211ULL;

@@ -57,40 +57,52 @@ private:
     Rng rng_;
 };
 
-// Owen-scrambled Sobol points per pixel, padded across dimensions: every 1-D and 2-D
-// request uses the first one or two Sobol dimensions with its own scramble seed, keyed by
-// (pixel, dimension, seed). Each pixel's samples are stratified in every requested 1-D and
-// 2-D projection (a (0,2)-net for power-of-two counts); different dimensions are
-// decorrelated by the independent scrambles (pbrt-v4's "paddedsobol").
+// Owen-scrambled Sobol points per pixel, padded across dimensions (pbrt-v4's "paddedsobol"):
+// every 1-D and 2-D request uses the first one or two Sobol dimensions, with its own scramble
+// seed and its own random permutation of the pixel's N sample indices, both keyed by (pixel,
+// dimension, seed). Each pixel's samples are stratified in every requested 1-D and 2-D
+// projection (a (0,2)-net for power-of-two N). The index permutation is what decorrelates
+// the requests: with one shared index, two requests' top bits would agree (or disagree) for
+// all samples at once, whatever N, and an integrand coupling them would keep a fixed error.
 class PaddedSobolSampler final : public Sampler {
 public:
-    explicit PaddedSobolSampler(uint64_t seed) : seed_(seed) {}
+    PaddedSobolSampler(uint64_t seed, int samplesPerPixel)
+        : seed_(seed), n_(uint32_t(samplesPerPixel < 1 ? 1 : samplesPerPixel)) {}
     Kind kind() const override { return Kind::PaddedSobol; }
     void startPixelSample(int px, int py, int sampleIndex) override {
         pixelHash_ = pixelHash(px, py, seed_);
-        index_ = uint32_t(sampleIndex);
-        index1Reversed_ = sobolDim1Reversed(index_);
+        // Indices beyond N (not used by the renderer) continue in blocks of N.
+        roundBase_ = uint32_t(sampleIndex) / n_ * n_;
+        indexInRound_ = uint32_t(sampleIndex) - roundBase_;
         dimension_ = 0;
     }
     float get1D() override {
-        uint64_t h = dimensionSeed(dimension_++);
-        return fixedToFloat(owenScrambleReversed(index_, uint32_t(h)));
+        uint64_t dim = dimension_++;
+        uint64_t h = dimensionSeed(dim);
+        return fixedToFloat(owenScrambleReversed(permutedIndex(dim), uint32_t(h)));
     }
     Vec2 get2D() override {
-        uint64_t h = dimensionSeed(dimension_);
+        uint64_t dim = dimension_;
         dimension_ += 2;
-        return {fixedToFloat(owenScrambleReversed(index_, uint32_t(h))),
-                fixedToFloat(owenScrambleReversed(index1Reversed_, uint32_t(h >> 32)))};
+        uint64_t h = dimensionSeed(dim);
+        uint32_t index = permutedIndex(dim);
+        return {fixedToFloat(owenScrambleReversed(index, uint32_t(h))),
+                fixedToFloat(owenScrambleReversed(sobolDim1Reversed(index), uint32_t(h >> 32)))};
     }
-    std::unique_ptr<Sampler> clone() const override { return std::make_unique<PaddedSobolSampler>(seed_); }
+    std::unique_ptr<Sampler> clone() const override { return std::make_unique<PaddedSobolSampler>(seed_, int(n_)); }
 
 private:
     // Scramble seeds per dimension from the (already well mixed) pixel hash.
     uint64_t dimensionSeed(uint64_t dim) const { return mixWithKey(pixelHash_, dim); }
+    uint32_t permutedIndex(uint64_t dim) const {
+        uint32_t seed = uint32_t(mixWithKey(pixelHash_ ^ 0x5851f42d4c957f2dULL, dim));
+        return roundBase_ + permuteIndex(indexInRound_, n_, seed);
+    }
 
     uint64_t seed_;
+    uint32_t n_;
     uint64_t pixelHash_ = 0;
-    uint32_t index_ = 0, index1Reversed_ = 0;
+    uint32_t roundBase_ = 0, indexInRound_ = 0;
     uint64_t dimension_ = 0;
 };
 

@@ -108,7 +108,7 @@ public:
     }
 
 private:
-    static constexpr uint64_t kCachedDimensions = 64;
+    static constexpr uint64_t kCachedDimensions = 256;
 
     // Base-4 digits [from, to) of the Morton index, each permuted by a permutation chosen by
     // the digits above it and the dimension's key.
