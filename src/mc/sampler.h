@@ -67,10 +67,13 @@ private:
 class PaddedSobolSampler final : public Sampler {
 public:
     PaddedSobolSampler(uint64_t seed, int samplesPerPixel)
-        : seed_(seed), n_(uint32_t(samplesPerPixel < 1 ? 1 : samplesPerPixel)) {}
+        : seed_(seed), n_(uint32_t(samplesPerPixel < 1 ? 1 : samplesPerPixel)) {
+        if ((n_ & (n_ - 1)) == 0) log2N_ = __builtin_ctz(n_);
+    }
     Kind kind() const override { return Kind::PaddedSobol; }
     void startPixelSample(int px, int py, int sampleIndex) override {
         pixelHash_ = pixelHash(px, py, seed_);
+        permutationKey_ = pixelHash_ ^ 0x5851f42d4c957f2dULL;
         // Indices beyond N (not used by the renderer) continue in blocks of N.
         roundBase_ = uint32_t(sampleIndex) / n_ * n_;
         indexInRound_ = uint32_t(sampleIndex) - roundBase_;
@@ -94,14 +97,17 @@ public:
 private:
     // Scramble seeds per dimension from the (already well mixed) pixel hash.
     uint64_t dimensionSeed(uint64_t dim) const { return mixWithKey(pixelHash_, dim); }
+    // For N = 2^m a nested permutation of the index's base-4 digits (as ZSobol's) is cheaper
+    // than Kensler's and pairs dimensions as well.
     uint32_t permutedIndex(uint64_t dim) const {
-        uint32_t seed = uint32_t(mixWithKey(pixelHash_ ^ 0x5851f42d4c957f2dULL, dim));
-        return roundBase_ + permuteIndex(indexInRound_, n_, seed);
+        if (log2N_ >= 0) return roundBase_ + permuteNested(indexInRound_, log2N_, permutationKey_ + dim * 0x9e3779b97f4a7c15ULL);
+        return roundBase_ + permuteIndex(indexInRound_, n_, uint32_t(mixWithKey(permutationKey_, dim)));
     }
 
     uint64_t seed_;
     uint32_t n_;
-    uint64_t pixelHash_ = 0;
+    int log2N_ = -1;  // log2(N) when N is a power of two
+    uint64_t pixelHash_ = 0, permutationKey_ = 0;
     uint32_t roundBase_ = 0, indexInRound_ = 0;
     uint64_t dimension_ = 0;
 };

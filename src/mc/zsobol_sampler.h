@@ -9,6 +9,7 @@
 // error over the image as blue noise instead of white noise.
 #pragma once
 #include <array>
+#include "mc/permutation.h"
 #include "mc/sampler.h"
 
 namespace ps {
@@ -24,17 +25,6 @@ inline uint64_t encodeMorton2(uint32_t x, uint32_t y) {
     };
     return spread(x) | (spread(y) << 1);
 }
-
-// The 24 permutations of {0, 1, 2, 3}, for one table look-up per base-4 digit.
-inline constexpr std::array<std::array<uint8_t, 4>, 24> kPermutations4 = [] {
-    std::array<std::array<uint8_t, 4>, 24> table{};
-    int n = 0;
-    for (uint8_t a = 0; a < 4; ++a)
-        for (uint8_t b = 0; b < 4; ++b)
-            for (uint8_t c = 0; c < 4; ++c)
-                if (a != b && a != c && b != c) table[n++] = {a, b, c, uint8_t(6 - a - b - c)};
-    return table;
-}();
 
 class ZSobolSampler final : public Sampler {
 public:
@@ -84,7 +74,7 @@ public:
         // With m odd the lowest index bit is a base-2 digit of its own, so base-4 digits
         // still line up with the pixel's Morton digits, which start at digit (m + 1) / 2.
         const int odd = log2Spp_ & 1, firstPixelDigit = (log2Spp_ + 1) / 2;
-        // digitHash finishes the mixing, as SplitMix64 does for seed + k * golden ratio.
+        // The digit hash finishes the mixing, as SplitMix64 does for seed + k * golden ratio.
         const uint64_t key = seedKey_ + dimension * 0x9e3779b97f4a7c15ULL;
         // The pixel's digits depend on the pixel and dimension only: samples of one pixel
         // reuse them (memoisation; the values do not depend on the order of requests).
@@ -92,7 +82,7 @@ public:
         if (dimension < kCachedDimensions && cacheStamp_[dimension] == generation_) {
             result = cachedPixelDigits_[dimension];
         } else {
-            result = permuteDigits(firstPixelDigit, base4Digits_, odd, key);
+            result = permuteBase4Digits(mortonIndex_, firstPixelDigit, base4Digits_, odd, key);
             // Bits above the randomised digits (pixels beyond the stated resolution) pass
             // through unchanged, which keeps the map one-to-one for any pixel.
             const int top = 2 * base4Digits_ - odd;
@@ -102,32 +92,13 @@ public:
                 cacheStamp_[dimension] = generation_;
             }
         }
-        result |= permuteDigits(odd, firstPixelDigit, odd, key);
-        if (odd) result |= (mortonIndex_ & 1) ^ (digitHash(mortonIndex_ >> 1, key) >> 63);
+        result |= permuteBase4Digits(mortonIndex_, odd, firstPixelDigit, odd, key);
+        if (odd) result |= permuteLowestBit(mortonIndex_, key);
         return result;
     }
 
 private:
     static constexpr uint64_t kCachedDimensions = 256;
-
-    // Base-4 digits [from, to) of the Morton index, each permuted by a permutation chosen by
-    // the digits above it and the dimension's key.
-    uint64_t permuteDigits(int from, int to, int odd, uint64_t key) const {
-        uint64_t result = 0;
-        for (int d = from; d < to; ++d) {
-            int shift = 2 * d - odd;
-            uint32_t digit = uint32_t(mortonIndex_ >> shift) & 3;
-            uint32_t perm = uint32_t((uint64_t(digitHash(mortonIndex_ >> (shift + 2), key) >> 32) * 24) >> 32);
-            result |= uint64_t(kPermutations4[perm][digit]) << shift;
-        }
-        return result;
-    }
-    // A cheap multiply-xorshift hash: called once per digit on the hot path.
-    static uint64_t digitHash(uint64_t higherDigits, uint64_t key) {
-        uint64_t v = (higherDigits ^ key) * 0xbf58476d1ce4e5b9ULL;
-        v ^= v >> 31;
-        return v * 0x94d049bb133111ebULL;
-    }
 
     uint64_t seed_, seedKey_;
     int resolution_;

@@ -146,6 +146,13 @@ TEST(Permutation, IsABijection) {
             }
             EXPECT_EQ(seen.size(), n);
         }
+    for (int m = 0; m <= 9; ++m)
+        for (uint64_t key : {0ULL, 0x9e3779b97f4a7c15ULL}) {
+            std::set<uint32_t> seen;
+            for (uint32_t i = 0; i < (1u << m); ++i) seen.insert(permuteNested(i, m, key));
+            EXPECT_EQ(seen.size(), size_t(1) << m) << "m=" << m;
+            EXPECT_LT(*seen.rbegin(), 1u << m) << "m=" << m;
+        }
     for (uint32_t p : {2u, 3u, 7u, 8161u})
         for (uint64_t seed : {0ULL, 123ULL, 0xfeedbeef12345678ULL}) {
             std::set<uint32_t> seen;
