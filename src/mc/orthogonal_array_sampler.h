@@ -31,9 +31,10 @@ inline uint32_t orthogonalArrayBase(uint32_t n) {
 }
 
 // Randomisation, per (pixel, seed, array): rows are shuffled, the symbols of each column
-// permuted (random affine permutations of Z_p, see permutePrime), the p rows sharing a symbol spread over its p sub-strata by another permutation,
-// and each point jittered within its sub-stratum. Every point is then uniform on [0,1) (the
-// estimate is unbiased) while the array's stratification survives.
+// permuted, the p rows sharing a symbol spread over its p sub-strata by another permutation
+// (all random affine permutations of Z_p, see permutePrime), and each point jittered within
+// its sub-stratum. Every point is then uniform on [0,1) (the estimate is unbiased) while the
+// array's stratification survives.
 //
 // Dimensions are taken column by column; once an array's columns are used up the next
 // dimensions read a fresh, independently randomised array (padding). Sample index i reads

@@ -97,7 +97,9 @@ inline uint64_t permuteBase4Digits(uint64_t index, int from, int to, int odd, ui
     return result;
 }
 // Bit 0 as a base-2 digit, flipped by a hash of the bits above it.
-inline uint64_t permuteLowestBit(uint64_t index, uint64_t key) { return (index & 1) ^ (digitHash(index >> 1, key) >> 63); }
+inline uint64_t permuteLowestBit(uint64_t index, uint64_t key) {
+    return (index & 1) ^ (digitHash(index >> 1, key) >> 63);
+}
 // A nested random permutation of [0, 2^m).
 inline uint32_t permuteNested(uint32_t i, int m, uint64_t key) {
     const int odd = m & 1;

@@ -100,7 +100,8 @@ private:
     // For N = 2^m a nested permutation of the index's base-4 digits (as ZSobol's) is cheaper
     // than Kensler's and pairs dimensions as well.
     uint32_t permutedIndex(uint64_t dim) const {
-        if (log2N_ >= 0) return roundBase_ + permuteNested(indexInRound_, log2N_, permutationKey_ + dim * 0x9e3779b97f4a7c15ULL);
+        if (log2N_ >= 0)
+            return roundBase_ + permuteNested(indexInRound_, log2N_, permutationKey_ + dim * 0x9e3779b97f4a7c15ULL);
         return roundBase_ + permuteIndex(indexInRound_, n_, uint32_t(mixWithKey(permutationKey_, dim)));
     }
 
