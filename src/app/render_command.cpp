@@ -11,6 +11,7 @@
 
 #include "app/exit_codes.h"
 #include "image/image.h"
+#include "mc/sampler.h"
 #include "render/scene_builder.h"
 #include "scene/parser.h"
 #include "transport/bdpt.h"
@@ -66,9 +67,10 @@ void RenderCommand::attach(CLI::App& app) {
     cmd_->add_option("--mis", mis_, "BDPT's weighting of strategies: power (default), balance, none (uniform)")
         ->check(CLI::IsMember({"power", "balance", "none"}));
     cmd_->add_option("--sampler", sampler_,
-                     "Sample placement per pixel: sobol (default; Owen-scrambled Sobol), stratified (jittered strata), "
-                     "lhs (Latin hypercube) or independent")
-        ->check(CLI::IsMember({"sobol", "stratified", "lhs", "independent"}));
+                     "Sample placement per pixel: sobol (default; Owen-scrambled Sobol, padded), zsobol (Sobol in "
+                     "Morton order over the image: blue-noise error), halton (Owen-scrambled Halton), orthogonal "
+                     "(randomised orthogonal arrays), stratified (jittered strata), lhs (Latin hypercube) or independent")
+        ->check(CLI::IsMember(samplerNames()));
     cmd_->add_option("-o,--output", outputs_,
                      "Output image(s): .exr (float32), .png (sRGB 8-bit, clamped), .pfm; may be repeated. "
                      "Default: the scene's Film filename, relative to the current directory");

@@ -13,6 +13,18 @@ inline uint64_t mix64(uint64_t v) {
     v ^= v >> 33;
     return v;
 }
+// A hash of (key, k) for an already well-mixed key: a cheap multiply-xorshift finaliser
+// (SplitMix64's) suffices on hot paths such as one seed per sample dimension.
+inline uint64_t mixWithKey(uint64_t key, uint64_t k) {
+    uint64_t h = key ^ (k * 0x9e3779b97f4a7c15ULL);
+    h *= 0xbf58476d1ce4e5b9ULL;
+    h ^= h >> 31;
+    h *= 0x94d049bb133111ebULL;
+    return h ^ (h >> 29);
+}
+
+// The top 24 bits of a hash as a float in [0, 1).
+inline float hashToUniform(uint64_t h) { return float(h >> 40) * 0x1p-24f; }
 inline uint64_t hashCombine(uint64_t a, uint64_t b) { return mix64(a ^ (b + 0x9e3779b97f4a7c15ULL + (a << 6) + (a >> 2))); }
 
 class Rng {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 #include "math/vec.h"
 #include "mc/rng.h"
 #include "mc/permutation.h"
@@ -25,14 +26,24 @@ public:
     virtual std::unique_ptr<Sampler> clone() const = 0;
 };
 
+// The per-(pixel, seed) hash every sampler keys its randomisation on.
+inline uint64_t pixelHash(int px, int py, uint64_t seed) {
+    return hashCombine(mix64((uint64_t(uint32_t(px)) << 32) | uint32_t(py)), seed);
+}
+
+// Point s + j (j in [0,1) the jitter) of `count` equal strata of [0,1), kept below 1 after rounding.
+inline float jitteredStratum(uint32_t s, uint32_t count, float j) {
+    float u = (float(s) + j) / float(count);
+    return u < 1.0f ? u : 0x1.fffffep-1f;
+}
+
 // Independent uniform samples (thesis §2.7.1's baseline): one PCG stream per pixel sample.
 class IndependentSampler final : public Sampler {
 public:
     explicit IndependentSampler(uint64_t seed) : seed_(seed) {}
     Kind kind() const override { return Kind::Independent; }
     void startPixelSample(int px, int py, int sampleIndex) override {
-        uint64_t pixel = (uint64_t(uint32_t(px)) << 32) | uint32_t(py);
-        rng_.seed(hashCombine(mix64(pixel), seed_), mix64(uint64_t(sampleIndex) ^ (seed_ << 20)));
+        rng_.seed(pixelHash(px, py, seed_), mix64(uint64_t(sampleIndex) ^ (seed_ << 20)));
     }
     float get1D() override { return rng_.uniform(); }
     Vec2 get2D() override {
@@ -46,64 +57,59 @@ private:
     Rng rng_;
 };
 
-// Owen-scrambled Sobol points per pixel, padded across dimensions: every 1-D and 2-D
-// request uses the first one or two Sobol dimensions with its own scramble seed, keyed by
-// (pixel, dimension, seed). Each pixel's samples are stratified in every requested 1-D and
-// 2-D projection (a (0,2)-net for power-of-two counts). Different dimensions must also be
-// decorrelated: two Owen scrambles of the same point keep its leading bits in lockstep
-// (they differ by a prefix-dependent flip), so each dimension also visits the pixel's
-// samples in its own order, a nested (Owen) permutation of the index within blocks of the
-// power-of-two sample count (Burley 2020's shuffling; pbrt-v4's "paddedsobol").
+// Owen-scrambled Sobol points per pixel, padded across dimensions (pbrt-v4's "paddedsobol"):
+// every 1-D and 2-D request uses the first one or two Sobol dimensions, with its own scramble
+// seed and its own random permutation of the pixel's N sample indices, both keyed by (pixel,
+// dimension, seed). Each pixel's samples are stratified in every requested 1-D and 2-D
+// projection (a (0,2)-net for power-of-two N). The index permutation is what decorrelates
+// the requests: with one shared index, two requests' top bits would agree (or disagree) for
+// all samples at once, whatever N, and an integrand coupling them would keep a fixed error.
 class PaddedSobolSampler final : public Sampler {
 public:
-    explicit PaddedSobolSampler(uint64_t seed, int samplesPerPixel = 16) : seed_(seed) {
-        while ((1 << log2Samples_) < samplesPerPixel && log2Samples_ < 31) ++log2Samples_;
+    PaddedSobolSampler(uint64_t seed, int samplesPerPixel)
+        : seed_(seed), n_(uint32_t(samplesPerPixel < 1 ? 1 : samplesPerPixel)) {
+        if ((n_ & (n_ - 1)) == 0) log2N_ = __builtin_ctz(n_);
     }
     Kind kind() const override { return Kind::PaddedSobol; }
     void startPixelSample(int px, int py, int sampleIndex) override {
-        pixelHash_ = hashCombine(mix64((uint64_t(uint32_t(px)) << 32) | uint32_t(py)), seed_);
-        index_ = uint32_t(sampleIndex);
+        pixelHash_ = pixelHash(px, py, seed_);
+        permutationKey_ = pixelHash_ ^ 0x5851f42d4c957f2dULL;
+        // Indices beyond N (not used by the renderer) continue in blocks of N.
+        roundBase_ = uint32_t(sampleIndex) / n_ * n_;
+        indexInRound_ = uint32_t(sampleIndex) - roundBase_;
         dimension_ = 0;
     }
     float get1D() override {
-        uint64_t h = dimensionSeed(dimension_++);
-        return fixedToFloat(owenScrambleReversed(shuffledIndex(uint32_t(h >> 32)), uint32_t(h)));
+        uint64_t dim = dimension_++;
+        uint64_t h = dimensionSeed(dim);
+        return fixedToFloat(owenScrambleReversed(permutedIndex(dim), uint32_t(h)));
     }
     Vec2 get2D() override {
-        uint64_t h = dimensionSeed(dimension_);
+        uint64_t dim = dimension_;
         dimension_ += 2;
-        uint64_t h2 = h * 0x9e3779b97f4a7c15ULL;
-        uint32_t i = shuffledIndex(uint32_t(h2 >> 32));
-        return {fixedToFloat(owenScrambleReversed(i, uint32_t(h))),
-                fixedToFloat(owenScrambleReversed(sobolDim1Reversed(i), uint32_t(h >> 32)))};
+        uint64_t h = dimensionSeed(dim);
+        uint32_t index = permutedIndex(dim);
+        return {fixedToFloat(owenScrambleReversed(index, uint32_t(h))),
+                fixedToFloat(owenScrambleReversed(sobolDim1Reversed(index), uint32_t(h >> 32)))};
     }
-    std::unique_ptr<Sampler> clone() const override {
-        return std::make_unique<PaddedSobolSampler>(seed_, 1 << log2Samples_);
-    }
+    std::unique_ptr<Sampler> clone() const override { return std::make_unique<PaddedSobolSampler>(seed_, int(n_)); }
 
 private:
-    // The sample index permuted within its block of 2^log2Samples_ (nested uniform
-    // scrambling of the block-local index, read as a log2Samples_-bit fraction).
-    uint32_t shuffledIndex(uint32_t seed) const {
-        if (log2Samples_ == 0) return index_;
-        uint32_t mask = (1u << log2Samples_) - 1;
-        uint32_t local = owenScramble((index_ & mask) << (32 - log2Samples_), seed) >> (32 - log2Samples_);
-        return (index_ & ~mask) | local;
-    }
-    // Scramble seeds per dimension from the (already well mixed) pixel hash: a cheap
-    // multiply-xorshift finaliser suffices on the hot path.
-    uint64_t dimensionSeed(uint64_t dim) const {
-        uint64_t h = pixelHash_ ^ (dim * 0x9e3779b97f4a7c15ULL);
-        h *= 0xbf58476d1ce4e5b9ULL;
-        h ^= h >> 31;
-        h *= 0x94d049bb133111ebULL;
-        return h ^ (h >> 29);
+    // Scramble seeds per dimension from the (already well mixed) pixel hash.
+    uint64_t dimensionSeed(uint64_t dim) const { return mixWithKey(pixelHash_, dim); }
+    // For N = 2^m a nested permutation of the index's base-4 digits (as ZSobol's) is cheaper
+    // than Kensler's and pairs dimensions as well.
+    uint32_t permutedIndex(uint64_t dim) const {
+        if (log2N_ >= 0)
+            return roundBase_ + permuteNested(indexInRound_, log2N_, permutationKey_ + dim * 0x9e3779b97f4a7c15ULL);
+        return roundBase_ + permuteIndex(indexInRound_, n_, uint32_t(mixWithKey(permutationKey_, dim)));
     }
 
     uint64_t seed_;
-    int log2Samples_ = 0;
-    uint64_t pixelHash_ = 0;
-    uint32_t index_ = 0;
+    uint32_t n_;
+    int log2N_ = -1;  // log2(N) when N is a power of two
+    uint64_t pixelHash_ = 0, permutationKey_ = 0;
+    uint32_t roundBase_ = 0, indexInRound_ = 0;
     uint64_t dimension_ = 0;
 };
 
@@ -120,7 +126,7 @@ public:
         gridSide_ = (!lhs_ && m * m == n_) ? m : 0;
     }
     void startPixelSample(int px, int py, int sampleIndex) override {
-        pixelHash_ = hashCombine(mix64((uint64_t(uint32_t(px)) << 32) | uint32_t(py)), seed_);
+        pixelHash_ = pixelHash(px, py, seed_);
         index_ = uint32_t(sampleIndex);
         dimension_ = 0;
     }
@@ -143,12 +149,9 @@ public:
 private:
     // Beyond N samples the pattern repeats with fresh jitter (index_ / n_ enters the hash).
     float jitter(uint64_t h, uint64_t k) const {
-        return float(mix64(h ^ (uint64_t(index_) * 0x9e3779b97f4a7c15ULL) ^ (k << 62)) >> 40) * 0x1p-24f;
+        return hashToUniform(mix64(h ^ (uint64_t(index_) * 0x9e3779b97f4a7c15ULL) ^ (k << 62)));
     }
-    static float stratum(uint32_t s, uint32_t count, float j) {
-        float u = (float(s) + j) / float(count);
-        return u < 1.0f ? u : 0x1.fffffep-1f;
-    }
+    static float stratum(uint32_t s, uint32_t count, float j) { return jitteredStratum(s, count, j); }
     uint64_t seed_;
     uint32_t n_, gridSide_ = 0;
     bool lhs_;
@@ -157,8 +160,18 @@ private:
     uint64_t dimension_ = 0;
 };
 
-// Names: "independent", "sobol" (padded Owen-scrambled Sobol), "stratified", "lhs".
-// nullptr for other names. samplesPerPixel sizes the strata of the stratified samplers.
-std::unique_ptr<Sampler> createSampler(const std::string& name, uint64_t seed, int samplesPerPixel = 16);
+// Names: "independent", "sobol" (padded Owen-scrambled Sobol), "stratified", "lhs",
+// "orthogonal" (randomised orthogonal arrays), "halton" (Owen-scrambled Halton), "zsobol"
+// (Sobol indexed in Morton order across the image). nullptr for other names.
+// samplesPerPixel sizes the strata of the stratified samplers; resolution (the film's larger
+// side in pixels, 0 if unknown) tells ZSobol how many Morton digits to randomise.
+std::unique_ptr<Sampler> createSampler(const std::string& name, uint64_t seed, int samplesPerPixel = 16,
+                                       int resolution = 0);
+
+// Every name createSampler accepts, the default first.
+inline const std::vector<std::string>& samplerNames() {
+    static const std::vector<std::string> names = {"sobol", "zsobol", "halton", "orthogonal", "stratified", "lhs", "independent"};
+    return names;
+}
 
 }  // namespace ps

@@ -125,22 +125,28 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
     scene.setFilter(createFilter(desc.filter));
     scene.camera().setFilterMargin(scene.filter().radius());
 
-    // Sampler: pbrt's Sobol family maps to our padded Owen-scrambled Sobol sampler.
+    // Sampler: pbrt-v4's names map to ours; its global "sobol" and "paddedsobol" both become
+    // our padded Owen-scrambled Sobol, and "pmj02bn" (per-pixel (0,2)-sequences, padded) its
+    // nearest relative, the same sampler.
     const ParamSet& sp = desc.sampler.params;
     const std::string& st = desc.sampler.type;
     s.spp = sp.getInt("pixelsamples", st == "independent" ? 4 : 16);
     s.seed = uint64_t(std::max(0, sp.getInt("seed", 0)));
-    sp.getString("randomization", "");
+    if (sp.getString("randomization", "") == "none")
+        warning(desc.sampler.loc, "Sampler \"" + st + "\": \"randomization\" \"none\" is not supported; points are always randomised");
     if (st == "stratified") {
-        sp.getBool("jitter", true);
+        if (!sp.getBool("jitter", true))
+            warning(desc.sampler.loc, "Sampler \"stratified\": \"jitter\" false is not supported; samples are jittered");
         s.spp = sp.getInt("xsamples", 4) * sp.getInt("ysamples", 4);
     }
-    if (st == "independent" || st == "stratified") {
+    if (desc.sampler.loc.line <= 0) {
+        // No Sampler directive: pbrt's implied "zsobol" gives way to our default (RenderSettings).
+    } else if (st == "halton" || st == "zsobol" || st == "stratified" || st == "independent") {
         s.sampler = st;
     } else {
         s.sampler = "sobol";
-        if (st != "sobol" && st != "zsobol" && st != "paddedsobol")
-            warning(desc.sampler.loc, "Sampler \"" + st + "\" is not available yet; using \"sobol\" (padded, Owen-scrambled)");
+        if (st != "sobol" && st != "paddedsobol")
+            warning(desc.sampler.loc, "Sampler \"" + st + "\" is not available; using the nearest, \"sobol\" (padded, Owen-scrambled)");
     }
     if (s.spp <= 0) throw InputError(desc.sampler.loc, "Sampler: \"pixelsamples\" must be positive");
     sp.reportUnused("Sampler \"" + st + "\"");

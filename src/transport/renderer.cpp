@@ -1,6 +1,7 @@
 #include "transport/renderer.h"
 
 #include "mc/estimator.h"
+#include "mc/sampler.h"
 
 #include "util/error.h"
 
@@ -121,9 +122,13 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     const int spp = std::max(1, options.spp);
     const bool hasLens = scene.camera().params().lensRadius > 0;
 
-    std::unique_ptr<Sampler> prototype = createSampler(options.sampler, options.seed, spp);
-    if (!prototype)
-        throw InputError("unknown sampler \"" + options.sampler + "\" (available: sobol, stratified, lhs, independent)");
+    const int resolution = std::max(scene.camera().params().xRes, scene.camera().params().yRes);
+    std::unique_ptr<Sampler> prototype = createSampler(options.sampler, options.seed, spp, resolution);
+    if (!prototype) {
+        std::string names;
+        for (const std::string& n : samplerNames()) names += (names.empty() ? "" : ", ") + n;
+        throw InputError("unknown sampler \"" + options.sampler + "\" (available: " + names + ")");
+    }
     tbb::enumerable_thread_specific<ThreadState> states([&] {
         ThreadState s;
         s.sampler = prototype->clone();

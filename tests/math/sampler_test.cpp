@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 #include <vector>
 
@@ -43,6 +44,18 @@ TEST(Sobol, ScrambledPointsFormA02Net) {
     }
 }
 
+// The word-wide transform equals the generator-matrix product, column by column.
+TEST(Sobol, ReversedDimension1MatchesGeneratorMatrix) {
+    Rng rng(3);
+    for (int k = 0; k < 20000; ++k) {
+        uint32_t index = k < 1000 ? uint32_t(k) : rng.nextU32(), i = index;
+        uint32_t expected = 0, v = 1;
+        for (; i; i >>= 1, v ^= v << 1)
+            if (i & 1) expected ^= v;
+        ASSERT_EQ(sobolDim1Reversed(index), expected) << index;
+    }
+}
+
 TEST(Sobol, ReversedFormMatches) {
     for (uint32_t i = 0; i < 1000; ++i)
         for (uint32_t seed : {0u, 7u, 0x9e3779b9u}) {
@@ -60,7 +73,7 @@ TEST(Sobol, ScrambledPointIsUniform) {
 }
 
 TEST(Samplers, DeterministicPerPixelSample) {
-    for (const char* name : {"independent", "sobol", "stratified", "lhs"}) {
+    for (const std::string& name : samplerNames()) {
         auto a = createSampler(name, 42), b = createSampler(name, 42);
         a->startPixelSample(3, 4, 5);
         float a1 = a->get1D();
@@ -133,4 +146,54 @@ TEST(Permutation, IsABijection) {
             }
             EXPECT_EQ(seen.size(), n);
         }
+    for (int m = 0; m <= 9; ++m)
+        for (uint64_t key : {0ULL, 0x9e3779b97f4a7c15ULL}) {
+            std::set<uint32_t> seen;
+            for (uint32_t i = 0; i < (1u << m); ++i) seen.insert(permuteNested(i, m, key));
+            EXPECT_EQ(seen.size(), size_t(1) << m) << "m=" << m;
+            EXPECT_LT(*seen.rbegin(), 1u << m) << "m=" << m;
+        }
+    for (uint32_t p : {2u, 3u, 7u, 8161u})
+        for (uint64_t seed : {0ULL, 123ULL, 0xfeedbeef12345678ULL}) {
+            std::set<uint32_t> seen;
+            for (uint32_t i = 0; i < p; ++i) {
+                uint32_t v = permutePrime(i, FastDivisor(p), seed);
+                ASSERT_LT(v, p);
+                seen.insert(v);
+            }
+            EXPECT_EQ(seen.size(), p);
+        }
+}
+
+// Over random seeds every element lands in every position equally often, and (what the
+// affine permutations promise) every ordered pair of distinct elements on every ordered pair
+// of distinct positions: chi-square tests, 4 sigma.
+TEST(Permutation, PositionsAndPairsEquallyLikely) {
+    auto chi2Below4Sigma = [](const std::vector<int>& counts, double expected, double dof) {
+        double chi2 = 0;
+        for (int c : counts) chi2 += (c - expected) * (c - expected) / expected;
+        return chi2 < dof + 4 * std::sqrt(2 * dof);
+    };
+    for (uint32_t n : {3u, 5u, 13u}) {
+        const int trials = 20000;
+        std::vector<int> kensler(n * n, 0), affine(n * n, 0), pairs(n * n, 0);
+        for (int t = 0; t < trials; ++t) {
+            uint64_t h = mix64(uint64_t(t) + 99);
+            for (uint32_t i = 0; i < n; ++i) {
+                ++kensler[i * n + permuteIndex(i, n, uint32_t(h))];
+                ++affine[i * n + permutePrime(i, FastDivisor(n), h)];
+            }
+            ++pairs[permutePrime(0, FastDivisor(n), h) * n + permutePrime(1, FastDivisor(n), h)];
+        }
+        double dof = double(n - 1) * (n - 1);
+        EXPECT_TRUE(chi2Below4Sigma(kensler, double(trials) / n, dof)) << "permuteIndex n=" << n;
+        EXPECT_TRUE(chi2Below4Sigma(affine, double(trials) / n, dof)) << "permutePrime n=" << n;
+        std::vector<int> offDiagonal;
+        for (uint32_t a = 0; a < n; ++a)
+            for (uint32_t b = 0; b < n; ++b)
+                if (a != b) offDiagonal.push_back(pairs[a * n + b]);
+                else EXPECT_EQ(pairs[a * n + b], 0);
+        EXPECT_TRUE(chi2Below4Sigma(offDiagonal, double(trials) / (n * (n - 1)), double(n * (n - 1) - 1)))
+            << "pairs n=" << n;
+    }
 }

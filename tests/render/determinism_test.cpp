@@ -54,7 +54,7 @@ void expectRepeatable(const char* integrator, const char* sampler) {
 }  // namespace
 
 TEST(Determinism, SameSeedSameImageAcrossThreadCounts) {
-    for (const char* sampler : {"sobol", "stratified", "lhs", "independent"}) expectRepeatable("path", sampler);
+    for (const std::string& sampler : samplerNames()) expectRepeatable("path", sampler.c_str());
 }
 
 // Light tracing and BDPT splat onto the film from every thread; the fixed-point splat

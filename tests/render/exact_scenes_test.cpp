@@ -210,7 +210,7 @@ TEST(ExactScenes, ClosedFurnaceWithEverySampler) {
         Shape "sphere" "float radius" [ 1 ]
     )";
     const double exact[3] = {1.875, 1.875, 1.875};  // 1 + 1/2 + 1/4 + 1/8
-    for (const char* sampler : {"sobol", "stratified", "lhs", "independent"}) {
+    for (const std::string& sampler : samplerNames()) {
         SceneDescription desc = parseSceneString(scene);
         auto s = buildScene(desc);
         auto integrator = createIntegrator("path", *s);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "mc/sampler.h"
 #include "render/scene_builder.h"
 #include "scene/parser.h"
 #include "transport/renderer.h"
