@@ -1,0 +1,116 @@
+#include "transport/adaptive.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "transport/sample_allocation.h"
+#include "util/error.h"
+
+namespace ps {
+
+AdaptiveMode parseAdaptiveMode(const std::string& name) {
+    if (name.empty() || name == "none") return AdaptiveMode::None;
+    if (name == "sequential") return AdaptiveMode::Sequential;
+    if (name == "twostage") return AdaptiveMode::TwoStage;
+    throw InputError("unknown adaptive sampling mode \"" + name + "\" (available: sequential, twostage)");
+}
+
+namespace {
+
+// The first, uniform share of the budget: a quarter, and at least enough for a variance.
+int firstShare(int sppBudget) { return std::max(4, sppBudget / 4); }
+
+// The average samples per pixel the budget allows: spp, or fewer if at the rate measured
+// so far the time limit would come first.
+int sppBudget(int spp, const SamplePasses& passes, const Monitor& monitor, size_t pixels) {
+    if (monitor.timeLimit() <= 0) return spp;
+    double rate = double(passes.samplesDone()) / std::max(monitor.elapsed(), 1e-6);
+    double affordable = rate * monitor.timeLimit() / double(pixels);
+    return int(std::clamp(affordable, 1.0, double(spp)));
+}
+
+// Brings every pixel of `film` up to target(i) samples, continuing its sample indices.
+template <class Target>
+bool fillTo(SamplePasses& passes, Film& film, SamplePasses::Stream stream, Target target) {
+    return passes.run(
+        film,
+        [&](size_t i) {
+            int n = int(film.pixelEstimate(i).samples);
+            return SampleSpan{n, std::max(n, int(target(i)))};
+        },
+        stream);
+}
+
+}  // namespace
+
+bool renderSequential(SamplePasses& passes, Film& film, const Monitor& monitor, int spp) {
+    using Stream = SamplePasses::Stream;
+    const size_t pixels = film.pixelCount();
+    // With a time limit, a short first pass measures the rate that sizes the rest.
+    const int calibration = monitor.timeLimit() > 0 ? std::min(4, firstShare(spp)) : firstShare(spp);
+    if (!fillTo(passes, film, Stream::Main, [&](size_t) { return calibration; })) return false;
+    const int budget = sppBudget(spp, passes, monitor, pixels);
+    if (!fillTo(passes, film, Stream::Main, [&](size_t) { return std::max(calibration, firstShare(budget)); }))
+        return false;
+    // Under a time limit the rounds go on until it stops them (or spp is reached).
+    const long long total = (long long)(monitor.timeLimit() > 0 ? spp : budget) * (long long)pixels;
+    // Each round refines the eighth of the pixels with the largest relative variance of
+    // the mean (the film's own error measure, thesis §2.4), by an eighth of the first pass.
+    const size_t perRound = std::max<size_t>(1, pixels / 8);
+    const int step = std::max(1, firstShare(budget) / 2);
+    std::vector<double> error(pixels);
+    while (passes.samplesDone() < total) {
+        for (size_t i = 0; i < pixels; ++i) error[i] = film.pixelEstimate(i).relativeVariance();
+        long long remaining = total - passes.samplesDone();
+        size_t k = std::min<size_t>(perRound, size_t(remaining));
+        int add = int(std::min<long long>(step, remaining / (long long)k));
+        std::vector<int> extra(pixels, 0);
+        for (size_t i : largestK(error, k)) extra[i] = add;
+        if (!fillTo(passes, film, Stream::Main, [&](size_t i) { return film.pixelEstimate(i).samples + extra[i]; }))
+            return false;
+    }
+    return true;
+}
+
+bool renderTwoStage(SamplePasses& passes, Film& film, const Monitor& monitor, int spp) {
+    using Stream = SamplePasses::Stream;
+    const size_t pixels = film.pixelCount();
+    Film pilot(film.xRes(), film.yRes(), film.bounds());
+    const int calibration = monitor.timeLimit() > 0 ? std::min(4, firstShare(spp)) : firstShare(spp);
+    if (!fillTo(passes, pilot, Stream::Pilot, [&](size_t) { return calibration; })) {
+        film.adoptEmptyPixels(pilot);
+        return false;
+    }
+    const int budget = sppBudget(spp, passes, monitor, pixels);
+    if (!fillTo(passes, pilot, Stream::Pilot, [&](size_t) { return std::max(calibration, firstShare(budget)); })) {
+        film.adoptEmptyPixels(pilot);
+        return false;
+    }
+    // Stage 2: n_i proportional to the pixel's relative standard deviation per sample,
+    // sigma_i / sqrt(m_i^2 + eps), which minimises the summed relative variance
+    // sum_i sigma_i^2 / (n_i (m_i^2 + eps)) for a fixed total (the Neyman allocation of
+    // thesis ch. 2, with equal cost per sample). At least one sample per pixel.
+    std::vector<double> weight(pixels);
+    for (size_t i = 0; i < pixels; ++i) {
+        Film::PixelEstimate e = pilot.pixelEstimate(i);
+        weight[i] = std::sqrt(e.sampleVariance / (e.mean * e.mean + Film::kRelativeEpsilon));
+    }
+    long long secondStage = (long long)budget * (long long)pixels - passes.samplesDone();
+    if (monitor.timeLimit() > 0) {
+        double rate = double(passes.samplesDone()) / std::max(monitor.elapsed(), 1e-6);
+        secondStage = std::min(secondStage, (long long)(rate * std::max(0.0, monitor.timeLimit() - monitor.elapsed())));
+    }
+    const std::vector<int> alloc = proportionalAllocation(weight, secondStage, 1);
+    // In growing passes, so a time limit leaves every pixel near the same fraction of its
+    // allocation; where it leaves a pixel none, the pilot stands in (still unbiased: which
+    // pixels those are depends on the clock, not on the samples).
+    bool complete = true;
+    for (double f : {0.125, 0.25, 0.5, 1.0}) {
+        complete = fillTo(passes, film, Stream::Main, [&](size_t i) { return std::max(1.0, std::ceil(alloc[i] * f)); });
+        if (!complete) break;
+    }
+    film.adoptEmptyPixels(pilot);
+    return complete;
+}
+
+}  // namespace ps
