@@ -22,6 +22,8 @@ private:
     std::string integrator_;
     std::string mis_ = "power";
     std::string sampler_;
+    std::string adaptive_;
+    std::vector<std::string> aovs_;
     std::vector<std::string> outputs_;
     std::vector<float> crop_;
     std::string statsFile_;

@@ -1,6 +1,7 @@
 #include "transport/adaptive.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "transport/sample_allocation.h"
@@ -29,16 +30,26 @@ int sppBudget(int spp, const SamplePasses& passes, const Monitor& monitor, size_
     return int(std::clamp(affordable, 1.0, double(spp)));
 }
 
-// Brings every pixel of `film` up to target(i) samples, continuing its sample indices.
+// Brings every pixel of `film` up to target(i) samples, continuing its sample indices, in
+// sub-passes of at most 64 samples per pixel (starting from 1 on an empty film, doubling),
+// so that a stop request is honoured soon and leaves every pixel near the same count.
 template <class Target>
 bool fillTo(SamplePasses& passes, Film& film, SamplePasses::Stream stream, Target target) {
-    return passes.run(
-        film,
-        [&](size_t i) {
-            int n = int(film.pixelEstimate(i).samples);
-            return SampleSpan{n, std::max(n, int(target(i)))};
-        },
-        stream);
+    int chunk = film.meanSamplesPerPixel() == 0 ? 1 : 64;
+    for (bool more = true; more; chunk = std::min(2 * chunk, 64)) {
+        std::atomic<bool> unfinished{false};
+        bool ok = passes.run(
+            film,
+            [&](size_t i) {
+                int n = int(film.pixelEstimate(i).samples), t = int(target(i));
+                if (t > n + chunk) unfinished.store(true, std::memory_order_relaxed);
+                return SampleSpan{n, std::max(n, std::min(t, n + chunk))};
+            },
+            stream);
+        if (!ok) return false;
+        more = unfinished.load();
+    }
+    return true;
 }
 
 }  // namespace
@@ -64,10 +75,10 @@ bool renderSequential(SamplePasses& passes, Film& film, const Monitor& monitor, 
         long long remaining = total - passes.samplesDone();
         size_t k = std::min<size_t>(perRound, size_t(remaining));
         int add = int(std::min<long long>(step, remaining / (long long)k));
-        std::vector<int> extra(pixels, 0);
-        for (size_t i : largestK(error, k)) extra[i] = add;
-        if (!fillTo(passes, film, Stream::Main, [&](size_t i) { return film.pixelEstimate(i).samples + extra[i]; }))
-            return false;
+        std::vector<long long> target(pixels);
+        for (size_t i = 0; i < pixels; ++i) target[i] = film.pixelEstimate(i).samples;
+        for (size_t i : largestK(error, k)) target[i] += add;
+        if (!fillTo(passes, film, Stream::Main, [&](size_t i) { return target[i]; })) return false;
     }
     return true;
 }
