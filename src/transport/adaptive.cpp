@@ -52,6 +52,44 @@ bool fillTo(SamplePasses& passes, Film& film, SamplePasses::Stream stream, Targe
     return true;
 }
 
+// Stage-2 weights from the pilot: n_i proportional to the pixel's relative standard
+// deviation per sample, sigma_i / sqrt(m_i^2 + eps), which minimises the summed relative
+// variance sum_i sigma_i^2 / (n_i (m_i^2 + eps)) at a fixed total (the Neyman allocation of
+// thesis ch. 2, with equal cost per sample). A few pilot samples estimate sigma_i poorly,
+// above all for heavy-tailed path contributions, and a wrong allocation costs more than a
+// uniform one, so (i) the relative variance is averaged over the pixel's 3x3 neighbourhood
+// (neighbours mostly share their variance; 9x the pilot samples) and (ii) the weights are
+// kept within [1/4, 4] x their mean, a defensive floor and cap. Both only use the pilot, so
+// the image stays unbiased.
+std::vector<double> twoStageWeights(const Film& pilot) {
+    const int w = pilot.bounds().width(), h = pilot.bounds().height();
+    std::vector<double> rel(pilot.pixelCount());
+    for (size_t i = 0; i < rel.size(); ++i) {
+        Film::PixelEstimate e = pilot.pixelEstimate(i);
+        rel[i] = e.sampleVariance / (e.mean * e.mean + Film::kRelativeEpsilon);
+    }
+    std::vector<double> weight(rel.size());
+    double mean = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            double sum = 0;
+            int n = 0;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    int xx = x + dx, yy = y + dy;
+                    if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
+                    sum += rel[size_t(yy) * w + xx];
+                    ++n;
+                }
+            double v = std::sqrt(sum / n);
+            weight[size_t(y) * w + x] = v;
+            mean += v / double(rel.size());
+        }
+    if (mean > 0)
+        for (double& v : weight) v = std::clamp(v, 0.25 * mean, 4 * mean);
+    return weight;
+}
+
 }  // namespace
 
 bool renderSequential(SamplePasses& passes, Film& film, const Monitor& monitor, int spp) {
@@ -97,15 +135,7 @@ bool renderTwoStage(SamplePasses& passes, Film& film, const Monitor& monitor, in
         film.adoptEmptyPixels(pilot);
         return false;
     }
-    // Stage 2: n_i proportional to the pixel's relative standard deviation per sample,
-    // sigma_i / sqrt(m_i^2 + eps), which minimises the summed relative variance
-    // sum_i sigma_i^2 / (n_i (m_i^2 + eps)) for a fixed total (the Neyman allocation of
-    // thesis ch. 2, with equal cost per sample). At least one sample per pixel.
-    std::vector<double> weight(pixels);
-    for (size_t i = 0; i < pixels; ++i) {
-        Film::PixelEstimate e = pilot.pixelEstimate(i);
-        weight[i] = std::sqrt(e.sampleVariance / (e.mean * e.mean + Film::kRelativeEpsilon));
-    }
+    const std::vector<double> weight = twoStageWeights(pilot);
     long long secondStage = (long long)budget * (long long)pixels - passes.samplesDone();
     if (monitor.timeLimit() > 0) {
         double rate = double(passes.samplesDone()) / std::max(monitor.elapsed(), 1e-6);
