@@ -234,7 +234,7 @@ TEST_F(Cli, AdaptiveSampling) {
     EXPECT_EQ(light.status, 2);
     EXPECT_NE(light.out.find("--integrator path"), std::string::npos) << light.out;
     EXPECT_FALSE(fs::exists(dir / "l.exr"));
-    EXPECT_EQ(run("render --quiet --adaptive bdpt --integrator bdpt " + scene).status, 2);
+    EXPECT_EQ(run("render --quiet --adaptive sequential --integrator bdpt " + scene + " -o " + (dir / "b.exr").string()).status, 2);
 }
 
 // Ctrl-C during a two-stage render still writes a normalised image.
