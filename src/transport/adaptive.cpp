@@ -104,7 +104,7 @@ bool renderSequential(SamplePasses& passes, Film& film, const Monitor& monitor, 
     // Under a time limit the rounds go on until it stops them (or spp is reached).
     const long long total = (long long)(monitor.timeLimit() > 0 ? spp : budget) * (long long)pixels;
     // Each round refines the eighth of the pixels with the largest relative variance of
-    // the mean (the film's own error measure, thesis §2.4), by an eighth of the first pass.
+    // the mean (the film's own error measure, thesis §2.4), by half the first pass each.
     const size_t perRound = std::max<size_t>(1, pixels / 8);
     const int step = std::max(1, firstShare(budget) / 2);
     std::vector<double> error(pixels);
