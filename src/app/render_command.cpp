@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -42,6 +43,12 @@ void checkWritable(const std::string& path) {
     std::filesystem::remove(probe);
 }
 
+// out.exr -> out.variance.exr, next to the output and in its format.
+std::string variancePath(const std::string& output) {
+    std::filesystem::path p(output);
+    return (p.parent_path() / (p.stem().string() + ".variance" + p.extension().string())).string();
+}
+
 }  // namespace
 
 void RenderCommand::attach(CLI::App& app) {
@@ -71,6 +78,17 @@ void RenderCommand::attach(CLI::App& app) {
                      "Morton order over the image: blue-noise error), halton (Owen-scrambled Halton), orthogonal "
                      "(randomised orthogonal arrays), stratified (jittered strata), lhs (Latin hypercube) or independent")
         ->check(CLI::IsMember(samplerNames()));
+    cmd_->add_option("--adaptive", adaptive_,
+                     "Adaptive sampling, --spp being the average (path integrator only): "
+                     "sequential (uniform quarter, then more samples to the pixels with the largest relative error; "
+                     "BIASED: a pixel stops when its samples so far happen to agree, e.g. before it has seen a rare "
+                     "bright value) or twostage (a pilot quarter only sets n_i ~ relative standard deviation, is "
+                     "discarded, and fresh samples make the image: unbiased)")
+        ->check(CLI::IsMember({"none", "sequential", "twostage"}));
+    cmd_->add_option("--aov", aovs_,
+                     "Extra output: variance = per-pixel variance of the pixel's mean luminance (grey image), "
+                     "written next to each output as <stem>.variance.<ext>")
+        ->check(CLI::IsMember({"variance"}));
     cmd_->add_option("-o,--output", outputs_,
                      "Output image(s): .exr (float32), .png (sRGB 8-bit, clamped), .pfm; may be repeated. "
                      "Default: the scene's Film filename, relative to the current directory");
@@ -100,7 +118,12 @@ int RenderCommand::run() {
     std::vector<std::string> outputs = outputs_;
     if (outputs.empty()) outputs.push_back(std::filesystem::path(settings.outputFile).filename().string());
     for (const std::string& o : outputs) checkWritable(o);
+    const bool writeVariance = std::find(aovs_.begin(), aovs_.end(), "variance") != aovs_.end();
     std::unique_ptr<Integrator> integrator = createIntegrator(settings.integrator, *scene, mis_);
+    const AdaptiveMode adaptive = parseAdaptiveMode(adaptive_);
+    if (adaptive != AdaptiveMode::None && integrator->splats())
+        throw InputError("--adaptive " + adaptive_ + " needs --integrator path: light tracing and BDPT splat light "
+                         "paths anywhere on the film, so a pixel's samples do not make its value");
     BDPTIntegrator* bdpt = nullptr;
     if (!strategiesDir_.empty()) {
         bdpt = dynamic_cast<BDPTIntegrator*>(integrator.get());
@@ -129,9 +152,13 @@ int RenderCommand::run() {
     opts.sampler = settings.sampler;
     opts.progress = !quiet_;
     opts.cancel = &gInterrupt;
+    opts.adaptive = adaptive;
     RenderResult r = render(*scene, *integrator, opts);
 
-    for (const std::string& o : outputs) writeImage(o, r.image);
+    for (const std::string& o : outputs) {
+        writeImage(o, r.image);
+        if (writeVariance) writeImage(variancePath(o), r.variance);
+    }
     if (bdpt)
         for (const auto& [name, image] : bdpt->strategyImages()->images(r.lightPaths))
             writeImage((std::filesystem::path(strategiesDir_) / (name + ".exr")).string(), image);
@@ -143,6 +170,7 @@ int RenderCommand::run() {
         {"outputs", outputs},
         {"integrator", settings.integrator},
         {"sampler", settings.sampler},
+        {"adaptive", adaptive_.empty() ? "none" : adaptive_},
         {"resolution", {scene->camera().params().xRes, scene->camera().params().yRes}},
         {"pixels", scene->pixelBounds().area()},
         {"threads", threads_},

@@ -23,6 +23,8 @@ private:
     std::string mis_ = "power";
     std::string strategiesDir_;
     std::string sampler_;
+    std::string adaptive_;
+    std::vector<std::string> aovs_;
     std::vector<std::string> outputs_;
     std::vector<float> crop_;
     std::string statsFile_;

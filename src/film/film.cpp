@@ -1,6 +1,7 @@
 #include "film/film.h"
 
 #include <cmath>
+#include <climits>
 #include <cstring>
 
 #include <tbb/task_arena.h>
@@ -99,42 +100,73 @@ Image Film::image(double lightPaths) const {
     return img;
 }
 
+Film::PixelEstimate Film::pixelEstimate(size_t i) const {
+    const Pixel& p = pixels_[i];
+    PixelEstimate e;
+    e.samples = p.samples;
+    if (p.samples == 0) return e;
+    double n = double(p.samples);
+    e.mean = p.sumY / n;
+    if (p.samples > 1) e.sampleVariance = std::max(0.0, (p.sumY2 - n * e.mean * e.mean) / (n - 1));
+    return e;
+}
+
+double Film::pixelVariance(size_t i, double lightPaths, const std::vector<int64_t>& splats, double& mean) const {
+    const Pixel& p = pixels_[i];
+    if (!splatFilter_) {
+        PixelEstimate e = pixelEstimate(i);
+        mean = e.mean;
+        return e.varianceOfMean();
+    }
+    // Two independent half estimates H0, H1 of the pixel: Var((H0+H1)/2) ~ (H0-H1)^2/4.
+    const double halfScale = lightPaths > 0 ? 2 * splatPixelCount() / lightPaths : 0.0;
+    double h[2];
+    for (int k = 0; k < 2; ++k) {
+        h[k] = p.halfWeight[k] != 0 ? p.halfY[k] / p.halfWeight[k] : 0.0;
+        Spectrum s(float(splatValue(splats, i, k, 0)), float(splatValue(splats, i, k, 1)),
+                   float(splatValue(splats, i, k, 2)));
+        h[k] += s.luminance() * halfScale;
+    }
+    mean = 0.5 * (h[0] + h[1]);
+    return 0.25 * (h[0] - h[1]) * (h[0] - h[1]);
+}
+
 Film::ErrorEstimate Film::errorEstimate(double lightPaths) const {
     ErrorEstimate e;
     if (pixels_.empty()) return e;
-    if (splatFilter_) {
-        // Two independent half estimates H0, H1 of the pixel: Var((H0+H1)/2) ~ (H0-H1)^2/4.
-        const double halfScale = lightPaths > 0 ? 2 * splatPixelCount() / lightPaths : 0.0;
-        const std::vector<int64_t> splats = mergedSplats();
-        for (size_t i = 0; i < pixels_.size(); ++i) {
-            const Pixel& p = pixels_[i];
-            double h[2];
-            for (int k = 0; k < 2; ++k) {
-                h[k] = p.halfWeight[k] != 0 ? p.halfY[k] / p.halfWeight[k] : 0.0;
-                Spectrum s(float(splatValue(splats, i, k, 0)), float(splatValue(splats, i, k, 1)),
-                           float(splatValue(splats, i, k, 2)));
-                h[k] += s.luminance() * halfScale;
-            }
-            double m = 0.5 * (h[0] + h[1]);
-            double v = 0.25 * (h[0] - h[1]) * (h[0] - h[1]);
-            e.meanVariance += v;
-            e.meanRelativeVariance += v / (m * m + 1e-3);
-        }
-        e.meanVariance /= double(pixels_.size());
-        e.meanRelativeVariance /= double(pixels_.size());
-        return e;
-    }
-    for (const Pixel& p : pixels_) {
-        double n = double(p.samples);
-        if (n < 2) continue;
-        double m = p.sumY / n;
-        double v = std::max(0.0, (p.sumY2 - n * m * m) / (n - 1)) / n;  // variance of the mean
+    const std::vector<int64_t> splats = mergedSplats();
+    for (size_t i = 0; i < pixels_.size(); ++i) {
+        double m = 0;
+        double v = pixelVariance(i, lightPaths, splats, m);
         e.meanVariance += v;
-        e.meanRelativeVariance += v / (m * m + 1e-3);
+        e.meanRelativeVariance += v / (m * m + kRelativeEpsilon);
     }
     e.meanVariance /= double(pixels_.size());
     e.meanRelativeVariance /= double(pixels_.size());
     return e;
+}
+
+Image Film::varianceImage(double lightPaths) const {
+    Image img(bounds_.width(), bounds_.height());
+    const std::vector<int64_t> splats = mergedSplats();
+    for (int y = 0; y < bounds_.height(); ++y)
+        for (int x = 0; x < bounds_.width(); ++x) {
+            double m = 0;
+            float v = float(pixelVariance(size_t(y) * bounds_.width() + x, lightPaths, splats, m));
+            img.set(x, y, std::isfinite(v) ? Spectrum(v, v, v) : Spectrum());
+        }
+    return img;
+}
+
+std::vector<int> Film::sampleCounts() const {
+    std::vector<int> n(pixels_.size());
+    for (size_t i = 0; i < pixels_.size(); ++i) n[i] = int(std::min<long long>(pixels_[i].samples, INT_MAX));
+    return n;
+}
+
+void Film::adoptEmptyPixels(const Film& other) {
+    for (size_t i = 0; i < pixels_.size() && i < other.pixels_.size(); ++i)
+        if (pixels_[i].samples == 0) pixels_[i] = other.pixels_[i];
 }
 
 double Film::meanSamplesPerPixel() const {

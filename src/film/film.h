@@ -84,6 +84,31 @@ public:
         double meanRelativeVariance = 0;
     };
     ErrorEstimate errorEstimate(double lightPaths = 0) const;
+    // The small constant of the relative variance V/(mean^2 + kRelativeEpsilon).
+    static constexpr double kRelativeEpsilon = 1e-3;
+
+    // Per pixel (crop region, row-major), the estimated variance of the pixel's mean
+    // luminance, the quantity errorEstimate averages, as a grey image (all three channels
+    // equal). From the pixel's own samples (assumed independent, so stratified samplers
+    // overestimate it), or for splatting films from the two half-buffers.
+    Image varianceImage(double lightPaths = 0) const;
+
+    // What adaptive sampling needs to know about one pixel (non-splatting films): its
+    // sample count and the mean and per-sample variance of its luminance samples.
+    struct PixelEstimate {
+        long long samples = 0;
+        double mean = 0;
+        double sampleVariance = 0;  // unbiased, per sample; 0 below two samples
+        double varianceOfMean() const { return samples > 0 ? sampleVariance / double(samples) : 0.0; }
+        double relativeVariance() const { return varianceOfMean() / (mean * mean + kRelativeEpsilon); }
+    };
+    PixelEstimate pixelEstimate(size_t pixel) const;
+    size_t pixelCount() const { return pixels_.size(); }
+    // Samples taken per pixel (crop region, row-major).
+    std::vector<int> sampleCounts() const;
+    // Pixels without samples take the other film's accumulators (same bounds, neither
+    // splatting): lets a two-stage render that was stopped early fall back to its pilot.
+    void adoptEmptyPixels(const Film& other);
     // Mean number of samples per pixel so far.
     double meanSamplesPerPixel() const;
 
@@ -97,6 +122,8 @@ private:
         double sumY = 0, sumY2 = 0;
         double halfY[2] = {0, 0}, halfWeight[2] = {0, 0};  // splatting films only
     };
+    // Variance of pixel i's mean luminance and that mean (the half-buffer estimate when splatting).
+    double pixelVariance(size_t i, double lightPaths, const std::vector<int64_t>& splats, double& mean) const;
     static constexpr double kSplatFixedPoint = 268435456.0;  // 2^28 units per radiance unit
     // The film widened by the filter radius on every side, in pixels: the area over which
     // camera importance is spread (see Camera::setFilterMargin).

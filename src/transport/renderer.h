@@ -7,6 +7,7 @@
 #include "film/film.h"
 #include "image/image.h"
 #include "render/scene.h"
+#include "transport/adaptive.h"
 #include "transport/integrator.h"
 
 namespace ps {
@@ -19,12 +20,17 @@ struct RenderOptions {
     std::string sampler = "sobol";  // see createSampler
     bool progress = true;        // progress bar on stderr
     const std::atomic<bool>* cancel = nullptr;  // set asynchronously (Ctrl-C) to stop early
+    // Per-pixel sample counts (see transport/adaptive.h); spp is then the average. Not for
+    // splatting integrators (light, bdpt): render() throws InputError.
+    AdaptiveMode adaptive = AdaptiveMode::None;
 };
 
 struct RenderResult {
     Image image;                 // the crop region, weighted mean per pixel
+    Image variance;              // per pixel, the estimated variance of its mean luminance (Film::varianceImage)
+    std::vector<int> pixelSamples;  // samples per pixel in the image (row-major crop region)
     double seconds = 0;
-    double meanSpp = 0;          // samples actually taken per pixel, on average
+    double meanSpp = 0;          // samples actually taken per pixel, on average (a two-stage pilot included)
     double lightPaths = 0;       // splat normalisation: light paths traced / imaging ratio
     int targetSpp = 0;
     bool stoppedEarly = false;   // time budget or cancellation

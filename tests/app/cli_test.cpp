@@ -242,3 +242,68 @@ TEST_F(Cli, BdptStrategyImagesAndIntegratorChecks) {
     Result l = run("render --quiet --integrator light --spp 2 " + scene + " -o " + (dir / "l.exr").string());
     EXPECT_EQ(l.status, 0) << l.out;
 }
+
+TEST_F(Cli, VarianceAovNextToEachOutput) {
+    std::string scene = write("s.pbrt", kSmallScene);
+    std::string exr = (dir / "v.exr").string(), png = (dir / "v.png").string();
+    Result r = run("render --quiet --aov variance --crop 0.25 0.75 0 0.5 " + scene + " -o " + exr + " -o " + png);
+    ASSERT_EQ(r.status, 0) << r.out;
+    ASSERT_TRUE(fs::exists(dir / "v.variance.exr"));
+    ASSERT_TRUE(fs::exists(dir / "v.variance.png"));
+    ps::Image v = ps::readImage((dir / "v.variance.exr").string());
+    EXPECT_EQ(v.width, 16);
+    EXPECT_EQ(v.height, 12);
+    double sum = 0;
+    for (float x : v.rgb) {
+        EXPECT_GE(x, 0.0f);
+        sum += x;
+    }
+    EXPECT_GT(sum, 0.0);  // 4 independent samples per pixel of a lit sphere: not exact
+    EXPECT_FALSE(fs::exists(dir / "small.variance.exr"));
+    EXPECT_EQ(run("render --quiet --aov depth " + scene + " -o " + exr).status, 2);
+}
+
+TEST_F(Cli, AdaptiveSampling) {
+    std::string scene = write("s.pbrt", kSmallScene);
+    Result help = run("render --help");
+    for (const char* s : {"--adaptive", "sequential", "twostage", "BIASED", "--aov"})
+        EXPECT_NE(help.out.find(s), std::string::npos) << s;
+    for (const char* mode : {"sequential", "twostage"}) {
+        std::string out = (dir / "a.exr").string(), stats = (dir / "a.json").string();
+        Result r = run(std::string("render --quiet --spp 16 --adaptive ") + mode + " --stats " + stats + " " + scene +
+                       " -o " + out);
+        ASSERT_EQ(r.status, 0) << r.out;
+        nlohmann::json j = nlohmann::json::parse(std::ifstream(stats));
+        EXPECT_EQ(j["adaptive"].get<std::string>(), mode);
+        EXPECT_NEAR(j["spp_mean"].get<double>(), 16.0, 0.5);
+        EXPECT_EQ(ps::readImage(out).width, 32);
+    }
+    Result light = run("render --quiet --adaptive twostage --integrator light " + scene + " -o " + (dir / "l.exr").string());
+    EXPECT_EQ(light.status, 2);
+    EXPECT_NE(light.out.find("--integrator path"), std::string::npos) << light.out;
+    EXPECT_FALSE(fs::exists(dir / "l.exr"));
+    EXPECT_EQ(run("render --quiet --adaptive sequential --integrator bdpt " + scene + " -o " + (dir / "b.exr").string()).status, 2);
+}
+
+// Ctrl-C during a two-stage render still writes a normalised image.
+TEST_F(Cli, InterruptAdaptiveWritesNormalisedImage) {
+    std::string scene = write("s.pbrt", kSmallScene);
+    std::string out = (dir / "i.exr").string();
+    pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        execl(PATHSPACE_BINARY, PATHSPACE_BINARY, "render", "--quiet", "--adaptive", "twostage", "--spp", "100000000",
+              scene.c_str(), "-o", out.c_str(), (char*)nullptr);
+        _exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    kill(pid, SIGINT);
+    int st = 0;
+    waitpid(pid, &st, 0);
+    ASSERT_TRUE(WIFEXITED(st));
+    EXPECT_EQ(WEXITSTATUS(st), 130);
+    ps::Image img = ps::readImage(out);
+    double sum = 0;
+    for (float v : img.rgb) sum += v;
+    EXPECT_GT(sum / img.rgb.size(), 0.1);  // as in TimeBudgetWritesPartialImage: not darkened
+}

@@ -14,20 +14,25 @@
 
 namespace ps::test {
 
-inline RenderResult renderString(const std::string& text, int spp, uint64_t seed = 7, int threads = 0,
-                                 const std::string& integrator = "") {
+// Renders with `options`, taking the sampler from the scene; progress off.
+inline RenderResult renderWith(const std::string& text, RenderOptions opts, const std::string& integrator = "") {
     setWarningsQuiet(true);
     SceneDescription desc = parseSceneString(text, ".", "<test>");
     auto scene = buildScene(desc);
     if (!integrator.empty()) scene->settings().integrator = integrator;
     auto integ = createIntegrator(scene->settings().integrator, *scene);
+    opts.sampler = scene->settings().sampler;
+    opts.progress = false;
+    return render(*scene, *integ, opts);
+}
+
+inline RenderResult renderString(const std::string& text, int spp, uint64_t seed = 7, int threads = 0,
+                                 const std::string& integrator = "") {
     RenderOptions opts;
     opts.spp = spp;
     opts.seed = seed;
-    opts.sampler = scene->settings().sampler;
     opts.threads = threads;
-    opts.progress = false;
-    return render(*scene, *integ, opts);
+    return renderWith(text, opts, integrator);
 }
 
 struct RegionStats {

@@ -1,0 +1,42 @@
+// Progress on stderr and the stop signal (time budget, cancellation), from its own thread.
+#pragma once
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+namespace ps {
+
+class Monitor {
+public:
+    // Sets `stop` once the time limit (seconds, 0 = none) has passed or *cancel is set;
+    // shows done/total as a progress bar when `show`.
+    Monitor(bool show, double timeLimit, const std::atomic<bool>* cancel, std::atomic<bool>& stop,
+            const std::atomic<long long>& done, long long total);
+    ~Monitor();
+    double elapsed() const {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+    double timeLimit() const { return timeLimit_; }
+
+private:
+    void run();
+    void print(bool final);
+
+    bool show_;
+    double timeLimit_;
+    const std::atomic<bool>* cancel_;
+    std::atomic<bool>& stop_;
+    const std::atomic<long long>& done_;
+    long long total_;
+    std::chrono::steady_clock::time_point start_;
+    std::mutex m_;
+    std::condition_variable cv_;
+    bool finished_ = false;
+    int ticks_ = 0;
+    bool interactive_;
+    std::thread thread_;
+};
+
+}  // namespace ps

@@ -1,0 +1,85 @@
+#include "transport/sample_passes.h"
+
+#include <tbb/parallel_for.h>
+
+#include "mc/rng.h"
+#include "transport/renderer.h"
+#include "util/error.h"
+
+namespace ps {
+
+namespace {
+
+constexpr int kTileSize = 16;
+
+}  // namespace
+
+SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, const RenderOptions& options,
+                           std::atomic<bool>& stop, std::atomic<long long>& samplesDone)
+    : scene_(scene), integrator_(integrator), stop_(stop), samplesDone_(samplesDone),
+      imagingRatio_(scene.settings().imagingRatio), hasLens_(scene.camera().params().lensRadius > 0),
+      states_([this] {
+          ThreadState s;
+          for (int k = 0; k < 2; ++k) s.samplers[k] = prototypes_[k]->clone();
+          return s;
+      }),
+      arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {
+    const PixelBounds& b = scene.pixelBounds();
+    for (int y = b.y0; y < b.y1; y += kTileSize)
+        for (int x = b.x0; x < b.x1; x += kTileSize)
+            tiles_.push_back({x, std::min(x + kTileSize, b.x1), y, std::min(y + kTileSize, b.y1)});
+    const int spp = std::max(1, options.spp);
+    const int resolution = std::max(scene.camera().params().xRes, scene.camera().params().yRes);
+    prototypes_[0] = createSampler(options.sampler, options.seed, spp, resolution);
+    if (!prototypes_[0]) {
+        std::string names;
+        for (const std::string& n : samplerNames()) names += (names.empty() ? "" : ", ") + n;
+        throw InputError("unknown sampler \"" + options.sampler + "\" (available: " + names + ")");
+    }
+    prototypes_[1] = createSampler(options.sampler, mix64(options.seed ^ 0x5bd1e9955bd1e995ULL), spp, resolution);
+}
+
+bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& spanOf, Stream stream) {
+    const Filter& filter = scene_.filter();
+    const PixelBounds& b = film.bounds();
+    std::atomic<bool> skipped{false};
+    arena_.execute([&] {
+        tbb::parallel_for(size_t(0), tiles_.size(), [&](size_t ti) {
+            if (stop_.load(std::memory_order_relaxed)) {
+                skipped = true;
+                return;
+            }
+            ThreadState& st = states_.local();
+            Sampler& sampler = *st.samplers[int(stream)];
+            const Tile& t = tiles_[ti];
+            long long taken = 0;
+            for (int py = t.y0; py < t.y1; ++py)
+                for (int px = t.x0; px < t.x1; ++px) {
+                    SampleSpan span = spanOf(size_t(py - b.y0) * size_t(b.width()) + size_t(px - b.x0));
+                    for (int si = span.begin; si < span.end; ++si) {
+                        sampler.startPixelSample(px, py, si);
+                        FilterSample fs = filter.sample(sampler.getPixel2D());
+                        CameraSample cs;
+                        cs.pFilm = {px + 0.5f + fs.offset.x, py + 0.5f + fs.offset.y};
+                        cs.pLens = hasLens_ ? sampler.get2D() : Vec2(0.5f, 0.5f);
+                        Ray ray = scene_.camera().generateRay(cs);
+                        SampleContext ctx{sampler, st.scratch, st.stats, film, si, px, py, fs.weight};
+                        Spectrum L = integrator_.Li(ray, ctx);
+                        st.scratch.reset();
+                        film.addSample(px, py, L * imagingRatio_, fs.weight, si);
+                    }
+                    taken += std::max(0, span.end - span.begin);
+                }
+            samplesDone_.fetch_add(taken, std::memory_order_relaxed);
+        });
+    });
+    return !skipped.load();
+}
+
+PathStats SamplePasses::stats() const {
+    PathStats total;
+    for (const ThreadState& st : states_) total += st.stats;
+    return total;
+}
+
+}  // namespace ps

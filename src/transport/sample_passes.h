@@ -1,0 +1,64 @@
+// Runs passes of camera samples over the film: each pass takes, for every pixel, a range
+// of sample indices (the same for all pixels in a uniform render, per pixel in an adaptive
+// one), with tiles in parallel (oneTBB). Results do not depend on the thread schedule:
+// every pixel's samples are a function of (pixel, sample index, seed) and a tile owns its pixels.
+#pragma once
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/task_arena.h>
+
+#include "film/film.h"
+#include "render/scene.h"
+#include "transport/integrator.h"
+
+namespace ps {
+
+struct RenderOptions;
+
+struct SampleSpan {
+    int begin = 0, end = 0;  // sample indices [begin, end) of one pixel
+};
+
+class SamplePasses {
+public:
+    // Which sample stream: the pilot of a two-stage render draws from an independently
+    // seeded sampler, so its samples are independent of those that enter the image.
+    enum class Stream { Main = 0, Pilot = 1 };
+
+    SamplePasses(const Scene& scene, const Integrator& integrator, const RenderOptions& options,
+                 std::atomic<bool>& stop, std::atomic<long long>& samplesDone);
+
+    // spanOf(pixel index in the crop region, row-major) -> the indices to take there.
+    // Tiles not started when `stop` is raised are skipped; returns false if that happened.
+    bool run(Film& film, const std::function<SampleSpan(size_t pixel)>& spanOf, Stream stream = Stream::Main);
+    bool stopped() const { return stop_.load(); }
+    long long samplesDone() const { return samplesDone_.load(); }
+    PathStats stats() const;
+
+private:
+    struct Tile {
+        int x0, x1, y0, y1;
+    };
+    struct ThreadState {
+        std::unique_ptr<Sampler> samplers[2];  // per Stream
+        ScratchBuffer scratch;
+        PathStats stats;
+    };
+
+    const Scene& scene_;
+    const Integrator& integrator_;
+    std::atomic<bool>& stop_;
+    std::atomic<long long>& samplesDone_;
+    std::vector<Tile> tiles_;
+    const float imagingRatio_;
+    const bool hasLens_;
+    std::unique_ptr<Sampler> prototypes_[2];
+    tbb::enumerable_thread_specific<ThreadState> states_;
+    tbb::task_arena arena_;
+};
+
+}  // namespace ps
