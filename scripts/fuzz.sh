@@ -16,11 +16,14 @@ shift 2
 targets=("$target")
 [ "$target" = all ] && targets=(scene_fuzzer ply_fuzzer image_fuzzer)
 cxx=${CXX:-$(command -v clang++-14 || command -v clang++)}
+# On the shared development machine builds take /tmp/ps-build.lock (unless the caller holds it).
+lock=()
+[ -e /tmp/ps-build.lock ] && [ -z "${PS_BUILD_LOCK_HELD:-}" ] && lock=(flock /tmp/ps-build.lock)
 if [ ! -f build-fuzz/build.ninja ]; then
-  flock /tmp/ps-build.lock cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  "${lock[@]}" cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_COMPILER="$cxx" -DPATHSPACE_NATIVE=OFF -DPATHSPACE_FUZZ=ON -DBUILD_TESTING=OFF >/dev/null
 fi
-flock /tmp/ps-build.lock cmake --build build-fuzz -j"$(nproc 2>/dev/null || echo 2)" --target "${targets[@]}"
+"${lock[@]}" cmake --build build-fuzz -j"$(nproc 2>/dev/null || echo 2)" --target "${targets[@]}"
 for t in "${targets[@]}"; do
   mkdir -p "build-fuzz/corpus/$t" "build-fuzz/artifacts/$t"
   dict=()
