@@ -100,17 +100,25 @@ void checkJpegHuffmanTables(const std::string& path, std::FILE* f) {
         if (m == 0x00 || m == 0x01 || (m >= 0xD0 && m <= 0xD7)) { pos += 2; continue; }  // no length
         if (m == 0xD9) break;                                                             // EOI
         const size_t len = size_t(b[pos + 2]) << 8 | b[pos + 3];
-        const size_t end = std::min(n, pos + 2 + len);
-        if (m == 0xC4)
-            for (size_t p = pos + 4; p + 17 <= end;) {
-                size_t codes = 0;
-                for (int i = 1; i <= 16; ++i) codes += b[p + size_t(i)];
-                if (codes > 256)
-                    throw InputError(path + ": corrupt JPEG: a Huffman table declares " + std::to_string(codes) +
-                                     " codes (at most 256)");
-                p += 17 + codes;
-            }
-        pos += 2 + len;
+        if (m != 0xC4) {
+            pos += 2 + len;
+            continue;
+        }
+        // Read tables exactly as stb does: while the declared length is not used up, even if a
+        // table runs past it, with zeros past the end of the file.
+        auto at = [&](size_t i) -> size_t { return i < n ? b[i] : 0; };
+        long long left = (long long)len - 2;
+        size_t p = pos + 4;
+        while (left > 0 && p < n) {
+            size_t codes = 0;
+            for (size_t i = 1; i <= 16; ++i) codes += at(p + i);
+            if (codes > 256)
+                throw InputError(path + ": corrupt JPEG: a Huffman table declares " + std::to_string(codes) +
+                                 " codes (at most 256)");
+            p += 17 + codes;
+            left -= 17 + (long long)codes;
+        }
+        pos = p;
     }
 }
 
