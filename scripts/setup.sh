@@ -5,6 +5,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev libopenexr-dev libstb-dev zlib1g-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
+  clang-14 libclang-rt-14-dev llvm-14  # sanitizer and fuzz builds (llvm-14: symbolized reports)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -7,7 +7,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "image/image_formats.h"
 #include "util/error.h"
@@ -76,10 +79,56 @@ int atEnd(void* user) {
 }
 const stbi_io_callbacks kCallbacks = {readBytes, skipBytes, atEnd};
 
+// Debian's stb_image (2022-09) overruns its Huffman arrays when a JPEG DHT table declares more
+// than 256 codes (found by fuzz/image_fuzzer). Such files are corrupt: reject them before stb
+// sees them. Walks every marker segment, including those between the scans of a progressive file.
+void checkJpegHuffmanTables(const std::string& path, std::FILE* f) {
+    std::vector<unsigned char> b;
+    unsigned char buf[65536];
+    size_t got;
+    while ((got = std::fread(buf, 1, sizeof buf, f)) > 0) b.insert(b.end(), buf, buf + got);
+    std::rewind(f);
+    const size_t n = b.size();
+    size_t pos = 2;  // after SOI
+    while (pos + 4 <= n) {
+        if (b[pos] != 0xFF) {  // entropy-coded data: look for the next marker
+            ++pos;
+            continue;
+        }
+        const unsigned m = b[pos + 1];
+        if (m == 0xFF) { ++pos; continue; }  // fill byte
+        if (m == 0x00 || m == 0x01 || (m >= 0xD0 && m <= 0xD7)) { pos += 2; continue; }  // no length
+        if (m == 0xD9) break;                                                             // EOI
+        const size_t len = size_t(b[pos + 2]) << 8 | b[pos + 3];
+        if (m != 0xC4) {
+            pos += 2 + len;
+            continue;
+        }
+        // Read tables exactly as stb does: while the declared length is not used up, even if a
+        // table runs past it, with zeros past the end of the file.
+        auto at = [&](size_t i) -> size_t { return i < n ? b[i] : 0; };
+        long long left = (long long)len - 2;
+        size_t p = pos + 4;
+        while (left > 0 && p < n) {
+            size_t codes = 0;
+            for (size_t i = 1; i <= 16; ++i) codes += at(p + i);
+            if (codes > 256)
+                throw InputError(path + ": corrupt JPEG: a Huffman table declares " + std::to_string(codes) +
+                                 " codes (at most 256)");
+            p += 17 + codes;
+            left -= 17 + (long long)codes;
+        }
+        pos = p;
+    }
+}
+
 }  // namespace
 
 Image readStb(const std::string& path, std::FILE* f, long long fileBytes, FileFormat format, ColorEncoding pngEncoding) {
     // Every stb call starts a fresh context at the current position: rewind before each.
+    unsigned char soi[2] = {};
+    if (std::fread(soi, 1, 2, f) == 2 && soi[0] == 0xFF && soi[1] == 0xD8) checkJpegHuffmanTables(path, f);
+    std::rewind(f);
     Source src{f};
     int w = 0, h = 0, comps = 0;
     if (!stbi_info_from_callbacks(&kCallbacks, &src, &w, &h, &comps)) stbFailure(path);

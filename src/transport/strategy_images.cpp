@@ -42,8 +42,14 @@ void StrategyImages::splat(int s, Vec2 pRaster, Spectrum weighted, Spectrum unwe
 std::vector<std::pair<std::string, Image>> StrategyImages::images(double lightPaths) const {
     std::vector<std::pair<std::string, Image>> out;
     size_t area = size_t(bounds_.area());
+    // Appended piecewise: "s" + std::to_string(...) trips GCC 12's false -Wrestrict (GCC PR 105329).
     auto name = [](int s, int t, int k) {
-        return "s" + std::to_string(s) + "_t" + std::to_string(t) + (k ? "_unweighted" : "");
+        std::string n = "s";
+        n += std::to_string(s);
+        n += "_t";
+        n += std::to_string(t);
+        if (k) n += "_unweighted";
+        return n;
     };
     for (size_t i = 0; i < strategies_.size(); ++i)
         for (int k = 0; k < 2; ++k) {

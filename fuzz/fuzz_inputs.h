@@ -1,0 +1,98 @@
+// How the fuzz targets turn bytes into reader calls, shared by the libFuzzer targets and by
+// the regression test that replays their findings (tests/render/fuzz_regressions_test.cpp).
+// Each function returns normally on success or InputError (the expected failure for bad input);
+// anything else escapes or crashes. The readers take paths and scenes resolve Include/Import on
+// disk, so inputs are written to files in a private scratch directory first.
+#pragma once
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <string_view>
+
+#include "image/image.h"
+#include "render/scene_builder.h"
+#include "scene/parser.h"
+#include "scene/ply.h"
+#include "util/error.h"
+
+namespace ps::fuzz {
+
+// One directory per process, reused for every input and removed at exit. A plain array, not
+// a std::string: the atexit handler runs after static objects are destroyed.
+inline std::string scratchDir() {
+    static char dir[] = "/tmp/ps-fuzz-XXXXXX";
+    static const bool made = [] {
+        if (!mkdtemp(dir)) std::abort();
+        std::atexit([] { (void)!std::system((std::string("rm -rf '") + dir + "'").c_str()); });
+        return true;
+    }();
+    (void)made;
+    return dir;
+}
+
+inline std::string writeScratchFile(const std::string& name, std::string_view bytes) {
+    std::string path = scratchDir() + "/" + name;
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f) std::abort();
+    if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), f) != bytes.size()) std::abort();
+    std::fclose(f);
+    return path;
+}
+
+inline void removeScratchFile(const std::string& name) { std::remove((scratchDir() + "/" + name).c_str()); }
+
+// Up to three files separated by the marker line "#--file--": main.pbrt, include.pbrt and
+// mesh.ply, so that Include, Import and plymesh of generated files resolve. Parsed, then built.
+inline void runSceneInput(const uint8_t* data, size_t size) {
+    static const char* const kNames[] = {"main.pbrt", "include.pbrt", "mesh.ply"};
+    constexpr std::string_view kMarker = "#--file--\n";
+    std::string_view rest(reinterpret_cast<const char*>(data), size);
+    bool more = true;
+    std::string mainPath;
+    for (int i = 0; i < 3; ++i) {
+        if (!more) {
+            removeScratchFile(kNames[i]);  // absent: exercises the missing-file errors
+            continue;
+        }
+        size_t cut = i < 2 ? rest.find(kMarker) : std::string_view::npos;
+        std::string path = writeScratchFile(kNames[i], rest.substr(0, cut));
+        if (i == 0) mainPath = path;
+        more = cut != std::string_view::npos;
+        if (more) rest = rest.substr(cut + kMarker.size());
+    }
+    try {
+        SceneDescription desc = parseSceneFile(mainPath);
+        buildScene(desc);
+    } catch (const InputError&) {
+    }
+}
+
+// Arbitrary bytes as a PLY file; the reader sniffs the gzip magic itself.
+inline void runPlyInput(const uint8_t* data, size_t size) {
+    std::string path = writeScratchFile("mesh.ply", {reinterpret_cast<const char*>(data), size});
+    try {
+        readPly(path);
+    } catch (const InputError&) {
+    }
+}
+
+// The first byte picks the extension (.png .jpg .tga .exr .hdr .pfm: readers fall back on it
+// when the content is not recognised) and the PNG colour encoding; the rest is the file.
+inline void runImageInput(const uint8_t* data, size_t size) {
+    if (size == 0) return;
+    static const char* const kExtensions[] = {".png", ".jpg", ".tga", ".exr", ".hdr", ".pfm"};
+    std::string name = std::string("image") + kExtensions[(data[0] & 0x7f) % 6];
+    auto encoding = (data[0] & 0x80) ? ColorEncoding::Linear : ColorEncoding::SRGB;
+    std::string path = writeScratchFile(name, {reinterpret_cast<const char*>(data + 1), size - 1});
+    try {
+        readImage(path, encoding);
+    } catch (const InputError&) {
+    }
+    removeScratchFile(name);
+}
+
+}  // namespace ps::fuzz

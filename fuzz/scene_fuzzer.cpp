@@ -1,0 +1,8 @@
+// libFuzzer target: see runSceneInput in fuzz_inputs.h for how the bytes are used.
+#include "fuzz_inputs.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    ps::setWarningsQuiet(true);
+    ps::fuzz::runSceneInput(data, size);
+    return 0;
+}
