@@ -141,8 +141,8 @@ float BDPTIntegrator::misWeight(PathVertex* light, PathVertex* camera, const Pat
     // Delta densities are stored as 0; they cancel in the ratios (remapped to 1), and the
     // strategies that would need to sample a delta vertex by connection are excluded.
     auto remap = [](float f) { return f != 0 ? f : 1.0f; };
-    auto term = [&](float r, bool possible) -> double {
-        (void)possible;
+    // Each other strategy's weight relative to this one's (uniform: each counts once).
+    auto term = [&](float r) -> double {
         if (heuristic_ == MisHeuristic::Uniform) return 1.0;
         return heuristic_ == MisHeuristic::Power ? double(r) * r : double(r);
     };
@@ -150,13 +150,13 @@ float BDPTIntegrator::misWeight(PathVertex* light, PathVertex* camera, const Pat
     float r = 1;
     for (int i = t - 1; i > 0; --i) {
         r *= remap(camera[i].pdfRev) / remap(camera[i].pdfFwd);
-        if (!camera[i].delta && !camera[i - 1].delta) sum += term(r, camera[i].pdfRev != 0);
+        if (!camera[i].delta && !camera[i - 1].delta) sum += term(r);
     }
     r = 1;
     for (int i = s - 1; i >= 0; --i) {
         r *= remap(light[i].pdfRev) / remap(light[i].pdfFwd);
         bool deltaBefore = i > 0 ? light[i - 1].delta : light[0].isDeltaLight();
-        if (!light[i].delta && !deltaBefore) sum += term(r, light[i].pdfRev != 0);
+        if (!light[i].delta && !deltaBefore) sum += term(r);
     }
     if (!std::isfinite(sum)) return 0;
     return float(1 / (1 + sum));
