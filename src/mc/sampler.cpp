@@ -6,6 +6,25 @@
 
 namespace ps {
 
+SobolPermutationTable::SobolPermutationTable(int log2N, uint64_t seed) : log2N(log2N) {
+    const uint32_t n = 1u << log2N;
+    entries.resize(size_t(kRows) * n * 2);
+    for (uint32_t d = 0; d < kRows; ++d) {
+        uint64_t key = mixWithKey(mix64(seed ^ 0x2545f4914f6cdd1dULL), d);
+        for (uint32_t i = 0; i < n; ++i) {
+            uint32_t p = permuteNested(i, log2N, key);
+            entries[(size_t(d) * n + i) * 2] = uint16_t(p);
+            entries[(size_t(d) * n + i) * 2 + 1] = uint16_t(sobolDim1Reversed(p));
+        }
+    }
+}
+
+PaddedSobolSampler::PaddedSobolSampler(uint64_t seed, int samplesPerPixel)
+    : seed_(seed), n_(uint32_t(samplesPerPixel < 1 ? 1 : samplesPerPixel)) {
+    if ((n_ & (n_ - 1)) == 0) log2N_ = __builtin_ctz(n_);
+    if (SobolPermutationTable::covers(n_)) table_ = std::make_shared<const SobolPermutationTable>(log2N_, seed);
+}
+
 std::unique_ptr<Sampler> createSampler(const std::string& name, uint64_t seed, int samplesPerPixel, int resolution) {
     if (name == "independent") return std::make_unique<IndependentSampler>(seed);
     if (name == "sobol") return std::make_unique<PaddedSobolSampler>(seed, samplesPerPixel);

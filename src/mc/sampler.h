@@ -57,19 +57,30 @@ private:
     Rng rng_;
 };
 
+// The index permutations of PaddedSobolSampler for N = 2^m samples, tabulated: row r, entry
+// i holds sample i's permuted index p and the reversed Sobol point of dimension 1 at p
+// (dimension 0's reversed point is p itself). A pixel reads dimension d from row (d + o) mod
+// rows, o drawn per pixel, so each pixel pairs its dimensions by its own draw of two random
+// permutations: a single table shared by all pixels would give every pixel the same luck of
+// pairing. Looking an entry up replaces three hashes per request.
+struct SobolPermutationTable {
+    static constexpr uint32_t kMaxSamples = 256, kRows = 128;  // 128 KiB at most
+    int log2N = 0;
+    std::vector<uint16_t> entries;  // (permuted index, reversed dimension-1 point) pairs
+    SobolPermutationTable(int log2N, uint64_t seed);
+    static bool covers(uint32_t n) { return (n & (n - 1)) == 0 && n <= kMaxSamples; }
+};
+
 // Owen-scrambled Sobol points per pixel, padded across dimensions (pbrt-v4's "paddedsobol"):
 // every 1-D and 2-D request uses the first one or two Sobol dimensions, with its own scramble
-// seed and its own random permutation of the pixel's N sample indices, both keyed by (pixel,
-// dimension, seed). Each pixel's samples are stratified in every requested 1-D and 2-D
+// seed, keyed by (pixel, dimension, seed), and its own random permutation of the pixel's N
+// sample indices. Each pixel's samples are stratified in every requested 1-D and 2-D
 // projection (a (0,2)-net for power-of-two N). The index permutation is what decorrelates
 // the requests: with one shared index, two requests' top bits would agree (or disagree) for
 // all samples at once, whatever N, and an integrand coupling them would keep a fixed error.
 class PaddedSobolSampler final : public Sampler {
 public:
-    PaddedSobolSampler(uint64_t seed, int samplesPerPixel)
-        : seed_(seed), n_(uint32_t(samplesPerPixel < 1 ? 1 : samplesPerPixel)) {
-        if ((n_ & (n_ - 1)) == 0) log2N_ = __builtin_ctz(n_);
-    }
+    PaddedSobolSampler(uint64_t seed, int samplesPerPixel);
     Kind kind() const override { return Kind::PaddedSobol; }
     void startPixelSample(int px, int py, int sampleIndex) override {
         pixelHash_ = pixelHash(px, py, seed_);
@@ -77,28 +88,45 @@ public:
         // Indices beyond N (not used by the renderer) continue in blocks of N.
         roundBase_ = uint32_t(sampleIndex) / n_ * n_;
         indexInRound_ = uint32_t(sampleIndex) - roundBase_;
+        if (table_) {
+            column_ = table_->entries.data() + 2 * indexInRound_;
+            rowOffset_ = uint32_t(pixelHash_ >> 57);
+            roundDim1_ = sobolDim1Reversed(roundBase_);
+        }
         dimension_ = 0;
     }
     float get1D() override {
         uint64_t dim = dimension_++;
         uint64_t h = dimensionSeed(dim);
-        return fixedToFloat(owenScrambleReversed(permutedIndex(dim), uint32_t(h)));
+        uint32_t index = column_ && dim < SobolPermutationTable::kRows ? roundBase_ + entry(dim)[0] : permutedIndex(dim);
+        return fixedToFloat(owenScrambleReversed(index, uint32_t(h)));
     }
     Vec2 get2D() override {
         uint64_t dim = dimension_;
         dimension_ += 2;
         uint64_t h = dimensionSeed(dim);
-        uint32_t index = permutedIndex(dim);
+        uint32_t index, dim1;
+        if (column_ && dim < SobolPermutationTable::kRows) {
+            const uint16_t* e = entry(dim);
+            index = roundBase_ + e[0];
+            dim1 = roundDim1_ ^ e[1];  // the transform is linear over GF(2), and the bits are disjoint
+        } else {
+            index = permutedIndex(dim);
+            dim1 = sobolDim1Reversed(index);
+        }
         return {fixedToFloat(owenScrambleReversed(index, uint32_t(h))),
-                fixedToFloat(owenScrambleReversed(sobolDim1Reversed(index), uint32_t(h >> 32)))};
+                fixedToFloat(owenScrambleReversed(dim1, uint32_t(h >> 32)))};
     }
-    std::unique_ptr<Sampler> clone() const override { return std::make_unique<PaddedSobolSampler>(seed_, int(n_)); }
+    std::unique_ptr<Sampler> clone() const override { return std::make_unique<PaddedSobolSampler>(*this); }
 
 private:
     // Scramble seeds per dimension from the (already well mixed) pixel hash.
     uint64_t dimensionSeed(uint64_t dim) const { return mixWithKey(pixelHash_, dim); }
-    // For N = 2^m a nested permutation of the index's base-4 digits (as ZSobol's) is cheaper
-    // than Kensler's and pairs dimensions as well.
+    const uint16_t* entry(uint64_t dim) const {
+        return column_ + (size_t((uint32_t(dim) + rowOffset_) & (SobolPermutationTable::kRows - 1)) << (log2N_ + 1));
+    }
+    // Beyond the table: a per-pixel permutation. For N = 2^m a nested permutation of the
+    // index's base-4 digits (as ZSobol's) is cheaper than Kensler's and pairs dimensions as well.
     uint32_t permutedIndex(uint64_t dim) const {
         if (log2N_ >= 0)
             return roundBase_ + permuteNested(indexInRound_, log2N_, permutationKey_ + dim * 0x9e3779b97f4a7c15ULL);
@@ -108,8 +136,11 @@ private:
     uint64_t seed_;
     uint32_t n_;
     int log2N_ = -1;  // log2(N) when N is a power of two
+    std::shared_ptr<const SobolPermutationTable> table_;  // shared by clones; null if N is not covered
+    const uint16_t* column_ = nullptr;                     // this sample's entry in row 0
+    uint32_t rowOffset_ = 0;                               // this pixel's o
     uint64_t pixelHash_ = 0, permutationKey_ = 0;
-    uint32_t roundBase_ = 0, indexInRound_ = 0;
+    uint32_t roundBase_ = 0, indexInRound_ = 0, roundDim1_ = 0;
     uint64_t dimension_ = 0;
 };
 
