@@ -2,6 +2,7 @@
 // masking-shadowing and sampling of visible normals (Heitz 2018).
 #pragma once
 #include "math/frame.h"
+#include "math/fast_trig.h"
 #include "math/vec.h"
 
 namespace ps {
@@ -48,8 +49,7 @@ public:
         if (wh.z < 0) wh = -wh;
         Vec3 t1 = wh.z < 0.99999f ? normalize(cross(Vec3(0, 0, 1), wh)) : Vec3(1, 0, 0);
         Vec3 t2 = cross(wh, t1);
-        float r = std::sqrt(u.x), phi = 2 * kPi * u.y;
-        Vec2 p(r * std::cos(phi), r * std::sin(phi));
+        Vec2 p = cosSinTurns(u.y) * std::sqrt(u.x);
         float h = std::sqrt(1 - p.x * p.x);
         p.y = lerp((1 + wh.z) / 2, h, p.y);
         float pz = safeSqrt(1 - p.x * p.x - p.y * p.y);

@@ -1,6 +1,7 @@
 // Warps from the unit square to directions and points, with their densities
 // (thesis §2.4.1: sampling by inversion of the cumulative distribution).
 #pragma once
+#include "math/fast_trig.h"
 #include "math/vec.h"
 
 namespace ps {
@@ -9,38 +10,39 @@ namespace ps {
 inline Vec2 sampleConcentricDisk(Vec2 u) {
     float ox = 2 * u.x - 1, oy = 2 * u.y - 1;
     if (ox == 0 && oy == 0) return {0, 0};
-    float r, theta;
+    float r, turns;  // the angle theta in turns: pi/4 is 1/8
     if (std::fabs(ox) > std::fabs(oy)) {
         r = ox;
-        theta = (kPi / 4) * (oy / ox);
+        turns = 0.125f * (oy / ox);
     } else {
         r = oy;
-        theta = kPi / 2 - (kPi / 4) * (ox / oy);
+        turns = 0.25f - 0.125f * (ox / oy);
     }
-    return {r * std::cos(theta), r * std::sin(theta)};
+    return cosSinTurns(turns) * r;
 }
 
 // Cosine-weighted hemisphere around +z (Malley's method with the polar disk map:
 // r^2 = u.x is uniform on the disk); pdf (solid angle) = cos(theta)/pi.
 inline Vec3 sampleCosineHemisphere(Vec2 u) {
-    float r = std::sqrt(u.x), phi = 2 * kPi * u.y;
-    return {r * std::cos(phi), r * std::sin(phi), safeSqrt(1 - u.x)};
+    float r = std::sqrt(u.x);
+    Vec2 cs = cosSinTurns(u.y);
+    return {r * cs.x, r * cs.y, safeSqrt(1 - u.x)};
 }
 inline float cosineHemispherePdf(float cosTheta) { return std::max(0.0f, cosTheta) * kInvPi; }
 
 inline Vec3 sampleUniformSphere(Vec2 u) {
     float z = 1 - 2 * u.x;
     float r = safeSqrt(1 - z * z);
-    float phi = 2 * kPi * u.y;
-    return {r * std::cos(phi), r * std::sin(phi), z};
+    Vec2 cs = cosSinTurns(u.y);
+    return {r * cs.x, r * cs.y, z};
 }
 constexpr float uniformSpherePdf() { return kInv4Pi; }
 
 inline Vec3 sampleUniformHemisphere(Vec2 u) {
     float z = u.x;
     float r = safeSqrt(1 - z * z);
-    float phi = 2 * kPi * u.y;
-    return {r * std::cos(phi), r * std::sin(phi), z};
+    Vec2 cs = cosSinTurns(u.y);
+    return {r * cs.x, r * cs.y, z};
 }
 constexpr float uniformHemispherePdf() { return kInv2Pi; }
 
@@ -48,8 +50,8 @@ constexpr float uniformHemispherePdf() { return kInv2Pi; }
 inline Vec3 sampleUniformCone(Vec2 u, float cosMax) {
     float cosT = (1 - u.x) + u.x * cosMax;
     float sinT = safeSqrt(1 - cosT * cosT);
-    float phi = 2 * kPi * u.y;
-    return {sinT * std::cos(phi), sinT * std::sin(phi), cosT};
+    Vec2 cs = cosSinTurns(u.y);
+    return {sinT * cs.x, sinT * cs.y, cosT};
 }
 inline float uniformConePdf(float cosMax) { return 1 / (2 * kPi * (1 - cosMax)); }
 
