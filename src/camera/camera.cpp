@@ -79,6 +79,7 @@ std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, Vec2 u) const {
     s.pdf = dist2 / (cosLens * lensArea());
     s.We = We(Ray{s.pLens, -s.wi}, &s.pRaster);
     if (!(s.We > 0)) return std::nullopt;
+    s.pdfDir = 1 / (filmArea_ * cosLens * cosLens * cosLens);  // as pdfWe gives it
     return s;
 }
 

@@ -20,6 +20,7 @@ struct CameraWiSample {
     Vec3 pLens;       // world-space point on the lens
     Vec3 nLens;       // lens normal (the viewing direction)
     Vec2 pRaster;     // where the contribution lands on the film
+    float pdfDir = 0; // the camera's own density (solid angle) of emitting along -wi
 };
 
 class Camera {

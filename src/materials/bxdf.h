@@ -14,6 +14,9 @@ namespace ps {
 // Importance: it carries importance from the camera (light tracing) and the BSDF must be
 // the adjoint (thesis ch. 5: the 1/eta^2 radiance scaling applies only to Radiance).
 enum class TransportMode { Radiance, Importance };
+inline TransportMode adjoint(TransportMode m) {
+    return m == TransportMode::Radiance ? TransportMode::Importance : TransportMode::Radiance;
+}
 
 enum BxDFFlags : uint8_t {
     kReflection = 1,
@@ -37,6 +40,14 @@ struct BSDFSample {
     bool isReflection() const { return flags & kReflection; }
 };
 
+// A BxDF seen from both sides of a connection: f(wo, wi), the density of sampling wi from wo,
+// and the density of sampling wo from wi under the adjoint mode (thesis §10.2: the MIS
+// weights of a bidirectional connection need both).
+struct BxDFEval {
+    Spectrum f;
+    float pdfFwd = 0, pdfRev = 0;
+};
+
 class BxDF {
 public:
     virtual ~BxDF() = default;
@@ -45,6 +56,9 @@ public:
     // uc picks among lobes, u picks the direction within a lobe.
     virtual std::optional<BSDFSample> sample(Vec3 wo, float uc, Vec2 u, TransportMode mode) const = 0;
     virtual float pdf(Vec3 wo, Vec3 wi, TransportMode mode) const = 0;
+    virtual BxDFEval evaluate(Vec3 wo, Vec3 wi, TransportMode mode) const {
+        return {f(wo, wi, mode), pdf(wo, wi, mode), pdf(wi, wo, adjoint(mode))};
+    }
     bool isSpecular() const { return (flags() & (kDiffuse | kGlossy)) == 0 && (flags() & kSpecular); }
 };
 

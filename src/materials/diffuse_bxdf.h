@@ -22,6 +22,10 @@ public:
     float pdf(Vec3 wo, Vec3 wi, TransportMode) const override {
         return sameHemisphere(wo, wi) ? cosineHemispherePdf(absCosTheta(wi)) : 0.0f;
     }
+    BxDFEval evaluate(Vec3 wo, Vec3 wi, TransportMode) const override {
+        if (!sameHemisphere(wo, wi)) return {};
+        return {R_ * kInvPi, absCosTheta(wi) * kInvPi, absCosTheta(wo) * kInvPi};
+    }
 
 private:
     Spectrum R_;

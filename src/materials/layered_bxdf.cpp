@@ -24,10 +24,6 @@ uint64_t hashVec(Vec3 w) {
     return hashFloats(v, 3);
 }
 
-TransportMode adjoint(TransportMode m) {
-    return m == TransportMode::Radiance ? TransportMode::Importance : TransportMode::Radiance;
-}
-
 bool usable(const std::optional<BSDFSample>& s) { return s && !s->f.isBlack() && s->pdf > 0 && s->wi.z != 0; }
 
 // Uniform numbers for one walk; pairs are drawn in a fixed order (argument evaluation order

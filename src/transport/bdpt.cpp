@@ -54,8 +54,12 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
     const Scene& scene = paths_.scene();
     // An escaped camera ray is an endpoint only for s = 0.
     if (t > 1 && s != 0 && camera[t - 1].isInfiniteLight()) return c;
-    PathVertex sampled;
+    // Where a connection evaluates the BSDFs at its ends, the same calls give the densities
+    // the weight needs (thesis §10.2: the reverse densities at and next to the join).
+    EndpointDensities known;
+    bool haveKnown = false;
     Spectrum L;
+    std::optional<PathVertex> sampled;  // the vertex a connection samples (s = 1, t = 1)
     if (s == 0) {
         // The camera subpath found an emitter on its own.
         const PathVertex& pt = camera[t - 1];
@@ -66,14 +70,24 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
         if (!qs.connectible()) return c;
         auto cs = scene.camera().sampleWi(qs.p, sampler.get2D());
         if (!cs) return c;
-        sampled.kind = VertexKind::Camera;
-        sampled.mode = TransportMode::Radiance;
-        sampled.p = cs->pLens;
-        sampled.beta = Spectrum(cs->We / cs->pdf);
-        L = qs.beta * paths_.f(qs, sampled, TransportMode::Importance) * sampled.beta;
-        if (qs.onSurface()) L *= std::fabs(dot(cs->wi, qs.ns));
-        if (!L.isBlack() && !paths_.visible(qs, sampled, stats)) L = Spectrum();
+        PathVertex& lens = sampled.emplace();
+        lens.kind = VertexKind::Camera;
+        lens.mode = TransportMode::Radiance;
+        lens.p = cs->pLens;
+        lens.beta = Spectrum(cs->We / cs->pdf);
         c.pRaster = cs->pRaster;
+        if (qs.kind == VertexKind::Surface && qs.bxdf) {
+            BxDFEval e = paths_.evaluate(qs, cs->wi);
+            L = qs.beta * e.f * lens.beta * std::fabs(dot(cs->wi, qs.ns));
+            known.pt = e.pdfFwd * areaFactor(qs, lens);
+            known.qs = cs->pdfDir * areaFactor(lens, qs);
+            known.qsMinus = e.pdfRev * qs.toPrevArea;
+            haveKnown = true;
+        } else {
+            L = qs.beta * paths_.f(qs, lens, TransportMode::Importance) * lens.beta;
+            if (qs.onSurface()) L *= std::fabs(dot(cs->wi, qs.ns));
+        }
+        if (!L.isBlack() && !paths_.visible(qs, lens, stats)) L = Spectrum();
     } else if (s == 1) {
         // Next-event estimation: a light point sampled as seen from the camera vertex.
         const PathVertex& pt = camera[t - 1];
@@ -84,24 +98,56 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
         if (!lt || !(pmf > 0)) return c;
         auto ls = lt->sampleLi(LightSampleContext{pt.p, pt.ng}, u);
         if (!ls || ls->L.isBlack() || !(ls->pdf > 0)) return c;
-        sampled.kind = VertexKind::Light;
-        sampled.mode = TransportMode::Importance;
-        sampled.light = lt;
-        sampled.infinite = lt->atInfinity();
-        sampled.p = ls->pLight;
-        sampled.ng = sampled.ns = ls->nLight;
-        sampled.beta = ls->L / (ls->pdf * pmf);
-        sampled.pdfFwd = paths_.pdfLightOrigin(sampled, pt);
-        L = pt.beta * paths_.f(pt, sampled, TransportMode::Radiance) * sampled.beta;
-        if (pt.onSurface()) L *= std::fabs(dot(ls->wi, pt.ns));
-        if (!L.isBlack() && !paths_.visible(pt, sampled, stats)) L = Spectrum();
+        PathVertex& lv = sampled.emplace();
+        lv.kind = VertexKind::Light;
+        lv.mode = TransportMode::Importance;
+        lv.light = lt;
+        lv.infinite = lt->atInfinity();
+        lv.p = ls->pLight;
+        lv.ng = lv.ns = ls->nLight;
+        lv.beta = ls->L / (ls->pdf * pmf);
+        if (pt.kind == VertexKind::Surface && pt.bxdf) {
+            BxDFEval e = paths_.evaluate(pt, ls->wi);
+            L = pt.beta * e.f * lv.beta * std::fabs(dot(ls->wi, pt.ns));
+            if (lv.infinite) {
+                lv.pdfFwd = paths_.pdfLightOrigin(lv, pt);
+                known.pt = paths_.pdfLight(lv, pt);
+            } else {
+                // One emission query gives both the light subpath's start and its direction.
+                float pdfPos, pdfDir;
+                lt->pdfLe(lv.p, lv.ng, -ls->wi, &pdfPos, &pdfDir);
+                lv.pdfFwd = scene.lightPmf(lt) * pdfPos;
+                known.pt = pdfDir * areaFactor(lv, pt);
+            }
+            known.qs = e.pdfFwd * areaFactor(pt, lv);
+            known.ptMinus = e.pdfRev * pt.toPrevArea;
+            haveKnown = true;
+        } else {
+            lv.pdfFwd = paths_.pdfLightOrigin(lv, pt);
+            L = pt.beta * paths_.f(pt, lv, TransportMode::Radiance) * lv.beta;
+            if (pt.onSurface()) L *= std::fabs(dot(ls->wi, pt.ns));
+        }
+        if (!L.isBlack() && !paths_.visible(pt, lv, stats)) L = Spectrum();
     } else {
-        // Both subpaths contribute a vertex; join them deterministically.
+        // Both subpaths contribute a vertex; join them deterministically. One direction
+        // serves both BSDFs, the geometry term and the four densities the weight needs.
         const PathVertex& qs = light[s - 1];
         const PathVertex& pt = camera[t - 1];
         if (!qs.connectible() || !pt.connectible()) return c;
-        L = qs.beta * paths_.f(qs, pt, TransportMode::Importance) * paths_.f(pt, qs, TransportMode::Radiance) * pt.beta;
-        if (!L.isBlack()) L *= paths_.G(qs, pt, stats);
+        Vec3 d = pt.p - qs.p;
+        float d2 = lengthSquared(d);
+        if (!(d2 > 0)) return c;
+        float invDist2 = 1 / d2;
+        Vec3 w = d * std::sqrt(invDist2);  // from qs towards pt
+        BxDFEval atQs = paths_.evaluate(qs, w), atPt = paths_.evaluate(pt, -w);
+        float g = std::fabs(dot(qs.ns, w)) * std::fabs(dot(pt.ns, w)) * invDist2;
+        L = qs.beta * atQs.f * atPt.f * pt.beta * g;
+        if (!L.isBlack() && !paths_.visible(qs, pt, stats)) L = Spectrum();
+        known.pt = atQs.pdfFwd * std::fabs(dot(pt.ng, w)) * invDist2;
+        known.qs = atPt.pdfFwd * std::fabs(dot(qs.ng, w)) * invDist2;
+        known.ptMinus = atPt.pdfRev * pt.toPrevArea;
+        known.qsMinus = atQs.pdfRev * qs.toPrevArea;
+        haveKnown = true;
     }
     if (L.isBlack()) return c;
     if (!L.isFinite()) {
@@ -109,7 +155,9 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
         return c;
     }
     c.L = L;
-    c.weight = weighted ? misWeight(light, camera, sampled, s, t) : 1.0f;
+    const PathVertex* join = sampled ? &*sampled : nullptr;
+    c.weight = weighted ? misWeight(light, camera, join, s, t, haveKnown ? &known : nullptr) : 1.0f;
+    if (recomputeWeights_) c.recomputedWeight = misWeight(light, camera, join, s, t, nullptr);
     return c;
 }
 
@@ -117,8 +165,8 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
 // that could have produced the same path (thesis §10.2.3, eq. 10.9): the ratio of each
 // other strategy's density to this one's follows from walking along the path and
 // exchanging one vertex's forward density for its reverse density at a time.
-float BDPTIntegrator::misWeight(PathVertex* light, PathVertex* camera, const PathVertex& sampled, int s,
-                                int t) const {
+float BDPTIntegrator::misWeight(PathVertex* light, PathVertex* camera, const PathVertex* sampled, int s, int t,
+                                const EndpointDensities* known) const {
     if (s + t == 2) return 1;
     PathVertex* qs = s > 0 ? &light[s - 1] : nullptr;
     PathVertex* pt = t > 0 ? &camera[t - 1] : nullptr;
@@ -126,17 +174,24 @@ float BDPTIntegrator::misWeight(PathVertex* light, PathVertex* camera, const Pat
     PathVertex* ptMinus = t > 1 ? &camera[t - 2] : nullptr;
 
     std::optional<VertexReplacement> replaced;
-    if (s == 1) replaced.emplace(qs, sampled);
-    if (t == 1) replaced.emplace(pt, sampled);
+    if (s == 1 && sampled) replaced.emplace(qs, *sampled);
+    if (t == 1 && sampled) replaced.emplace(pt, *sampled);
     MisFieldsGuard keepQs(qs), keepPt(pt), keepQsMinus(qsMinus), keepPtMinus(ptMinus);
     // The connection vertices were reached by a deterministic join, not a specular bounce.
     if (pt) pt->delta = false;
     if (qs) qs->delta = false;
     // Densities with which the other side's walk would have produced each end.
-    if (pt) pt->pdfRev = s > 0 ? paths_.pdf(*qs, qsMinus, *pt, false) : paths_.pdfLightOrigin(*pt, *ptMinus);
-    if (ptMinus) ptMinus->pdfRev = s > 0 ? paths_.pdf(*pt, qs, *ptMinus, true) : paths_.pdfLight(*pt, *ptMinus);
-    if (qs) qs->pdfRev = paths_.pdf(*pt, ptMinus, *qs, false);
-    if (qsMinus) qsMinus->pdfRev = paths_.pdf(*qs, pt, *qsMinus, true);
+    if (known) {
+        pt->pdfRev = known->pt;
+        qs->pdfRev = known->qs;
+        if (ptMinus) ptMinus->pdfRev = known->ptMinus;
+        if (qsMinus) qsMinus->pdfRev = known->qsMinus;
+    } else {
+        if (pt) pt->pdfRev = s > 0 ? paths_.pdf(*qs, qsMinus, *pt, false) : paths_.pdfLightOrigin(*pt, *ptMinus);
+        if (ptMinus) ptMinus->pdfRev = s > 0 ? paths_.pdf(*pt, qs, *ptMinus, true) : paths_.pdfLight(*pt, *ptMinus);
+        if (qs) qs->pdfRev = paths_.pdf(*pt, ptMinus, *qs, false);
+        if (qsMinus) qsMinus->pdfRev = paths_.pdf(*qs, pt, *qsMinus, true);
+    }
 
     // Delta densities are stored as 0; they cancel in the ratios (remapped to 1), and the
     // strategies that would need to sample a delta vertex by connection are excluded.
@@ -173,9 +228,9 @@ void BDPTIntegrator::recordStrategies(int maxDepth) {
 Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
     ScratchBuffer& scratch = ctx.scratch;
     auto allocPath = [&](int n) {
-        auto* p = static_cast<PathVertex*>(scratch.allocBytes(sizeof(PathVertex) * size_t(n), alignof(PathVertex)));
-        for (int i = 0; i < n; ++i) new (&p[i]) PathVertex();
-        return p;
+        // No construction: the walks assign every vertex they report (PathVertex is an
+        // aggregate, so the storage holds implicitly created vertices), and nothing reads beyond.
+        return static_cast<PathVertex*>(scratch.allocBytes(sizeof(PathVertex) * size_t(n), alignof(PathVertex)));
     };
     PathVertex* camera = allocPath(paths_.maxCameraVertices());
     PathVertex* light = allocPath(paths_.maxLightVertices());

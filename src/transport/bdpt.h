@@ -27,13 +27,26 @@ public:
         Spectrum L;          // unweighted contribution
         float weight = 0;    // MIS weight
         Vec2 pRaster;
+        float recomputedWeight = 0;  // see recomputeWeights
     };
     Connection connect(PathVertex* light, PathVertex* camera, int s, int t, Sampler& sampler, PathStats& stats,
                        bool weighted = true) const;
+    // The reverse densities of the vertices at and next to a connection (area measure):
+    // what the weight needs beyond the densities stored by the walks.
+    struct EndpointDensities {
+        float pt = 0, ptMinus = 0, qs = 0, qsMinus = 0;
+    };
     // The MIS weight of strategy (s, t) for the path its vertices form. `sampled` replaces
-    // light[0] (s = 1) or camera[0] (t = 1): the vertex the connection itself sampled.
-    float misWeight(PathVertex* light, PathVertex* camera, const PathVertex& sampled, int s, int t) const;
+    // light[0] (s = 1) or camera[0] (t = 1): the vertex the connection itself sampled
+    // (null: those entries already hold it).
+    // `known`: the endpoint densities if the connection computed them (s, t > 1), else
+    // they are evaluated here.
+    float misWeight(PathVertex* light, PathVertex* camera, const PathVertex* sampled, int s, int t,
+                    const EndpointDensities* known = nullptr) const;
     const Subpaths& subpaths() const { return paths_; }
+    // For tests: connect() also computes each weight from densities evaluated afresh at the
+    // join, not those its BSDF evaluations produced, into Connection::recomputedWeight.
+    void recomputeWeights(bool on) { recomputeWeights_ = on; }
     // Also record each strategy's contribution up to path depth maxDepth (memory: about
     // 12 bytes per pixel per strategy image).
     void recordStrategies(int maxDepth);
@@ -43,6 +56,7 @@ private:
     Subpaths paths_;
     MisHeuristic heuristic_;
     std::unique_ptr<StrategyImages> strategies_;
+    bool recomputeWeights_ = false;
 };
 
 }  // namespace ps

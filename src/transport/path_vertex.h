@@ -24,12 +24,14 @@ struct PathVertex {
     Vec3 p;
     Vec3 ng, ns;            // zero for points without a surface (pinhole, point lights)
     Vec3 wo;                // unit direction towards the previous vertex of its subpath
+    Vec3 woLocal;           // wo in the shading frame (surfaces)
     Vec2 uv;
     Frame frame;            // shading frame (surfaces)
     const BxDF* bxdf = nullptr;    // surfaces
     const Light* light = nullptr;  // the emitter at a light vertex or an emissive surface
     float pdfFwd = 0;       // density of this vertex from its subpath's walk
     float pdfRev = 0;       // density of this vertex from the opposite walk
+    float toPrevArea = 0;   // areaFactor(*this, previous vertex of its subpath), surfaces
 
     bool onSurface() const { return ng.x != 0 || ng.y != 0 || ng.z != 0; }
     // An escaped camera ray, or an emitter found by the camera subpath, or a light vertex.
@@ -47,16 +49,19 @@ struct PathVertex {
     }
 };
 
-// A solid-angle density at `from` of choosing the direction to `to`, as an area density at
-// `to` (thesis eq. 8.10); vertices at infinity keep solid-angle densities.
-inline float solidAngleToArea(const PathVertex& from, float pdf, const PathVertex& to) {
-    if (to.isInfiniteLight()) return pdf;
+// The factor |cos theta_to| / d^2 that turns a solid-angle density at `from` of choosing the
+// direction to `to` into an area density at `to` (thesis eq. 8.10); 1 for vertices at
+// infinity, which keep solid-angle densities.
+inline float areaFactor(const PathVertex& from, const PathVertex& to) {
+    if (to.isInfiniteLight()) return 1;
     Vec3 w = to.p - from.p;
     float d2 = lengthSquared(w);
     if (!(d2 > 0)) return 0;
     float invDist2 = 1 / d2;
-    if (to.onSurface()) pdf *= std::fabs(dot(to.ng, w * std::sqrt(invDist2)));
-    return pdf * invDist2;
+    return to.onSurface() ? std::fabs(dot(to.ng, w * std::sqrt(invDist2))) * invDist2 : invDist2;
+}
+inline float solidAngleToArea(const PathVertex& from, float pdf, const PathVertex& to) {
+    return pdf * areaFactor(from, to);
 }
 
 }  // namespace ps

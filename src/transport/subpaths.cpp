@@ -6,10 +6,6 @@ namespace ps {
 
 namespace {
 
-TransportMode adjoint(TransportMode m) {
-    return m == TransportMode::Radiance ? TransportMode::Importance : TransportMode::Radiance;
-}
-
 Vec3 directionTo(const PathVertex& from, const PathVertex& to) { return normalize(to.p - from.p); }
 
 }  // namespace
@@ -118,9 +114,10 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, Sampler& sampler,
         v.light = si.areaLight;
         v.beta = beta;
         v.pdfFwd = solidAngleToArea(prev, pdfFwd, v);
+        v.toPrevArea = areaFactor(v, prev);
+        Vec3 woLocal = v.woLocal = v.frame.toLocal(si.wo);
         if (++bounces >= maxVertices) break;
 
-        Vec3 woLocal = v.frame.toLocal(si.wo);
         if (woLocal.z == 0) break;
         float uc = sampler.get1D();
         Vec2 u = sampler.get2D();
@@ -144,7 +141,7 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, Sampler& sampler,
             pdfFwd = pdfRev = 0;
         }
         if (mode == TransportMode::Radiance && bs->isTransmission()) etaScale *= sqr(bs->eta);
-        prev.pdfRev = solidAngleToArea(v, pdfRev, prev);
+        prev.pdfRev = pdfRev * v.toPrevArea;
         ray = spawnRay(si.p, si.ng, wi);
         if (beta.isBlack()) break;
 
@@ -159,6 +156,12 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, Sampler& sampler,
         }
     }
     return bounces;
+}
+
+BxDFEval Subpaths::evaluate(const PathVertex& v, Vec3 w) const {
+    BxDFEval e = v.bxdf->evaluate(v.woLocal, v.frame.toLocal(w), v.mode);
+    if (v.mode == TransportMode::Importance) e.f *= adjointShadingFactor(v.wo, w, v.ns, v.ng);
+    return e;
 }
 
 Spectrum Subpaths::f(const PathVertex& v, const PathVertex& next, TransportMode mode) const {
