@@ -62,7 +62,7 @@ void SceneBuilder::createMaterials() {
         }
         if (next.size() == pending.size()) {
             const MaterialEntity* m = next.front();
-            throw InputError(m->loc, "mix material \"" + m->name + "\" refers to a material that is not defined");
+            throw InputError(m->loc, "mix material " + quoteForMessage(m->name) + " refers to a material that is not defined");
         }
         pending = std::move(next);
     }
@@ -75,7 +75,7 @@ void SceneBuilder::createMaterials() {
 const Material* SceneBuilder::materialFor(const ShapeEntity& e) const {
     if (!e.material.name.empty()) {
         auto it = named_.find(e.material.name);
-        if (it == named_.end()) throw InputError(e.loc, "NamedMaterial \"" + e.material.name + "\" is not defined");
+        if (it == named_.end()) throw InputError(e.loc, "this shape's NamedMaterial " + quoteForMessage(e.material.name) + " is not defined");
         return it->second.get();
     }
     if (e.material.index >= 0 && size_t(e.material.index) < scene_.materials_.size())
@@ -164,7 +164,7 @@ void SceneBuilder::addInstances() {
     }
     for (const InstanceUse& use : desc_.instanceUses) {
         auto it = prototypeIndex.find(use.name);
-        if (it == prototypeIndex.end()) throw InputError(use.loc, "ObjectInstance \"" + use.name + "\" is not defined");
+        if (it == prototypeIndex.end()) throw InputError(use.loc, "ObjectInstance " + quoteForMessage(use.name) + " is not defined");
         if (scene_.prototypeGeometry_[it->second].empty()) continue;
         RTCGeometry g = rtcNewGeometry(scene_.device_, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(g, scene_.prototypeScenes_[it->second]);

@@ -20,7 +20,7 @@ bool isV3MaterialName(const std::string& t) {
     return std::any_of(std::begin(v3), std::end(v3), [&](const char* n) { return t == n; });
 }
 
-std::string quote(const std::string& s) { return "\"" + s + "\""; }
+std::string quote(const std::string& s) { return quoteForMessage(s); }
 
 // pbrt-v4 matches option names case-insensitively, ignoring '-' and '_'.
 std::string normalizeOptionName(const std::string& s) {

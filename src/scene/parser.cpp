@@ -21,7 +21,7 @@ namespace {
 constexpr size_t kMaxOpenFiles = 64;                   // Include/Import nesting
 constexpr size_t kMaxParamValues = size_t(1) << 28;    // values in one parameter list
 
-std::string show(const Token& t) { return "\"" + std::string(t.text.substr(0, 80)) + (t.text.size() > 80 ? "...\"" : "\""); }
+std::string show(const Token& t) { return quoteForMessage(t.text); }
 
 [[noreturn]] void fail(const Token& t, const std::string& msg) { throw InputError(t.loc(), msg); }
 

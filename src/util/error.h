@@ -3,6 +3,7 @@
 #pragma once
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace ps {
 
@@ -23,6 +24,11 @@ public:
     explicit InputError(const std::string& msg) : std::runtime_error(msg) {}
     InputError(const SourceLoc& loc, const std::string& msg) : std::runtime_error(loc.str() + ": error: " + msg) {}
 };
+
+// Text from an input file, double-quoted for a message: control bytes and bytes outside
+// ASCII as \xNN and a backslash as \\ (a binary file must not put raw bytes on the user's
+// terminal), cut after maxChars characters with "...".
+std::string quoteForMessage(std::string_view text, size_t maxChars = 80);
 
 // Warnings go to stderr once per distinct message; collected for the statistics.
 void warning(const std::string& msg);

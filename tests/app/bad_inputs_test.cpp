@@ -1,0 +1,136 @@
+// The catalogue of bad inputs: each malformed scene, mesh or image file (or option) must give
+// the documented exit status and a message that names the file (and line:column for scene
+// text) and what is wrong, never a crash, a hang or raw binary bytes on the terminal.
+// The test prints every case with the first line of its message: the catalogue itself.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <vector>
+
+#include "run_binary.h"
+
+namespace fs = std::filesystem;
+using ps::test::Result;
+using ps::test::runPathspace;
+
+namespace {
+
+const std::string kHeader = R"(LookAt 0 0 5  0 0 0  0 1 0
+Camera "perspective" "float fov" [ 30 ]
+Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+Sampler "independent" "integer pixelsamples" [ 1 ]
+WorldBegin
+LightSource "infinite" "rgb L" [ 1 1 1 ]
+)";
+
+const std::string kPlyHeader =
+    "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+
+struct Case {
+    std::string name;
+    std::string scene;                                      // written as <name>.pbrt
+    std::vector<std::pair<std::string, std::string>> files;  // extra files next to it
+    int status;                                             // 2 = bad input, 0 = rendered with a warning
+    std::vector<std::string> expect;                        // substrings of the output
+    std::string options = "";
+};
+
+std::vector<Case> cases() {
+    std::string garbage(3000, '\0');
+    std::mt19937 rng(7);
+    for (char& c : garbage) c = char(rng() & 0xff);
+    return {
+        {"syntax_error", kHeader + "Shape \"sphere\" \"float radius\" [ 1 ", {}, 2, {":7:", "expected ']'"}},
+        {"unterminated_string", kHeader + "Shape \"sphere", {}, 2, {":7:7:", "unterminated string"}},
+        {"unknown_directive", kHeader + "Frobnicate 1 2 3", {}, 2, {":7:1:", "unknown directive"}},
+        {"binary_garbage", garbage, {}, 2, {":1:"}},
+        {"empty_file", "", {}, 2, {"before WorldBegin"}},
+        {"huge_film", "Film \"rgb\" \"integer xresolution\" [ 1000000 ] \"integer yresolution\" [ 1000000 ]\nWorldBegin\n",
+         {}, 2, {":1:1:", "1000000x1000000"}},
+        {"negative_film", "Film \"rgb\" \"integer xresolution\" [ 0 ] \"integer yresolution\" [ -5 ]\nWorldBegin\n", {}, 2,
+         {":1:1:", "0x-5"}},
+        {"negative_index",
+         kHeader + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 -1]", {}, 2,
+         {":7:1:", "index -1 out of range"}},
+        {"index_out_of_range",
+         kHeader + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 7]", {}, 2,
+         {":7:1:", "index 7 out of range"}},
+        {"index_count_not_multiple_of_3",
+         kHeader + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1]", {}, 0,
+         {":7:1:", "not a multiple of 3"}},
+        {"nan_in_transform", kHeader + "Translate nan 0 0\nShape \"sphere\"", {}, 2, {":7:11:", "finite"}},
+        {"inf_in_transform", kHeader + "Translate 1e40 0 0\nShape \"sphere\"", {}, 2, {":7:11:", "out of single-precision range"}},
+        {"inf_in_parameter", kHeader + "Shape \"sphere\" \"float radius\" [ 1e39 ]", {}, 2, {":7:", "range"}},
+        {"nan_in_light", kHeader + "AreaLightSource \"diffuse\" \"rgb L\" [ -1 nan 1 ]\nShape \"sphere\"", {}, 2,
+         {":7:", "finite"}},
+        {"singular_transform", kHeader + "Scale 0 0 0\nShape \"sphere\"", {}, 2, {":7:1:", "singular"}},
+        {"degenerate_lookat",
+         "LookAt 0 0 0  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\nShape \"sphere\"\n", {}, 2, {":1:1:", "LookAt"}},
+        {"unknown_parameter", kHeader + "Shape \"sphere\" \"float radiuss\" [ 1 ]", {}, 0, {":7:", "radiuss"}},
+        {"parameter_of_wrong_type", kHeader + "Shape \"sphere\" \"string radius\" [ \"big\" ]", {}, 0,
+         {":7:", "string radius"}},
+        {"unsupported_shape", kHeader + "Shape \"curve\" \"point3 P\" [0 0 0 1 1 1 2 2 2 3 3 3]", {}, 0,
+         {":7:1:", "not supported"}},
+        {"unknown_named_spectrum", kHeader + "Material \"conductor\" \"spectrum eta\" \"metal-Unobtainium-eta\"\nShape \"sphere\"",
+         {}, 2, {":7:", "metal-Unobtainium-eta"}},
+        {"unmatched_attribute_end", kHeader + "AttributeEnd", {}, 0, {":7:1:", "AttributeEnd"}},
+        {"undefined_object", kHeader + "ObjectInstance \"ghost\"", {}, 2, {":7:1:", "ghost"}},
+        {"undefined_named_material", kHeader + "NamedMaterial \"ghost\"\nShape \"sphere\"", {}, 2,
+         {":8:1:", "NamedMaterial \"ghost\" is not defined"}},
+        {"missing_include", kHeader + "Include \"nothere.pbrt\"", {}, 2, {":7:1:", "nothere.pbrt"}},
+        {"include_cycle", kHeader + "Include \"include_cycle.pbrt\"", {}, 2, {":7:1:", "cycle"}},
+        {"missing_ply", kHeader + "Shape \"plymesh\" \"string filename\" [ \"nothere.ply\" ]", {}, 2, {"nothere.ply"}},
+        {"truncated_binary_ply", kHeader + "Shape \"plymesh\" \"string filename\" [ \"t.ply\" ]",
+         {{"t.ply", kPlyHeader + std::string(4, '\0')}}, 2, {"t.ply", "truncated"}},
+        {"ply_index_out_of_range", kHeader + "Shape \"plymesh\" \"string filename\" [ \"o.ply\" ]",
+         {{"o.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n"}},
+         2, {"o.ply", "index 9 out of range"}},
+        {"ply_huge_count", kHeader + "Shape \"plymesh\" \"string filename\" [ \"h.ply\" ]",
+         {{"h.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
+                    "property float y\nproperty float z\nend_header\n"}},
+         2, {"h.ply", "4000000000"}},
+        {"texture_not_an_image",
+         kHeader + "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" [ \"fake.png\" ]\n"
+                   "Material \"diffuse\" \"texture reflectance\" \"t\"\nShape \"sphere\"",
+         {{"fake.png", "this is not a png\n"}}, 2, {"fake.png", "not a readable image"}},
+        {"missing_texture",
+         kHeader + "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" [ \"none.png\" ]\n"
+                   "Material \"diffuse\" \"texture reflectance\" \"t\"\nShape \"sphere\"",
+         {}, 2, {"none.png", "cannot open"}},
+        {"bad_option_value", kHeader + "Shape \"sphere\"", {}, 2, {"--spp", "expected a positive number, got \"-3\""},
+         "--spp -3"},
+        {"unknown_integrator", kHeader + "Shape \"sphere\"", {}, 2, {"warp"}, "--integrator warp"},
+    };
+}
+
+// Nothing but printable ASCII and line breaks reaches the terminal.
+bool printable(const std::string& s) {
+    for (unsigned char c : s)
+        if ((c < 0x20 && c != '\n' && c != '\t') || c >= 0x7f) return false;
+    return true;
+}
+
+}  // namespace
+
+TEST(BadInputs, EachGivesItsStatusAndAClearMessage) {
+    fs::path dir = fs::temp_directory_path() / ("pathspace-bad-inputs-" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    for (const Case& c : cases()) {
+        fs::path scene = dir / (c.name + ".pbrt");
+        std::ofstream(scene, std::ios::binary) << c.scene;
+        for (const auto& [name, text] : c.files) std::ofstream(dir / name, std::ios::binary) << text;
+        Result r = runPathspace("render " + scene.string() + " --quiet --threads 1 -o " + (dir / "out.pfm").string() +
+                                (c.options.empty() ? "" : " " + c.options));
+        std::string first = r.out.substr(0, r.out.find('\n'));
+        std::printf("  %-30s exit %d  %s\n", c.name.c_str(), r.status, first.c_str());
+        EXPECT_EQ(r.status, c.status) << c.name << ": " << r.out;
+        for (const std::string& e : c.expect) EXPECT_NE(r.out.find(e), std::string::npos) << c.name << ": " << r.out;
+        EXPECT_TRUE(printable(r.out)) << c.name;
+        EXPECT_EQ(r.out.find("Assertion"), std::string::npos) << c.name;
+    }
+    fs::remove_all(dir);
+}
