@@ -36,6 +36,12 @@ public:
     // a pixel's splats do not come from its own samples.
     Film(int xRes, int yRes, PixelBounds bounds, const Filter* splatFilter = nullptr);
 
+    // Bytes a render holds at its peak for a film of `pixels` (crop region): the accumulators,
+    // for splatting films the splat sums (per thread, or one shared array when those would
+    // not fit) and their merged copy, and the images made from it (value, variance, sample
+    // counts). Checked against the memory limit before a film is made.
+    static double estimateBytes(double pixels, bool splats, int threads);
+
     int xRes() const { return xRes_; }
     int yRes() const { return yRes_; }
     const PixelBounds& bounds() const { return bounds_; }
@@ -125,6 +131,7 @@ private:
     // Variance of pixel i's mean luminance and that mean (the half-buffer estimate when splatting).
     double pixelVariance(size_t i, double lightPaths, const std::vector<int64_t>& splats, double& mean) const;
     static constexpr double kSplatFixedPoint = 268435456.0;  // 2^28 units per radiance unit
+    static constexpr double kPerThreadSplatBytes = 1024.0 * 1024 * 1024;  // cap on all threads' splat copies
     // The film widened by the filter radius on every side, in pixels: the area over which
     // camera importance is spread (see Camera::setFilterMargin).
     double splatPixelCount() const {

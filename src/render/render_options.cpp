@@ -101,10 +101,13 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
     if (desc.film.type != "rgb")
         warning(desc.film.loc, "Film \"" + desc.film.type + "\" is not supported; using \"rgb\"");
     int xRes = film.getInt("xresolution", 1280), yRes = film.getInt("yresolution", 720);
-    const long long kMaxPixels = 1LL << 26;  // 67 Mpixel
-    if (xRes <= 0 || yRes <= 0 || (long long)xRes * yRes > kMaxPixels)
+    // Only a guard for the arithmetic (pixel counts fit 40 bits); what a film may cost is the
+    // memory limit's to say, once the render knows its integrator and threads.
+    const int kMaxSide = 1 << 20;
+    if (xRes <= 0 || yRes <= 0 || xRes > kMaxSide || yRes > kMaxSide)
         throw InputError(desc.film.loc, "Film: resolution " + std::to_string(xRes) + "x" + std::to_string(yRes) +
-                                            " is out of range (positive, at most 67 Mpixels)");
+                                            " is out of range (each side from 1 to " + std::to_string(kMaxSide) + " pixels)");
+    s.filmLoc = desc.film.loc;
     s.outputFile = film.getString("filename", "pbrt.exr");
     scene.setPixelBounds(computeBounds(film, desc.film.loc, xRes, yRes));
     float iso = film.getFloat("iso", 100);

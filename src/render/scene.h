@@ -12,6 +12,7 @@
 #include "lights/light.h"
 #include "materials/material.h"
 #include "mc/distribution.h"
+#include "util/error.h"
 
 namespace ps {
 
@@ -25,6 +26,7 @@ struct RenderSettings {
     uint64_t seed = 0;
     std::string outputFile = "pbrt.exr";
     float imagingRatio = 1;  // (shutterclose - shutteropen) * iso / 100
+    SourceLoc filmLoc;       // the Film directive, for errors found when the film is made
 };
 
 class Scene {

@@ -1,9 +1,14 @@
 #include "transport/renderer.h"
 
+#include <algorithm>
+
+#include <tbb/task_arena.h>
+
 #include "mc/estimator.h"
 #include "mc/sampler.h"
 
 #include "util/error.h"
+#include "util/memory_limit.h"
 
 #include "transport/render_monitor.h"
 #include "transport/sample_passes.h"
@@ -25,6 +30,25 @@ bool renderUniform(SamplePasses& passes, Film& film, int spp) {
     return true;
 }
 
+// Before the film is made: its bytes against the memory limit, named by the Film directive.
+void requireFilmMemory(const Scene& scene, const Integrator& integrator, const RenderOptions& options) {
+    const PixelBounds& b = scene.pixelBounds();
+    const Camera::Params& c = scene.camera().params();
+    // Threads that may splat: an arena never runs more than the machine's concurrency.
+    int threads = tbb::this_task_arena::max_concurrency();
+    if (options.threads > 0) threads = std::min(threads, options.threads);
+    const double pixels = double(b.area());
+    double bytes = Film::estimateBytes(pixels, integrator.splats(), threads);
+    // A two-stage render also holds a pilot film and its allocation arrays, about one more
+    // film's worth. (The sequential rule's arrays are gone before the output images exist.)
+    if (options.adaptive == AdaptiveMode::TwoStage) bytes += Film::estimateBytes(pixels, false, 1);
+    std::string what = "Film " + std::to_string(c.xRes) + "x" + std::to_string(c.yRes);
+    if (b.area() != (long long)c.xRes * c.yRes)
+        what += " (crop " + std::to_string(b.width()) + "x" + std::to_string(b.height()) + ")";
+    if (integrator.splats()) what += " with splat buffers for " + std::to_string(threads) + " thread(s)";
+    requireMemory(scene.settings().filmLoc, what, bytes);
+}
+
 }  // namespace
 
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options) {
@@ -32,6 +56,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     if (options.adaptive != AdaptiveMode::None && integrator.splats())
         throw InputError("adaptive sampling needs an integrator whose pixels come from their own samples "
                          "(path); light tracing and BDPT splat onto the whole film");
+    requireFilmMemory(scene, integrator, options);
     Film film(scene.camera().params().xRes, scene.camera().params().yRes, bounds,
               integrator.splats() ? &scene.filter() : nullptr);
     const int spp = std::max(1, options.spp);

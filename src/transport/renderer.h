@@ -41,6 +41,8 @@ struct RenderResult {
     double efficiency = 0;
 };
 
+// Throws InputError before anything is allocated if the film would exceed the memory limit
+// (util/memory_limit.h), naming the scene's Film directive.
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options);
 
 }  // namespace ps
