@@ -17,7 +17,8 @@ constexpr long long kMaxPixelsPerByte = 16384;
 constexpr long long kAlwaysPlausiblePixels = 1LL << 20;
 
 // Throws InputError unless 0 < w, h and w*h <= kMaxPixels (checked without overflow),
-// and, when fileBytes >= 0, w*h is plausible for a file of that size.
+// and, when fileBytes >= 0, w*h is plausible for a file of that size, and the decoded image
+// fits the memory limit (util/memory_limit.h).
 void checkSize(const std::string& path, long long w, long long h, long long fileBytes = -1);
 
 // What readImage recognised from the first bytes (or, failing that, the extension).

@@ -9,6 +9,7 @@
 
 #include "image/image_formats.h"
 #include "util/error.h"
+#include "util/memory_limit.h"
 #include "util/path.h"
 
 namespace ps {
@@ -24,6 +25,9 @@ void checkSize(const std::string& path, long long w, long long h, long long file
     if (fileBytes >= 0 && w * h > std::max(kAlwaysPlausiblePixels, fileBytes * kMaxPixelsPerByte))
         throw InputError(path + ": image size " + size + " is implausible for a file of " +
                          std::to_string(fileBytes) + " bytes (corrupt header?)");
+    // RGB and alpha as floats: the most the decoded Image holds (a decoder's own 1-8 bytes per
+    // pixel are freed once it is converted).
+    requireMemory(path + ": image " + size, double(w) * double(h) * 4 * sizeof(float));
 }
 
 }  // namespace imageio

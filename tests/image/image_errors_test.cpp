@@ -7,6 +7,7 @@
 
 #include "image/image_test_util.h"
 #include "image/png_builder.h"
+#include "util/memory_limit.h"
 
 using namespace ps;
 using namespace ps::test;
@@ -69,6 +70,20 @@ TEST_F(ImageErrors, HugePngHeaderIsRejectedBeforeDecoding) {
     // stb itself refuses this one, with a less specific message.
     writeBytes("huger.png", pngSignatureAndHeader(65536, 65536, 8, 2));
     expectInputError([&] { readImage(path("huger.png")); }, {"huger.png: not a readable image"});
+}
+
+// A valid image that would need more memory than the limit fails before decoding, with both
+// sizes; the default limit reads it.
+TEST_F(ImageErrors, ImageBeyondTheMemoryLimit) {
+    writeImage(path("big.pfm"), testPattern(256, 256));
+    writeImage(path("big.png"), testPattern(256, 256));
+    ScopedMemoryLimit limit(64 * 1024);
+    for (const char* name : {"big.pfm", "big.png"})
+        expectInputError([&] { readImage(path(name)); },
+                         {path(name) + ": image 256x256 needs 1.0 MiB of memory, more than the limit of 64.0 KiB "
+                                       "(raise it with --max-memory)"});
+    setMemoryLimit(limit.saved());
+    EXPECT_EQ(readImage(path("big.png")).width, 256);
 }
 
 // stb would zero-fill the missing rows of a BMP whose height field is damaged: gigabytes
