@@ -2,7 +2,8 @@
 // of element descriptions, and one body loop, templated on the encoding, decodes every element:
 // a binary value costs a bounds check and a switch on its type, with no virtual calls or streams.
 // Every count from the file is checked against the bytes that remain before it sizes anything,
-// so a corrupt or hostile file ends in an InputError, never in a crash, a hang or a huge allocation.
+// and the mesh it would make against the memory limit, so a corrupt or hostile file ends in an
+// InputError, never in a crash, a hang or a huge allocation.
 #include "scene/ply.h"
 
 #include <sys/stat.h>
@@ -22,6 +23,8 @@
 #include <memory>
 #include <string_view>
 #include <utility>
+
+#include "util/memory_limit.h"
 
 namespace ps {
 
@@ -457,7 +460,10 @@ private:
                 fail(path_, "PLY element \"" + e.name + "\" count " + std::to_string(e.count) + " exceeds the limit of 2^28");
             uint64_t fit = src.maxInstances(e);
             if (!Src::kAscii && e.fixedSize() && e.count > fit) truncated(e, fit, Src::kAscii);
-            reserve(e, std::min(e.count, fit));
+            // No more instances than the data can hold: a short file claiming more fails as truncated.
+            const uint64_t n = std::min(e.count, fit);
+            requireMemory(path_ + ": a mesh of " + std::to_string(n) + " " + plural(e), double(n) * bytesPer(e));
+            reserve(e, n);
             Instance in;
             for (uint64_t i = 0; i < e.count; ++i) {
                 if (!readInstance(src, e, i, in)) truncated(e, i, Src::kAscii);
@@ -470,6 +476,14 @@ private:
     [[noreturn]] void truncated(const Element& e, uint64_t got, bool ascii) {
         fail(path_, std::string("truncated ") + (ascii ? "ASCII" : "binary") + " PLY: expected " + std::to_string(e.count) +
                         " " + plural(e) + ", got " + std::to_string(got));
+    }
+
+    // What one instance of e adds to the mesh: a vertex's arrays, or a face's indices (at
+    // least a triangle's). 0 for elements the mesh does not keep.
+    double bytesPer(const Element& e) const {
+        if (&e == vertices_) return sizeof(Vec3) * (hasNormals_ ? 2 : 1) + (hasUV_ ? sizeof(Vec2) : 0);
+        if (&e == faces_) return sizeof(int) * (hasFaceIndices_ ? 4 : 3);
+        return 0;
     }
 
     // Sizes come from counts already bounded by the data left, never from the header alone.

@@ -1,6 +1,7 @@
 // PLY reader: small generated files in all three encodings (and gzipped), every error path,
 // a mutation fuzz loop, a speed check, and the PLY meshes of the shared pbrt-v4 scenes.
 #include "scene/ply.h"
+#include "util/memory_limit.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -349,6 +350,34 @@ TEST_F(Ply, AbsurdCountsFailFastWithoutAllocating) {
     PlyMesh m = readPly(write("empty-elem.ply", header(Fmt::LE, "element nothing 18000000000000000000\n"
                                                                 "element vertex 3\n" + xyz) + verts));
     EXPECT_EQ(m.P.size(), 3u);
+}
+
+// A mesh whose data is all there but needs more memory than the limit fails before its arrays
+// are sized; a header claiming more than the file holds still fails as truncated.
+TEST_F(Ply, MeshBeyondTheMemoryLimit) {
+    const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+    ScopedMemoryLimit limit(4096);
+    for (Fmt f : kFormats) {
+        SCOPED_TRACE(formatName(f));
+        Body b(f);
+        for (int i = 0; i < 1000; ++i) b.put("float", i).put("float", 0).put("float", 1).nl();
+        expectError("big.ply", header(f, "element vertex 1000\n" + xyz) + b.str(),
+                    "a mesh of 1000 vertices needs 11.7 KiB of memory, more than the limit of 4.0 KiB "
+                    "(raise it with --max-memory)");
+        Body faces(f);
+        for (int i = 0; i < 3; ++i) faces.put("float", i).put("float", 0).put("float", 1).nl();
+        for (int i = 0; i < 400; ++i) faces.list("uchar", "int", {0, 1, 2}).nl();
+        expectError("faces.ply", header(f, "element vertex 3\n" + xyz + "element face 400\nproperty list uchar int "
+                                           "vertex_indices\n") + faces.str(),
+                    "a mesh of 400 faces needs 4.7 KiB of memory");
+    }
+    std::string verts;
+    for (int i = 0; i < 9; ++i) putRaw<float>(verts, i, false);
+    expectError("claim.ply", header(Fmt::LE, "element vertex 1000000000\n" + xyz) + verts,
+                "truncated binary PLY: expected 1000000000 vertices, got 3");
+    setMemoryLimit(limit.saved());
+    expectError("claim.ply", header(Fmt::LE, "element vertex 1000000000\n" + xyz) + verts,
+                "truncated binary PLY: expected 1000000000 vertices, got 3");
 }
 
 TEST_F(Ply, TruncatedData) {
