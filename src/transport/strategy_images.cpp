@@ -1,10 +1,32 @@
 #include "transport/strategy_images.h"
 
+#include <tbb/task_arena.h>
+
+#include "util/memory_limit.h"
+
 namespace ps {
+
+namespace {
+// Strategies with t >= 2 (camera samples) up to maxDepth: depth d has d + 1 of them.
+size_t cameraStrategies(int maxDepth) { return size_t(maxDepth + 1) * size_t(maxDepth + 2) / 2; }
+// Output images: each camera strategy and each t = 1 strategy (s >= 2), weighted and unweighted.
+size_t outputImages(int maxDepth) { return 2 * (cameraStrategies(maxDepth) + size_t(maxDepth)); }
+}  // namespace
+
+double StrategyImages::estimateBytes(double pixels, int maxDepth, int threads) {
+    const double sums = double(cameraStrategies(maxDepth)) * 2 * 3 * sizeof(float) + sizeof(double);  // + weights_
+    const double images = double(outputImages(maxDepth)) * 3 * sizeof(float);
+    const double splatFilms = 2.0 * (maxDepth + 1);
+    return pixels * (sums + images) + splatFilms * Film::estimateBytes(pixels, true, threads);
+}
 
 StrategyImages::StrategyImages(PixelBounds bounds, int xRes, int yRes, const Filter& filter, int maxDepth,
                                float imagingRatio)
     : bounds_(bounds), maxDepth_(maxDepth), imagingRatio_(imagingRatio) {
+    // The splat films decide on per-thread copies with the same concurrency (see Film's constructor).
+    requireMemory("--bdpt-strategies (" + std::to_string(outputImages(maxDepth)) + " strategy images of " +
+                      std::to_string(bounds.width()) + "x" + std::to_string(bounds.height()) + ")",
+                  estimateBytes(double(bounds.area()), maxDepth, tbb::this_task_arena::max_concurrency()));
     for (int depth = 0; depth <= maxDepth; ++depth)
         for (int t = 2; t <= depth + 2; ++t) strategies_.push_back({depth + 2 - t, t});
     sums_.assign(strategies_.size() * 2 * size_t(bounds.area()) * 3, 0.0f);

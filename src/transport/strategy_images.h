@@ -16,7 +16,11 @@ namespace ps {
 
 class StrategyImages {
 public:
+    // Throws InputError if the buffers would exceed the memory limit (util/memory_limit.h).
     StrategyImages(PixelBounds bounds, int xRes, int yRes, const Filter& filter, int maxDepth, float imagingRatio);
+    // Bytes at the peak, for images of `pixels` pixels up to maxDepth: the per-strategy sums,
+    // the splat films of the t = 1 strategies (splatted by `threads` threads) and the output images.
+    static double estimateBytes(double pixels, int maxDepth, int threads);
     int maxDepth() const { return maxDepth_; }
     // Slots index strategies (s, t >= 2); -1 for strategies not recorded.
     int slotCount() const { return int(strategies_.size()); }
