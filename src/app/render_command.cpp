@@ -20,6 +20,7 @@
 #include "transport/bdpt.h"
 #include "transport/renderer.h"
 #include "util/error.h"
+#include "util/memory_limit.h"
 
 namespace ps {
 
@@ -111,10 +112,21 @@ void RenderCommand::attach(CLI::App& app) {
         ->expected(4)
         ->allow_extra_args(false);
     cmd_->add_option("--stats", statsFile_, "Write render statistics as JSON to this file");
+    cmd_->add_option("--max-memory", maxMemory_,
+                     "Memory limit for the film, images, meshes and strategy images, e.g. 512M, 8G, 1.5GiB "
+                     "(binary units; default: 80% of physical memory, here " + formatBytes(memoryLimit()) +
+                         "). An input that needs more fails before it is allocated, saying how much it needs")
+        ->type_name("SIZE")
+        ->check(CLI::Validator(
+            [](const std::string& s) {
+                return parseByteSize(s) ? std::string() : "\"" + s + "\" is not a size such as 512M, 8G or 1.5GiB";
+            },
+            ""));
     cmd_->add_flag("--quiet", quiet_, "No progress bar or statistics on the terminal");
 }
 
 int RenderCommand::run() {
+    if (!maxMemory_.empty()) setMemoryLimit(*parseByteSize(maxMemory_));  // validated by the option
     SceneDescription desc = parseSceneFile(scene_);
     std::unique_ptr<Scene> scene = buildScene(desc);
     RenderSettings& settings = scene->settings();
@@ -148,12 +160,7 @@ int RenderCommand::run() {
         std::filesystem::create_directories(strategiesDir_, ec);
         if (ec) throw InputError("--bdpt-strategies: cannot create \"" + strategiesDir_ + "\": " + ec.message());
         checkWritable((std::filesystem::path(strategiesDir_) / "s0_t2.exr").string());
-        const int depth = std::min(settings.maxDepth, 5);
-        const double bytes = double(scene->pixelBounds().area()) * (depth + 1) * (depth + 2) * 12.0;
-        if (bytes > 8e9)
-            throw InputError("--bdpt-strategies: the per-strategy images would need " + std::to_string(int(bytes / 1e9)) +
-                             " GB; use --crop or a smaller film");
-        bdpt->recordStrategies(depth);
+        bdpt->recordStrategies(std::min(settings.maxDepth, 5));  // checks their memory (use --crop if too much)
     }
 
     std::signal(SIGINT, onSignal);
@@ -209,6 +216,7 @@ int RenderCommand::run() {
         {"nonfinite_guarded", r.stats.guarded},
         {"nonfinite_samples_rejected", r.rejectedSamples},
         {"warnings", warningCount()},
+        {"memory_limit_bytes", memoryLimit()},
     };
     if (!statsFile_.empty()) {
         std::ofstream f(statsFile_);

@@ -28,6 +28,7 @@ private:
     std::vector<std::string> outputs_;
     std::vector<float> crop_;
     std::string statsFile_;
+    std::string maxMemory_;  // --max-memory SIZE, checked by parseByteSize
     bool quiet_ = false;
 };
 

@@ -307,3 +307,44 @@ TEST_F(Cli, InterruptAdaptiveWritesNormalisedImage) {
     for (float v : img.rgb) sum += v;
     EXPECT_GT(sum / img.rgb.size(), 0.1);  // as in TimeBudgetWritesPartialImage: not darkened
 }
+
+// --max-memory: the film, textures and meshes are checked against it before they are
+// allocated; the error names the input, what it needs and the limit.
+TEST_F(Cli, MaxMemoryLimitsWhatARenderMayAllocate) {
+    const std::string cornell = std::string(PATHSPACE_SOURCE_DIR) + "/scenes/cornell-box.pbrt";
+    const std::string out = (dir / "c.exr").string();
+    Result r = run("render --quiet --max-memory 1M " + cornell + " -o " + out);
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_NE(r.out.find("cornell-box.pbrt:9:1: error: Film 400x400 needs "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" MiB of memory, more than the limit of 1.0 MiB (raise it with --max-memory)"), std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(out));
+
+    for (const char* bad : {"banana", "0", "-5G", "12Q"}) {
+        Result b = run(std::string("render --quiet --max-memory ") + bad + " " + cornell + " -o " + out);
+        EXPECT_EQ(b.status, 2) << bad;
+        EXPECT_NE(b.out.find(std::string("--max-memory: \"") + bad + "\" is not a size"), std::string::npos) << b.out;
+    }
+    Result help = run("render --help");
+    EXPECT_NE(help.out.find("--max-memory"), std::string::npos);
+    EXPECT_NE(help.out.find("80% of physical memory"), std::string::npos);
+
+    // A texture beyond the limit, named by its file; the limit is in the statistics.
+    ps::Image tex(256, 256);
+    ps::writeImage((dir / "tex.png").string(), tex);
+    std::string scene = std::string(kSmallScene) + "";
+    scene.replace(scene.find("Material \"diffuse\""), 18,
+                  "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"tex.png\"\n"
+                  "Material \"diffuse\" \"texture reflectance\" \"t\"");
+    std::string textured = write("t.pbrt", scene);
+    Result t = run("render --quiet --max-memory 512K " + textured + " -o " + out);
+    EXPECT_EQ(t.status, 2) << t.out;
+    EXPECT_NE(t.out.find("tex.png: image 256x256 needs 1.0 MiB of memory, more than the limit of 512.0 KiB"),
+              std::string::npos)
+        << t.out;
+    std::string stats = (dir / "s.json").string();
+    Result ok = run("render --quiet --max-memory 2M --stats " + stats + " " + textured + " -o " + out);
+    ASSERT_EQ(ok.status, 0) << ok.out;
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(stats));
+    EXPECT_EQ(j["memory_limit_bytes"].get<uint64_t>(), uint64_t(2) << 20);
+}
