@@ -18,8 +18,15 @@
 #include "scene/parser.h"
 #include "scene/ply.h"
 #include "util/error.h"
+#include "util/memory_limit.h"
 
 namespace ps::fuzz {
+
+// Every input runs under a 64 MiB memory limit: the fuzzer must not spend seconds decoding
+// legitimate-but-huge images (a 5 KB JPEG can claim 90 Mpixels), and the limit's own error
+// path gets fuzzed too. Set per input and restored after it, because the regression test
+// replays these inputs inside a test process whose other tests keep the default limit.
+constexpr uint64_t kFuzzMemoryLimit = uint64_t(64) << 20;
 
 // One directory per process, reused for every input and removed at exit. A plain array, not
 // a std::string: the atexit handler runs after static objects are destroyed.
@@ -48,6 +55,7 @@ inline void removeScratchFile(const std::string& name) { std::remove((scratchDir
 // Up to three files separated by the marker line "#--file--": main.pbrt, include.pbrt and
 // mesh.ply, so that Include, Import and plymesh of generated files resolve. Parsed, then built.
 inline void runSceneInput(const uint8_t* data, size_t size) {
+    ScopedMemoryLimit limit(kFuzzMemoryLimit);
     static const char* const kNames[] = {"main.pbrt", "include.pbrt", "mesh.ply"};
     constexpr std::string_view kMarker = "#--file--\n";
     std::string_view rest(reinterpret_cast<const char*>(data), size);
@@ -73,6 +81,7 @@ inline void runSceneInput(const uint8_t* data, size_t size) {
 
 // Arbitrary bytes as a PLY file; the reader sniffs the gzip magic itself.
 inline void runPlyInput(const uint8_t* data, size_t size) {
+    ScopedMemoryLimit limit(kFuzzMemoryLimit);
     std::string path = writeScratchFile("mesh.ply", {reinterpret_cast<const char*>(data), size});
     try {
         readPly(path);
@@ -84,6 +93,7 @@ inline void runPlyInput(const uint8_t* data, size_t size) {
 // when the content is not recognised) and the PNG colour encoding; the rest is the file.
 inline void runImageInput(const uint8_t* data, size_t size) {
     if (size == 0) return;
+    ScopedMemoryLimit limit(kFuzzMemoryLimit);
     static const char* const kExtensions[] = {".png", ".jpg", ".tga", ".exr", ".hdr", ".pfm"};
     std::string name = std::string("image") + kExtensions[(data[0] & 0x7f) % 6];
     auto encoding = (data[0] & 0x80) ? ColorEncoding::Linear : ColorEncoding::SRGB;
