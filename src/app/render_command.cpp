@@ -119,7 +119,7 @@ void RenderCommand::attach(CLI::App& app) {
         ->type_name("SIZE")
         ->check(CLI::Validator(
             [](const std::string& s) {
-                return parseByteSize(s) ? std::string() : "\"" + s + "\" is not a size such as 512M, 8G or 1.5GiB";
+                return parseByteSize(s) ? std::string() : "expected a size such as 512M, 8G or 1.5GiB, got " + quoteForMessage(s);
             },
             ""));
     cmd_->add_flag("--quiet", quiet_, "No progress bar or statistics on the terminal");

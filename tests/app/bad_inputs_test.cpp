@@ -104,6 +104,9 @@ std::vector<Case> cases() {
         {"bad_option_value", kHeader + "Shape \"sphere\"", {}, 2, {"--spp", "expected a positive number, got \"-3\""},
          "--spp -3"},
         {"unknown_integrator", kHeader + "Shape \"sphere\"", {}, 2, {"warp"}, "--integrator warp"},
+        {"film_beyond_memory_limit", kHeader + "Shape \"sphere\"", {}, 2,
+         {":3:1:", "Film 16x16 needs", "more than the limit of 1.0 KiB (raise it with --max-memory)"}, "--max-memory 1K"},
+        {"bad_memory_size", kHeader + "Shape \"sphere\"", {}, 2, {"--max-memory", "got \"lots\""}, "--max-memory lots"},
     };
 }
 

@@ -323,7 +323,9 @@ TEST_F(Cli, MaxMemoryLimitsWhatARenderMayAllocate) {
     for (const char* bad : {"banana", "0", "-5G", "12Q"}) {
         Result b = run(std::string("render --quiet --max-memory ") + bad + " " + cornell + " -o " + out);
         EXPECT_EQ(b.status, 2) << bad;
-        EXPECT_NE(b.out.find(std::string("--max-memory: \"") + bad + "\" is not a size"), std::string::npos) << b.out;
+        EXPECT_NE(b.out.find(std::string("--max-memory: expected a size such as 512M, 8G or 1.5GiB, got \"") + bad + "\""),
+                  std::string::npos)
+            << b.out;
     }
     Result help = run("render --help");
     EXPECT_NE(help.out.find("--max-memory"), std::string::npos);
