@@ -27,10 +27,10 @@ int main(int argc, char** argv) {
     try {
         return mc.parsed() ? mc.run() : render.run();
     } catch (const ps::InputError& e) {
-        std::fprintf(stderr, "%s\n", e.what());
+        std::fprintf(stderr, "%s\n", ps::printableMessage(e.what()).c_str());
         return ps::kExitBadInput;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "internal error: %s\n", e.what());
+        std::fprintf(stderr, "internal error: %s\n", ps::printableMessage(e.what()).c_str());
         return ps::kExitInternalError;
     }
 }

@@ -146,21 +146,22 @@ void SceneBuilder::addInstances() {
     std::map<std::string, int> prototypeIndex;
     for (const auto& [name, def] : desc_.instances) {
         RTCScene proto = rtcNewScene(scene_.device_);
+        // The Scene owns (and releases) it from here: a bad shape below must not leak it.
+        scene_.prototypeScenes_.push_back(proto);
+        scene_.prototypeGeometry_.emplace_back();
         rtcSetSceneBuildQuality(proto, RTC_BUILD_QUALITY_HIGH);
-        std::vector<const Shape*> geoms;
         for (const ShapeEntity& e : def.shapes) {
             std::unique_ptr<Shape> shape = createShape(e, e.worldFromObject, desc_.baseDirectory);
             if (!shape || shape->primitiveCount() == 0) continue;
             shape->material = materialFor(e);
             unsigned id = attach(proto, *shape);
+            std::vector<const Shape*>& geoms = scene_.prototypeGeometry_.back();
             if (geoms.size() <= id) geoms.resize(id + 1, nullptr);
             geoms[id] = shape.get();
             scene_.shapes_.push_back(std::move(shape));
         }
         rtcCommitScene(proto);
-        prototypeIndex[name] = int(scene_.prototypeScenes_.size());
-        scene_.prototypeScenes_.push_back(proto);
-        scene_.prototypeGeometry_.push_back(std::move(geoms));
+        prototypeIndex[name] = int(scene_.prototypeScenes_.size()) - 1;
     }
     for (const InstanceUse& use : desc_.instanceUses) {
         auto it = prototypeIndex.find(use.name);

@@ -361,7 +361,7 @@ void DescriptionBuilder::shape(const Token& d, const std::string& type, ParamSet
     e.areaLight = gs_.areaLight;
     if (instance_) {
         if (e.areaLight >= 0) {
-            warning(d.loc(), "area lights inside ObjectBegin are not supported; the shape does not emit (§3)");
+            warning(d.loc(), "area lights inside ObjectBegin are not supported (as in pbrt-v4); the shape does not emit");
             e.areaLight = -1;
         }
         instance_->shapes.push_back(std::move(e));

@@ -29,6 +29,8 @@ public:
 // ASCII as \xNN and a backslash as \\ (a binary file must not put raw bytes on the user's
 // terminal), cut after maxChars characters with "...".
 std::string quoteForMessage(std::string_view text, size_t maxChars = 80);
+// A whole message made printable the same way (backslashes kept): what reaches the terminal.
+std::string printableMessage(std::string_view text);
 
 // Warnings go to stderr once per distinct message; collected for the statistics.
 void warning(const std::string& msg);

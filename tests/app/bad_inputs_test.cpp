@@ -72,6 +72,7 @@ std::vector<Case> cases() {
         {"unknown_parameter", kHeader + "Shape \"sphere\" \"float radiuss\" [ 1 ]", {}, 0, {":7:", "radiuss"}},
         {"parameter_of_wrong_type", kHeader + "Shape \"sphere\" \"string radius\" [ \"big\" ]", {}, 0,
          {":7:", "string radius"}},
+        {"binary_bytes_in_a_warning", kHeader + "Shape \"tri\x80\x01mesh\"", {}, 0, {":7:1:", "tri\\x80\\x01mesh"}},
         {"unsupported_shape", kHeader + "Shape \"curve\" \"point3 P\" [0 0 0 1 1 1 2 2 2 3 3 3]", {}, 0,
          {":7:1:", "not supported"}},
         {"unknown_named_spectrum", kHeader + "Material \"conductor\" \"spectrum eta\" \"metal-Unobtainium-eta\"\nShape \"sphere\"",
