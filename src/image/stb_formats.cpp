@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -138,9 +139,35 @@ void checkJpegHuffmanTables(const std::string& path, std::FILE* f) {
 
 }  // namespace
 
+// stb_image grows its buffer for a PNG's image data to each IDAT chunk's declared length
+// before reading it, so a 117-byte file declaring a 2 GiB chunk made it allocate 2 GiB (found
+// by fuzz/image_fuzzer). Every chunk must fit in the bytes that remain: walk the chunk
+// headers (length, type, data, CRC) before stb sees the file.
+void checkPngChunks(const std::string& path, std::FILE* f, long long fileBytes) {
+    static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    std::rewind(f);
+    unsigned char sig[8];
+    if (std::fread(sig, 1, 8, f) != 8 || std::memcmp(sig, kSignature, 8) != 0) return;  // not PNG
+    long long pos = 8;
+    unsigned char head[8];
+    while (std::fread(head, 1, 8, f) == 8) {
+        unsigned long long length = (unsigned long long)head[0] << 24 | head[1] << 16 | head[2] << 8 | head[3];
+        std::string type(reinterpret_cast<const char*>(head + 4), 4);
+        long long left = fileBytes - pos - 12;  // after this chunk's length, type and CRC
+        if ((long long)length > left)
+            throw InputError(path + ": corrupt PNG: chunk " + quoteForMessage(type) + " declares " +
+                             std::to_string(length) + " bytes, but only " + std::to_string(std::max(0LL, left)) +
+                             " remain in the file");
+        if (type == "IEND") break;
+        pos += 12 + (long long)length;
+        if (std::fseek(f, long(length) + 4, SEEK_CUR) != 0) break;
+    }
+}
+
 Image readStb(const std::string& path, std::FILE* f, long long fileBytes, FileFormat format, ColorEncoding pngEncoding) {
     // Every stb call starts a fresh context at the current position: rewind before each.
     if (startsWithJpegSoi(f)) checkJpegHuffmanTables(path, f);
+    if (fileBytes >= 0) checkPngChunks(path, f, fileBytes);
     std::rewind(f);
     Source src{f};
     int w = 0, h = 0, comps = 0;

@@ -86,6 +86,22 @@ TEST_F(ImageErrors, ImageBeyondTheMemoryLimit) {
     EXPECT_EQ(readImage(path("big.png")).width, 256);
 }
 
+// stb sizes its buffer for a PNG's image data by each IDAT chunk's declared length: a chunk
+// that declares more bytes than the file holds is refused before stb allocates them (a fuzzed
+// 117-byte file made it allocate 2 GiB).
+TEST_F(ImageErrors, PngChunkLongerThanTheFile) {
+    std::string png = pngSignatureAndHeader(3, 2, 16, 0);
+    putBE32(png, 0x7ffffff0u);
+    png += "IDAT";
+    png += std::string(40, '\x01');
+    writeBytes("c.png", png);
+    expectInputError([&] { readImage(path("c.png")); },
+                     {"c.png: corrupt PNG: chunk \"IDAT\" declares 2147483632 bytes, but only"});
+    // A well-formed file still reads.
+    writeImage(path("ok.png"), testPattern(8, 8));
+    EXPECT_EQ(readImage(path("ok.png")).width, 8);
+}
+
 // stb would zero-fill the missing rows of a BMP whose height field is damaged: gigabytes
 // from a few hundred bytes. The size check stops it before decoding.
 TEST_F(ImageErrors, DamagedBmpHeightIsRejectedBeforeDecoding) {
