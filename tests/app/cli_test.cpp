@@ -13,28 +13,14 @@
 #include <unistd.h>
 
 #include "image/image.h"
+#include "run_binary.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int status = -1;
-    std::string out;  // stdout and stderr together
-};
-
-Result run(const std::string& args) {
-    std::string cmd = std::string(PATHSPACE_BINARY) + " " + args + " 2>&1";
-    Result r;
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return r;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-    int st = pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return r;
-}
+using ps::test::Result;
+Result run(const std::string& args) { return ps::test::runPathspace(args); }
 
 class Cli : public ::testing::Test {
 protected:

@@ -45,6 +45,24 @@ PathVertex* allocPath(ScratchBuffer& scratch, int n) {
     return p;
 }
 
+// Sample i's camera and light subpaths on a 32 x 32 film, as BDPT builds them.
+struct SubpathPair {
+    PathVertex* camera;
+    PathVertex* light;
+    int nCamera, nLight;
+};
+SubpathPair tracePair(const Scene& scene, const Subpaths& paths, Sampler& sampler, ScratchBuffer& scratch,
+                      PathStats& stats, int i) {
+    int px = i % 32, py = (i / 32) % 32;
+    sampler.startPixelSample(px, py, i);
+    CameraSample cs{{px + sampler.get1D(), py + sampler.get1D()}, {0.5f, 0.5f}};
+    Ray ray = scene.camera().generateRay(cs);
+    SubpathPair p{allocPath(scratch, paths.maxCameraVertices()), allocPath(scratch, paths.maxLightVertices()), 0, 0};
+    p.nCamera = paths.cameraSubpath(ray, sampler, scratch, stats, p.camera);
+    p.nLight = paths.lightSubpath(sampler, scratch, stats, p.light);
+    return p;
+}
+
 // The full path y_0 (on a light) ... y_k (the camera) with densities of both walks.
 struct FullPath {
     std::vector<PathVertex> y;
@@ -116,14 +134,7 @@ TEST_P(BdptMis, WeightsOfAllStrategiesSumToOne) {
     PathStats stats;
     int checked = 0, withDelta = 0, deltaLight = 0, skipped = 0;
     for (int i = 0; i < 4000 && checked < 600; ++i) {
-        int px = i % 32, py = (i / 32) % 32;
-        sampler->startPixelSample(px, py, i);
-        CameraSample cs{{px + sampler->get1D(), py + sampler->get1D()}, {0.5f, 0.5f}};
-        Ray ray = scene->camera().generateRay(cs);
-        PathVertex* camera = allocPath(scratch, paths.maxCameraVertices());
-        PathVertex* light = allocPath(scratch, paths.maxLightVertices());
-        int nc = paths.cameraSubpath(ray, *sampler, scratch, stats, camera);
-        int nl = paths.lightSubpath(*sampler, scratch, stats, light);
+        auto [camera, light, nc, nl] = tracePair(*scene, paths, *sampler, scratch, stats, i);
         for (int t = 2; t <= nc; ++t)
             for (int s = 2; s <= nl; ++s) {
                 if (s + t - 2 > paths.maxDepth()) continue;
@@ -182,14 +193,7 @@ TEST(BdptMis, ConnectionDensitiesMatchFreshOnes) {
     PathStats stats;
     int checked[3] = {0, 0, 0};  // s = 1, t = 1, both > 1
     for (int i = 0; i < 3000; ++i) {
-        int px = i % 32, py = (i / 32) % 32;
-        sampler->startPixelSample(px, py, i);
-        CameraSample cs{{px + sampler->get1D(), py + sampler->get1D()}, {0.5f, 0.5f}};
-        Ray ray = scene->camera().generateRay(cs);
-        PathVertex* camera = allocPath(scratch, paths.maxCameraVertices());
-        PathVertex* light = allocPath(scratch, paths.maxLightVertices());
-        int nc = paths.cameraSubpath(ray, *sampler, scratch, stats, camera);
-        int nl = paths.lightSubpath(*sampler, scratch, stats, light);
+        auto [camera, light, nc, nl] = tracePair(*scene, paths, *sampler, scratch, stats, i);
         for (int t = 1; t <= nc; ++t)
             for (int s = 0; s <= nl; ++s) {
                 if ((s == 1 && t == 1) || s + t - 2 > paths.maxDepth() || s + t < 2) continue;
