@@ -1,4 +1,4 @@
-// PNG, JPEG, TGA, BMP (and whatever else stb_image knows) in; PNG out. Radiance HDR has
+// PNG, JPEG, TGA and BMP in (stb_image's other formats are refused); PNG out. Radiance HDR has
 // its own reader (hdr.cpp).
 // The stb implementation lives in Debian's libstb, so no *_IMPLEMENTATION defines here.
 #include <stb/stb_image.h>
@@ -164,8 +164,25 @@ void checkPngChunks(const std::string& path, std::FILE* f, long long fileBytes) 
     }
 }
 
+// stb_image also decodes PNM, GIF, PSD and PIC, which pathspace does not offer; their decoders
+// have not had our checks (a fuzzed PNM header overflowed stb's integer parser: UB). Refuse
+// them by their magic numbers, the same tests stb uses, before any stb code runs.
+void refuseUndocumentedFormats(const std::string& path, std::FILE* f) {
+    std::rewind(f);
+    unsigned char b[4] = {};
+    size_t n = std::fread(b, 1, 4, f);
+    const char* name = nullptr;
+    if (n >= 2 && b[0] == 'P' && (b[1] == '5' || b[1] == '6')) name = "PNM (PGM/PPM)";
+    else if (n >= 4 && std::memcmp(b, "GIF8", 4) == 0) name = "GIF";
+    else if (n >= 4 && std::memcmp(b, "8BPS", 4) == 0) name = "PSD";
+    else if (n >= 4 && b[0] == 0x53 && b[1] == 0x80 && b[2] == 0xF6 && b[3] == 0x34) name = "Softimage PIC";
+    if (name)
+        throw InputError(path + ": " + name + " images are not supported (use PNG, JPEG, TGA, BMP, EXR, HDR or PFM)");
+}
+
 Image readStb(const std::string& path, std::FILE* f, long long fileBytes, FileFormat format, ColorEncoding pngEncoding) {
     // Every stb call starts a fresh context at the current position: rewind before each.
+    refuseUndocumentedFormats(path, f);
     if (startsWithJpegSoi(f)) checkJpegHuffmanTables(path, f);
     if (fileBytes >= 0) checkPngChunks(path, f, fileBytes);
     std::rewind(f);

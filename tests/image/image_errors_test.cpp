@@ -102,6 +102,17 @@ TEST_F(ImageErrors, PngChunkLongerThanTheFile) {
     EXPECT_EQ(readImage(path("ok.png")).width, 8);
 }
 
+// Formats stb_image knows but pathspace does not offer are refused by name, before stb's
+// decoder for them runs (a fuzzed PNM header overflowed its integer parser).
+TEST_F(ImageErrors, UndocumentedStbFormatsAreRefused) {
+    writeBytes("a.tga", "P5 0000007440229401258739 2 255\n");
+    expectInputError([&] { readImage(path("a.tga")); }, {"a.tga: PNM (PGM/PPM) images are not supported"});
+    writeBytes("b.png", "GIF89a\x01\x00\x01\x00");
+    expectInputError([&] { readImage(path("b.png")); }, {"b.png: GIF images are not supported"});
+    writeBytes("c.jpg", "8BPS\x00\x01");
+    expectInputError([&] { readImage(path("c.jpg")); }, {"c.jpg: PSD images are not supported"});
+}
+
 // stb would zero-fill the missing rows of a BMP whose height field is damaged: gigabytes
 // from a few hundred bytes. The size check stops it before decoding.
 TEST_F(ImageErrors, DamagedBmpHeightIsRejectedBeforeDecoding) {
