@@ -109,16 +109,7 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
         if (pt.kind == VertexKind::Surface && pt.bxdf) {
             BxDFEval e = paths_.evaluate(pt, ls->wi);
             L = pt.beta * e.f * lv.beta * std::fabs(dot(ls->wi, pt.ns));
-            if (lv.infinite) {
-                lv.pdfFwd = paths_.pdfLightOrigin(lv, pt);
-                known.pt = paths_.pdfLight(lv, pt);
-            } else {
-                // One emission query gives both the light subpath's start and its direction.
-                float pdfPos, pdfDir;
-                lt->pdfLe(lv.p, lv.ng, -ls->wi, &pdfPos, &pdfDir);
-                lv.pdfFwd = scene.lightPmf(lt) * pdfPos;
-                known.pt = pdfDir * areaFactor(lv, pt);
-            }
+            paths_.emissionDensities(lv, pt, &lv.pdfFwd, &known.pt);
             known.qs = e.pdfFwd * areaFactor(pt, lv);
             known.ptMinus = e.pdfRev * pt.toPrevArea;
             haveKnown = true;
@@ -186,10 +177,13 @@ float BDPTIntegrator::misWeight(PathVertex* light, PathVertex* camera, const Pat
         qs->pdfRev = known->qs;
         if (ptMinus) ptMinus->pdfRev = known->ptMinus;
         if (qsMinus) qsMinus->pdfRev = known->qsMinus;
+    } else if (s == 0) {
+        // The camera path ends on an emitter (t >= 2 here): a light subpath would start there.
+        paths_.emissionDensities(*pt, *ptMinus, &pt->pdfRev, &ptMinus->pdfRev);
     } else {
-        if (pt) pt->pdfRev = s > 0 ? paths_.pdf(*qs, qsMinus, *pt, false) : paths_.pdfLightOrigin(*pt, *ptMinus);
-        if (ptMinus) ptMinus->pdfRev = s > 0 ? paths_.pdf(*pt, qs, *ptMinus, true) : paths_.pdfLight(*pt, *ptMinus);
-        if (qs) qs->pdfRev = paths_.pdf(*pt, ptMinus, *qs, false);
+        pt->pdfRev = paths_.pdf(*qs, qsMinus, *pt, false);
+        if (ptMinus) ptMinus->pdfRev = paths_.pdf(*pt, qs, *ptMinus, true);
+        qs->pdfRev = paths_.pdf(*pt, ptMinus, *qs, false);
         if (qsMinus) qsMinus->pdfRev = paths_.pdf(*qs, pt, *qsMinus, true);
     }
 

@@ -190,31 +190,37 @@ float Subpaths::pdf(const PathVertex& v, const PathVertex* prev, const PathVerte
     return solidAngleToArea(v, pdfDir, next);
 }
 
+void Subpaths::emissionDensities(const PathVertex& v, const PathVertex& to, float* origin, float* next) const {
+    Vec3 d = to.p - v.p;
+    float d2 = lengthSquared(d);
+    Vec3 w = d / std::sqrt(d2);
+    bool nextDefined = d2 > 0;  // coincident points: `to` has no density (and w is not a direction)
+    if (next) *next = 0;
+    if (!origin && !nextDefined) return;
+    if (v.isInfiniteLight()) {
+        if (origin) *origin = infiniteLightDensity(-w);
+        if (next && nextDefined) *next = infinityDiskPdf(scene_.boundsRadius());
+    } else {
+        if (origin) *origin = 0;
+        if (!v.light) return;
+        float pdfPos, pdfDir;
+        v.light->pdfLe(v.p, v.ng, w, &pdfPos, &pdfDir);
+        if (origin) *origin = scene_.lightPmf(v.light) * pdfPos;
+        if (next && nextDefined) *next = pdfDir / d2;
+    }
+    if (next && nextDefined && to.onSurface()) *next *= std::fabs(dot(to.ng, w));
+}
+
 float Subpaths::pdfLightOrigin(const PathVertex& v, const PathVertex& to) const {
-    Vec3 w = directionTo(v, to);
-    if (v.isInfiniteLight()) return infiniteLightDensity(-w);
-    if (!v.light) return 0;
-    float pdfPos, pdfDir;
-    v.light->pdfLe(v.p, v.ng, w, &pdfPos, &pdfDir);
-    return scene_.lightPmf(v.light) * pdfPos;
+    float origin;
+    emissionDensities(v, to, &origin, nullptr);
+    return origin;
 }
 
 float Subpaths::pdfLight(const PathVertex& v, const PathVertex& to) const {
-    Vec3 w = to.p - v.p;
-    float d2 = lengthSquared(w);
-    if (!(d2 > 0)) return 0;
-    w = w / std::sqrt(d2);
-    float pdf;
-    if (v.isInfiniteLight()) {
-        pdf = infinityDiskPdf(scene_.boundsRadius());
-    } else {
-        if (!v.light) return 0;
-        float pdfPos, pdfDir;
-        v.light->pdfLe(v.p, v.ng, w, &pdfPos, &pdfDir);
-        pdf = pdfDir / d2;
-    }
-    if (to.onSurface()) pdf *= std::fabs(dot(to.ng, w));
-    return pdf;
+    float next;
+    emissionDensities(v, to, nullptr, &next);
+    return next;
 }
 
 Spectrum Subpaths::Le(const PathVertex& v, const PathVertex& to) const {
@@ -231,18 +237,6 @@ Spectrum Subpaths::Le(const PathVertex& v, const PathVertex& to) const {
 bool Subpaths::visible(const PathVertex& a, const PathVertex& b, PathStats& stats) const {
     ++stats.shadowRays;
     return !scene_.occluded(spawnRayTo(a.p, a.ng, b.p));
-}
-
-float Subpaths::G(const PathVertex& a, const PathVertex& b, PathStats& stats) const {
-    Vec3 d = a.p - b.p;
-    float d2 = lengthSquared(d);
-    if (!(d2 > 0)) return 0;
-    d = d / std::sqrt(d2);
-    float g = 1 / d2;
-    if (a.onSurface()) g *= std::fabs(dot(a.ns, d));
-    if (b.onSurface()) g *= std::fabs(dot(b.ns, d));
-    if (g == 0 || !visible(a, b, stats)) return 0;
-    return g;
 }
 
 float Subpaths::infiniteLightDensity(Vec3 wToLight) const {

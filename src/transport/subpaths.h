@@ -42,10 +42,11 @@ public:
     float pdfLightOrigin(const PathVertex& v, const PathVertex& to) const;
     // Area density at `to` of the direction a light subpath from v would sample.
     float pdfLight(const PathVertex& v, const PathVertex& to) const;
+    // Both of the above from one emission query (a connection to a sampled light needs
+    // both); either pointer may be null.
+    void emissionDensities(const PathVertex& v, const PathVertex& to, float* origin, float* next) const;
     // Radiance emitted at light vertex v towards `to`.
     Spectrum Le(const PathVertex& v, const PathVertex& to) const;
-    // Geometry term between two vertices with shading cosines, zero if occluded.
-    float G(const PathVertex& a, const PathVertex& b, PathStats& stats) const;
     // Mutual visibility of two points.
     bool visible(const PathVertex& a, const PathVertex& b, PathStats& stats) const;
     // Density of choosing direction wToLight from all infinite lights together.
