@@ -47,16 +47,16 @@ void checkWritable(const std::string& path) {
 }
 
 // CLI11's own range checks print the range's limits as 300-digit numbers; these say it plainly.
-CLI::Validator numberAtLeast(double low, bool inclusive) {
-    std::string what = inclusive ? (low == 0 ? "a number >= 0" : "a number >= " + std::to_string(low)) : "a positive number";
+CLI::Validator numberCheck(bool allowZero) {
+    std::string what = allowZero ? "a number >= 0" : "a positive number";
     return CLI::Validator(
-        [low, inclusive, what](std::string& text) -> std::string {
+        [allowZero, what](std::string& text) -> std::string {
             char* end = nullptr;
             double v = std::strtod(text.c_str(), &end);
-            bool ok = end != text.c_str() && *end == '\0' && std::isfinite(v) && (inclusive ? v >= low : v > low);
+            bool ok = end != text.c_str() && *end == '\0' && std::isfinite(v) && (allowZero ? v >= 0 : v > 0);
             return ok ? std::string() : "expected " + what + ", got " + quoteForMessage(text);
         },
-        inclusive ? "NUMBER>=0" : "NUMBER>0");
+        allowZero ? "NUMBER>=0" : "NUMBER>0");
 }
 
 // out.exr -> out.variance.exr, next to the output and in its format.
@@ -70,14 +70,14 @@ std::string variancePath(const std::string& output) {
 void RenderCommand::attach(CLI::App& app) {
     cmd_ = app.add_subcommand("render", "Render a pbrt-v4 scene file");
     cmd_->add_option("scene", scene_, "pbrt-v4 scene file")->required()->check(CLI::ExistingFile);
-    cmd_->add_option("--spp", spp_, "Samples per pixel (overrides the scene's Sampler pixelsamples)")->check(numberAtLeast(0, false));
+    cmd_->add_option("--spp", spp_, "Samples per pixel (overrides the scene's Sampler pixelsamples)")->check(numberCheck(false));
     cmd_->add_option("--time", time_, "Time budget in seconds; the image so far is written when it runs out")
-        ->check(numberAtLeast(0, false));
-    cmd_->add_option("--threads", threads_, "Worker threads (default: all cores)")->check(numberAtLeast(0, true));
+        ->check(numberCheck(false));
+    cmd_->add_option("--threads", threads_, "Worker threads (default: all cores)")->check(numberCheck(true));
     cmd_->add_option("--seed", seed_, "Random seed (overrides the scene's; same seed and thread count = same image)")
-        ->check(numberAtLeast(0, true));
+        ->check(numberCheck(true));
     cmd_->add_option("--maxdepth", maxDepth_, "Maximum number of scattering events (overrides the scene's)")
-        ->check(numberAtLeast(0, true));
+        ->check(numberCheck(true));
     cmd_->add_option("--integrator", integrator_,
                      "Integrator: path (path tracing with MIS), light (light tracing: particles from the lights "
                      "splatted through the lens), bdpt (bidirectional path tracing, every strategy with MIS). "

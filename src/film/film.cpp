@@ -14,7 +14,7 @@ Film::Film(int xRes, int yRes, PixelBounds bounds, const Filter* splatFilter)
     : xRes_(xRes), yRes_(yRes), bounds_(bounds), pixels_(size_t(bounds.area())), splatFilter_(splatFilter) {
     if (splatFilter_) {
         size_t n = size_t(bounds.area()) * 6;
-        perThreadSplats_ = double(n) * 8 * tbb::this_task_arena::max_concurrency() < kPerThreadSplatBytes;
+        perThreadSplats_ = perThreadSplatsFit(double(bounds.area()), tbb::this_task_arena::max_concurrency());
         if (!perThreadSplats_) {
             splats_.reset(new std::atomic<int64_t>[n]);
             for (size_t i = 0; i < n; ++i) splats_[i].store(0, std::memory_order_relaxed);
@@ -22,12 +22,15 @@ Film::Film(int xRes, int yRes, PixelBounds bounds, const Filter* splatFilter)
     }
 }
 
+bool Film::perThreadSplatsFit(double pixels, int threads) {
+    return kSplatBytesPerPixel * pixels * threads < kPerThreadSplatBytes;
+}
+
 double Film::estimateBytes(double pixels, bool splats, int threads) {
     double perPixel = sizeof(Pixel) + 2 * 3 * sizeof(float) + sizeof(int);  // accumulators, two images, counts
     if (splats) {
-        const double sums = 6 * sizeof(int64_t);  // [half][channel]
-        const double copies = sums * pixels * threads < kPerThreadSplatBytes ? threads : 1;
-        perPixel += sums * (copies + 1);  // + the merged copy
+        const double copies = perThreadSplatsFit(pixels, threads) ? threads : 1;
+        perPixel += kSplatBytesPerPixel * (copies + 1);  // + the merged copy
     }
     return perPixel * pixels;
 }

@@ -132,6 +132,9 @@ private:
     double pixelVariance(size_t i, double lightPaths, const std::vector<int64_t>& splats, double& mean) const;
     static constexpr double kSplatFixedPoint = 268435456.0;  // 2^28 units per radiance unit
     static constexpr double kPerThreadSplatBytes = 1024.0 * 1024 * 1024;  // cap on all threads' splat copies
+    static constexpr double kSplatBytesPerPixel = 6 * sizeof(int64_t);  // [half][channel] sums
+    // Whether every thread gets its own splat sums (else one shared array of atomics).
+    static bool perThreadSplatsFit(double pixels, int threads);
     // The film widened by the filter radius on every side, in pixels: the area over which
     // camera importance is spread (see Camera::setFilterMargin).
     double splatPixelCount() const {

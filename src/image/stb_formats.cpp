@@ -80,21 +80,22 @@ int atEnd(void* user) {
 }
 const stbi_io_callbacks kCallbacks = {readBytes, skipBytes, atEnd};
 
-// Whether the file starts with a JPEG SOI marker as stb reads one: 0xFF, any number of 0xFF
-// fill bytes, then 0xD8 (a fuzzed file with 80 fill bytes slipped past a plain two-byte test).
-bool startsWithJpegSoi(std::FILE* f) {
+// Where a file's JPEG SOI marker ends, read as stb reads it: 0xFF, any number of 0xFF fill
+// bytes, then 0xD8 (a fuzzed file with 80 fill bytes slipped past a plain two-byte test);
+// 0 if the file does not start with one.
+long afterJpegSoi(std::FILE* f) {
     std::rewind(f);
     int c = std::fgetc(f);
-    if (c != 0xFF) return false;
+    if (c != 0xFF) return 0;
     while ((c = std::fgetc(f)) == 0xFF) {
     }
-    return c == 0xD8;
+    return c == 0xD8 ? std::ftell(f) : 0;
 }
 
 // Debian's stb_image (2022-09) overruns its Huffman arrays when a JPEG DHT table declares more
 // than 256 codes (found by fuzz/image_fuzzer). Such files are corrupt: reject them before stb
 // sees them. Walks every marker segment, including those between the scans of a progressive file.
-void checkJpegHuffmanTables(const std::string& path, std::FILE* f) {
+void checkJpegHuffmanTables(const std::string& path, std::FILE* f, long afterSoi) {
     std::rewind(f);
     std::vector<unsigned char> b;
     unsigned char buf[65536];
@@ -102,9 +103,7 @@ void checkJpegHuffmanTables(const std::string& path, std::FILE* f) {
     while ((got = std::fread(buf, 1, sizeof buf, f)) > 0) b.insert(b.end(), buf, buf + got);
     std::rewind(f);
     const size_t n = b.size();
-    size_t pos = 1;
-    while (pos < n && b[pos] == 0xFF) ++pos;  // fill bytes before the SOI code, as stb skips them
-    ++pos;                                    // after SOI
+    size_t pos = size_t(afterSoi);
     while (pos + 4 <= n) {
         if (b[pos] != 0xFF) {  // entropy-coded data: look for the next marker
             ++pos;
@@ -183,7 +182,7 @@ void refuseUndocumentedFormats(const std::string& path, std::FILE* f) {
 Image readStb(const std::string& path, std::FILE* f, long long fileBytes, FileFormat format, ColorEncoding pngEncoding) {
     // Every stb call starts a fresh context at the current position: rewind before each.
     refuseUndocumentedFormats(path, f);
-    if (startsWithJpegSoi(f)) checkJpegHuffmanTables(path, f);
+    if (long afterSoi = afterJpegSoi(f)) checkJpegHuffmanTables(path, f, afterSoi);
     if (fileBytes >= 0) checkPngChunks(path, f, fileBytes);
     std::rewind(f);
     Source src{f};

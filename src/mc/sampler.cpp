@@ -6,7 +6,7 @@
 
 namespace ps {
 
-SobolPermutationTable::SobolPermutationTable(int log2N, uint64_t seed) : log2N(log2N) {
+SobolPermutationTable::SobolPermutationTable(int log2N, uint64_t seed) {
     const uint32_t n = 1u << log2N;
     entries.resize(size_t(kRows) * n * 2);
     for (uint32_t d = 0; d < kRows; ++d) {

@@ -65,7 +65,6 @@ private:
 // pairing. Looking an entry up replaces three hashes per request.
 struct SobolPermutationTable {
     static constexpr uint32_t kMaxSamples = 256, kRows = 128;  // 128 KiB at most
-    int log2N = 0;
     std::vector<uint16_t> entries;  // (permuted index, reversed dimension-1 point) pairs
     SobolPermutationTable(int log2N, uint64_t seed);
     static bool covers(uint32_t n) { return (n & (n - 1)) == 0 && n <= kMaxSamples; }
@@ -98,7 +97,8 @@ public:
     float get1D() override {
         uint64_t dim = dimension_++;
         uint64_t h = dimensionSeed(dim);
-        uint32_t index = column_ && dim < SobolPermutationTable::kRows ? roundBase_ + entry(dim)[0] : permutedIndex(dim);
+        const uint16_t* e = tableEntry(dim);
+        uint32_t index = e ? roundBase_ + e[0] : permutedIndex(dim);
         return fixedToFloat(owenScrambleReversed(index, uint32_t(h)));
     }
     Vec2 get2D() override {
@@ -106,8 +106,7 @@ public:
         dimension_ += 2;
         uint64_t h = dimensionSeed(dim);
         uint32_t index, dim1;
-        if (column_ && dim < SobolPermutationTable::kRows) {
-            const uint16_t* e = entry(dim);
+        if (const uint16_t* e = tableEntry(dim)) {
             index = roundBase_ + e[0];
             dim1 = roundDim1_ ^ e[1];  // the transform is linear over GF(2), and the bits are disjoint
         } else {
@@ -122,7 +121,9 @@ public:
 private:
     // Scramble seeds per dimension from the (already well mixed) pixel hash.
     uint64_t dimensionSeed(uint64_t dim) const { return mixWithKey(pixelHash_, dim); }
-    const uint16_t* entry(uint64_t dim) const {
+    // This sample's entry for dimension dim, or null beyond the table (or without one).
+    const uint16_t* tableEntry(uint64_t dim) const {
+        if (!column_ || dim >= SobolPermutationTable::kRows) return nullptr;
         return column_ + (size_t((uint32_t(dim) + rowOffset_) & (SobolPermutationTable::kRows - 1)) << (log2N_ + 1));
     }
     // Beyond the table: a per-pixel permutation. For N = 2^m a nested permutation of the
