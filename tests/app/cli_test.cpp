@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
+#include <vector>
 
 #include "image/image.h"
 #include "run_binary.h"
@@ -21,6 +22,25 @@ namespace {
 
 using ps::test::Result;
 Result run(const std::string& args) { return ps::test::runPathspace(args); }
+
+// Starts `pathspace ARGS`, sends it SIGINT after 1.5 s and returns its exit status (-1 if it
+// did not exit normally, -2 if it could not be started).
+int interruptedRun(const std::vector<std::string>& args) {
+    std::vector<char*> argv{const_cast<char*>(PATHSPACE_BINARY)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    pid_t pid = fork();
+    if (pid < 0) return -2;
+    if (pid == 0) {
+        execv(PATHSPACE_BINARY, argv.data());
+        _exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    kill(pid, SIGINT);
+    int st = 0;
+    waitpid(pid, &st, 0);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
 
 class Cli : public ::testing::Test {
 protected:
@@ -135,19 +155,8 @@ TEST_F(Cli, InterruptWritesImageSoFar) {
         std::string full = (dir / (std::string("f_") + integrator + ".exr")).string();
         Result f = run(std::string("render --quiet --spp 64 --seed 9 --integrator ") + integrator + " " + scene + " -o " + full);
         ASSERT_EQ(f.status, 0) << f.out;
-        pid_t pid = fork();
-        ASSERT_GE(pid, 0);
-        if (pid == 0) {
-            execl(PATHSPACE_BINARY, PATHSPACE_BINARY, "render", "--quiet", "--spp", "100000000", "--integrator", integrator,
-                  scene.c_str(), "-o", out.c_str(), (char*)nullptr);
-            _exit(127);
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-        kill(pid, SIGINT);
-        int st = 0;
-        waitpid(pid, &st, 0);
-        ASSERT_TRUE(WIFEXITED(st));
-        EXPECT_EQ(WEXITSTATUS(st), 130);
+        ASSERT_EQ(interruptedRun({"render", "--quiet", "--spp", "100000000", "--integrator", integrator, scene, "-o", out}),
+                  130);
         ASSERT_TRUE(fs::exists(out));
         ps::Image img = ps::readImage(out), ref = ps::readImage(full);
         ASSERT_EQ(img.width, 32);
@@ -275,19 +284,7 @@ TEST_F(Cli, AdaptiveSampling) {
 TEST_F(Cli, InterruptAdaptiveWritesNormalisedImage) {
     std::string scene = write("s.pbrt", kSmallScene);
     std::string out = (dir / "i.exr").string();
-    pid_t pid = fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-        execl(PATHSPACE_BINARY, PATHSPACE_BINARY, "render", "--quiet", "--adaptive", "twostage", "--spp", "100000000",
-              scene.c_str(), "-o", out.c_str(), (char*)nullptr);
-        _exit(127);
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-    kill(pid, SIGINT);
-    int st = 0;
-    waitpid(pid, &st, 0);
-    ASSERT_TRUE(WIFEXITED(st));
-    EXPECT_EQ(WEXITSTATUS(st), 130);
+    ASSERT_EQ(interruptedRun({"render", "--quiet", "--adaptive", "twostage", "--spp", "100000000", scene, "-o", out}), 130);
     ps::Image img = ps::readImage(out);
     double sum = 0;
     for (float v : img.rgb) sum += v;
