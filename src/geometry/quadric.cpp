@@ -115,7 +115,7 @@ float Sphere::intersectObject(Vec3 o, Vec3 d, float tMax) const {
     return -1;
 }
 
-void Sphere::interaction(const Ray& r, float t, int, float, float, SurfaceInteraction& si) const {
+int Sphere::interaction(const Ray& r, float t, int, float, float, SurfaceInteraction& si) const {
     Vec3 pObj = toScene_.inverse().point(r.o + r.d * t);
     float l = length(pObj);
     if (l > 0) pObj = pObj * (radius_ / l);  // reproject onto the surface
@@ -128,6 +128,7 @@ void Sphere::interaction(const Ray& r, float t, int, float, float, SurfaceIntera
     if (flip_) n = -n;
     si.ng = si.ns = n;
     si.dpdu = toScene_.vector({-phiMax_ * pObj.y, phiMax_ * pObj.x, 0});
+    return 0;
 }
 
 float Sphere::area(int) const {
@@ -219,7 +220,7 @@ float Disk::intersectObject(Vec3 o, Vec3 d, float tMax) const {
     return t;
 }
 
-void Disk::interaction(const Ray& r, float t, int, float, float, SurfaceInteraction& si) const {
+int Disk::interaction(const Ray& r, float t, int, float, float, SurfaceInteraction& si) const {
     Vec3 pObj = toScene_.inverse().point(r.o + r.d * t);
     pObj.z = height_;
     float rho = std::sqrt(pObj.x * pObj.x + pObj.y * pObj.y);
@@ -231,6 +232,7 @@ void Disk::interaction(const Ray& r, float t, int, float, float, SurfaceInteract
     if (flip_) n = -n;
     si.ng = si.ns = n;
     si.dpdu = toScene_.vector({-phiMax_ * pObj.y, phiMax_ * pObj.x, 0});
+    return 0;
 }
 
 float Disk::area(int) const {

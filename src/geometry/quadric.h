@@ -27,7 +27,7 @@ public:
     Sphere(const Transform& toScene, bool reverseOrientation, float radius, float zMin, float zMax, float phiMaxDeg);
     float intersectObject(Vec3 o, Vec3 d, float tMax) const override;
     void objectBounds(Vec3& lo, Vec3& hi) const override;
-    void interaction(const Ray& r, float t, int prim, float u, float v, SurfaceInteraction& si) const override;
+    int interaction(const Ray& r, float t, int embreePrim, float u, float v, SurfaceInteraction& si) const override;
     float area(int prim) const override;
     ShapeSample sampleArea(int prim, Vec2 u) const override;
     // Partial spheres sample the full sphere and reject points outside the part.
@@ -49,7 +49,7 @@ public:
     Disk(const Transform& toScene, bool reverseOrientation, float height, float radius, float innerRadius, float phiMaxDeg);
     float intersectObject(Vec3 o, Vec3 d, float tMax) const override;
     void objectBounds(Vec3& lo, Vec3& hi) const override;
-    void interaction(const Ray& r, float t, int prim, float u, float v, SurfaceInteraction& si) const override;
+    int interaction(const Ray& r, float t, int embreePrim, float u, float v, SurfaceInteraction& si) const override;
     float area(int prim) const override;
     ShapeSample sampleArea(int prim, Vec2 u) const override;
 

@@ -22,9 +22,10 @@ public:
     // Creates the committed Embree geometry (not attached to a scene).
     virtual RTCGeometry buildGeometry(RTCDevice device) const = 0;
     virtual int primitiveCount() const = 0;
-    // Fills geometry fields of si (p, ng, ns, dpdu, uv) for a hit of primitive prim at
-    // barycentrics (u, v) by ray r at distance t.
-    virtual void interaction(const Ray& r, float t, int prim, float u, float v, SurfaceInteraction& si) const = 0;
+    // Fills geometry fields of si (p, ng, ns, dpdu, uv) for Embree's hit of its primitive
+    // embreePrim at its (u, v) by ray r at distance t, and returns the shape's own primitive
+    // index (the numbering of areaLights and sampling; Embree's may differ, e.g. for quads).
+    virtual int interaction(const Ray& r, float t, int embreePrim, float u, float v, SurfaceInteraction& si) const = 0;
     virtual float area(int prim) const = 0;
     // Uniform by area over the primitive.
     virtual ShapeSample sampleArea(int prim, Vec2 u) const = 0;

@@ -26,6 +26,7 @@ TriangleMesh::TriangleMesh(TriangleMeshData data, const Transform& toScene, bool
     if (data.uv.size() == data.P.size()) uv_ = std::move(data.uv);
     indices_.assign(data.indices.begin(), data.indices.end());
     flipNormal_ = reverseOrientation ^ toScene.swapsHandedness();
+    quads_ = pairTriangles(indices_);
     int n = primitiveCount();
     faceNormal_.resize(n);
     faceDpdu_.resize(n);
@@ -46,11 +47,16 @@ TriangleMesh::TriangleMesh(TriangleMeshData data, const Transform& toScene, bool
 }
 
 RTCGeometry TriangleMesh::buildGeometry(RTCDevice device) const {
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    const bool quads = !quads_.sources.empty();
+    RTCGeometry g = rtcNewGeometry(device, quads ? RTC_GEOMETRY_TYPE_QUAD : RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, positions_.data(), 0,
                                3 * sizeof(float), (positions_.size() - 1) / 3);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices_.data(), 0,
-                               3 * sizeof(unsigned), indices_.size() / 3);
+    if (quads)
+        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, quads_.quadIndices.data(), 0,
+                                   4 * sizeof(unsigned), quads_.sources.size());
+    else
+        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices_.data(), 0,
+                                   3 * sizeof(unsigned), indices_.size() / 3);
     rtcCommitGeometry(g);
     return g;
 }
@@ -94,7 +100,14 @@ Vec2 TriangleMesh::uvAt(int vertex, int corner) const {
     return corner == 0 ? Vec2(0, 0) : (corner == 1 ? Vec2(1, 0) : Vec2(1, 1));
 }
 
-void TriangleMesh::interaction(const Ray& r, float t, int prim, float u, float v, SurfaceInteraction& si) const {
+int TriangleMesh::interaction(const Ray& r, float t, int embreePrim, float u, float v, SurfaceInteraction& si) const {
+    int prim = embreePrim;
+    if (!quads_.sources.empty()) {
+        QuadPairing::TriangleHit h = quads_.triangleHit(embreePrim, u, v);
+        prim = h.triangle;
+        u = h.u;
+        v = h.v;
+    }
     const unsigned* vi = &indices_[3 * prim];
     Vec3 p0 = loadP(positions_, vi[0]), p1 = loadP(positions_, vi[1]), p2 = loadP(positions_, vi[2]);
     float b0 = 1 - u - v;
@@ -120,6 +133,7 @@ void TriangleMesh::interaction(const Ray& r, float t, int prim, float u, float v
     }
     si.ng = ng;
     si.dpdu = dpdu;
+    return prim;
 }
 
 float TriangleMesh::area(int prim) const {

@@ -2,6 +2,7 @@
 // space of the scene that holds them (world, or an instance prototype's space).
 #pragma once
 #include <vector>
+#include "geometry/quad_pairing.h"
 #include "geometry/shape.h"
 #include "math/transform.h"
 
@@ -23,7 +24,7 @@ public:
 
     RTCGeometry buildGeometry(RTCDevice device) const override;
     int primitiveCount() const override { return int(indices_.size() / 3); }
-    void interaction(const Ray& r, float t, int prim, float u, float v, SurfaceInteraction& si) const override;
+    int interaction(const Ray& r, float t, int embreePrim, float u, float v, SurfaceInteraction& si) const override;
     float area(int prim) const override;
     ShapeSample sampleArea(int prim, Vec2 u) const override;
     std::optional<ShapeSample> sampleToward(int prim, Vec3 ref, Vec2 u) const override;
@@ -37,6 +38,7 @@ private:
     std::vector<Vec3> normals_;
     std::vector<Vec2> uv_;
     std::vector<unsigned> indices_;
+    QuadPairing quads_;  // what Embree traces when most triangles pair up (else empty)
     // Per triangle: oriented unit geometric normal and dp/du, computed once (24 bytes per
     // triangle) instead of at every hit.
     std::vector<Vec3> faceNormal_, faceDpdu_;

@@ -34,10 +34,9 @@ bool Scene::intersect(const Ray& r, SurfaceInteraction& si) const {
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
     float t = rh.ray.tfar;
-    int prim = int(rh.hit.primID);
     if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID) {
         const Shape* shape = worldGeometry_[rh.hit.geomID];
-        shape->interaction(r, t, prim, rh.hit.u, rh.hit.v, si);
+        int prim = shape->interaction(r, t, int(rh.hit.primID), rh.hit.u, rh.hit.v, si);
         si.material = shape->material;
         si.areaLight = shape->areaLights.empty() ? nullptr : shape->areaLights[prim];
     } else {
@@ -47,7 +46,7 @@ bool Scene::intersect(const Ray& r, SurfaceInteraction& si) const {
         const Transform& T = inst.worldFromPrototype;
         Transform inv = T.inverse();
         Ray local{inv.point(r.o), inv.vector(r.d), r.tMax};
-        shape->interaction(local, t, prim, rh.hit.u, rh.hit.v, si);
+        shape->interaction(local, t, int(rh.hit.primID), rh.hit.u, rh.hit.v, si);
         si.p = T.point(si.p);
         si.ng = normalize(T.normal(si.ng));
         si.ns = normalize(T.normal(si.ns));
