@@ -1,28 +1,6 @@
 #include "geometry/quad_pairing.h"
 
-#include <cstddef>
-
 namespace ps {
-
-namespace {
-
-// Weights of a triangle's corners (0, 1, 2) from the weights w of its corners rotated by
-// `shift` (w[k] belongs to corner (k + shift) mod 3), returned as Embree's (u, v).
-QuadPairing::TriangleHit unrotate(int triangle, int shift, const float w[3]) {
-    return {triangle, w[(4 - shift) % 3], w[(5 - shift) % 3]};
-}
-
-}  // namespace
-
-QuadPairing::TriangleHit QuadPairing::triangleHit(int quad, float u, float v) const {
-    const Source& s = sources[std::size_t(quad)];
-    if (s.second < 0 || u + v <= 1) {
-        const float w[3] = {1 - u - v, u, v};  // on (v0, v1, v3)
-        return unrotate(s.first, s.firstShift, w);
-    }
-    const float w[3] = {u + v - 1, 1 - u, 1 - v};  // on (v2, v3, v1): Embree's u = 1 - u', v = 1 - v'
-    return unrotate(s.second, s.secondShift, w);
-}
 
 QuadPairing pairTriangles(const std::vector<unsigned>& indices) {
     QuadPairing q;

@@ -4,6 +4,7 @@
 // faster. The pairing changes nothing geometric: every hit maps back to the triangle it
 // lies on and that triangle's own barycentrics.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -25,7 +26,22 @@ struct QuadPairing {
         int triangle;
         float u, v;
     };
-    TriangleHit triangleHit(int quad, float u, float v) const;
+    TriangleHit triangleHit(int quad, float u, float v) const {
+        const Source& s = sources[std::size_t(quad)];
+        if (s.second < 0 || u + v <= 1) return unrotate(s.first, s.firstShift, 1 - u - v, u, v);  // on (v0, v1, v3)
+        return unrotate(s.second, s.secondShift, u + v - 1, 1 - u, 1 - v);  // on (v2, v3, v1): u = 1 - u', v = 1 - v'
+    }
+
+private:
+    // A triangle's (u, v) from the weights w0..w2 of its corners rotated by `shift` (wk
+    // belongs to corner (k + shift) mod 3).
+    static TriangleHit unrotate(int triangle, int shift, float w0, float w1, float w2) {
+        switch (shift) {
+            case 0: return {triangle, w1, w2};
+            case 1: return {triangle, w0, w1};
+            default: return {triangle, w2, w0};
+        }
+    }
 };
 
 // Pairs consecutive triangles (2k, 2k+1 after any unpaired one) that share an edge with

@@ -44,6 +44,15 @@ TriangleMesh::TriangleMesh(TriangleMeshData data, const Transform& toScene, bool
         float det = duv02.x * duv12.y - duv02.y * duv12.x;
         faceDpdu_[i] = det != 0 ? ((p0 - p2) * duv12.y - (p1 - p2) * duv02.y) / det : Vec3();
     }
+    if (!normals_.empty()) {
+        flatNormals_.resize(n);
+        for (int i = 0; i < n; ++i) {
+            const unsigned* vi = &indices_[3 * i];
+            Vec3 a = normals_[vi[0]], b = normals_[vi[1]], c = normals_[vi[2]];
+            bool same = a.x == b.x && a.y == b.y && a.z == b.z && a.x == c.x && a.y == c.y && a.z == c.z;
+            flatNormals_[i] = same && lengthSquared(a) > 0;
+        }
+    }
 }
 
 RTCGeometry TriangleMesh::buildGeometry(RTCDevice device) const {
@@ -118,7 +127,10 @@ int TriangleMesh::interaction(const Ray& r, float t, int embreePrim, float u, fl
     si.uv = uv_.empty() ? Vec2(u + v, v) : uv_[vi[0]] * b0 + uv_[vi[1]] * u + uv_[vi[2]] * v;
     Vec3 dpdu = faceDpdu_[prim];
 
-    if (!normals_.empty()) {
+    if (!normals_.empty() && flatNormals_[prim]) {
+        si.ns = normals_[vi[0]];  // unit, as normalised at construction
+        ng = faceForward(ng, si.ns);
+    } else if (!normals_.empty()) {
         Vec3 ns = normals_[vi[0]] * b0 + normals_[vi[1]] * u + normals_[vi[2]] * v;
         float ln = length(ns);
         if (ln > 0) {

@@ -42,6 +42,9 @@ private:
     // Per triangle: oriented unit geometric normal and dp/du, computed once (24 bytes per
     // triangle) instead of at every hit.
     std::vector<Vec3> faceNormal_, faceDpdu_;
+    // Per triangle, with N: its three normals are equal, so the shading normal is that one
+    // normal everywhere on it (flat-shaded exports) and needs no interpolation.
+    std::vector<uint8_t> flatNormals_;
     bool flipNormal_ = false;  // ReverseOrientation XOR transform swaps handedness
     // Per triangle, filled by prepareSampling for emitters: vertex 0, edges, oriented
     // geometric normal and area, so light sampling touches one cache line per triangle.
