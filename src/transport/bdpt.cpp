@@ -6,50 +6,9 @@
 
 namespace ps {
 
-namespace {
-
-// Saves the fields the MIS computation changes (and the whole vertex a connection
-// replaced) and restores them on scope exit, so the weights can see the path as the
-// connection made it without copying subpaths.
-class MisFieldsGuard {
-public:
-    explicit MisFieldsGuard(PathVertex* v) : v_(v) {
-        if (v_) {
-            pdfRev_ = v_->pdfRev;
-            delta_ = v_->delta;
-        }
-    }
-    ~MisFieldsGuard() {
-        if (v_) {
-            v_->pdfRev = pdfRev_;
-            v_->delta = delta_;
-        }
-    }
-    MisFieldsGuard(const MisFieldsGuard&) = delete;
-    MisFieldsGuard& operator=(const MisFieldsGuard&) = delete;
-
-private:
-    PathVertex* v_;
-    float pdfRev_ = 0;
-    bool delta_ = false;
-};
-
-class VertexReplacement {
-public:
-    VertexReplacement(PathVertex* v, const PathVertex& with) : v_(v), saved_(*v) { *v_ = with; }
-    ~VertexReplacement() { *v_ = saved_; }
-    VertexReplacement(const VertexReplacement&) = delete;
-    VertexReplacement& operator=(const VertexReplacement&) = delete;
-
-private:
-    PathVertex* v_;
-    PathVertex saved_;
-};
-
-}  // namespace
-
-BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex* camera, int s, int t,
-                                                   Sampler& sampler, PathStats& stats, bool weighted) const {
+template <typename S>
+BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex* camera, int s, int t, S& sampler,
+                                                   PathStats& stats, bool weighted) const {
     Connection c;
     const Scene& scene = paths_.scene();
     // An escaped camera ray is an endpoint only for s = 0.
@@ -156,35 +115,27 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
 // that could have produced the same path (thesis §10.2.3, eq. 10.9): the ratio of each
 // other strategy's density to this one's follows from walking along the path and
 // exchanging one vertex's forward density for its reverse density at a time.
-float BDPTIntegrator::misWeight(PathVertex* light, PathVertex* camera, const PathVertex* sampled, int s, int t,
-                                const EndpointDensities* known) const {
+float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camera, const PathVertex* sampled, int s,
+                                int t, const EndpointDensities* known) const {
     if (s + t == 2) return 1;
-    PathVertex* qs = s > 0 ? &light[s - 1] : nullptr;
-    PathVertex* pt = t > 0 ? &camera[t - 1] : nullptr;
-    PathVertex* qsMinus = s > 1 ? &light[s - 2] : nullptr;
-    PathVertex* ptMinus = t > 1 ? &camera[t - 2] : nullptr;
-
-    std::optional<VertexReplacement> replaced;
-    if (s == 1 && sampled) replaced.emplace(qs, *sampled);
-    if (t == 1 && sampled) replaced.emplace(pt, *sampled);
-    MisFieldsGuard keepQs(qs), keepPt(pt), keepQsMinus(qsMinus), keepPtMinus(ptMinus);
-    // The connection vertices were reached by a deterministic join, not a specular bounce.
-    if (pt) pt->delta = false;
-    if (qs) qs->delta = false;
-    // Densities with which the other side's walk would have produced each end.
+    // The path as the connection made it: the sampled vertex stands in for light[0] (s = 1)
+    // or camera[0] (t = 1), and the four vertices at the join get the reverse densities of
+    // the other side's walk. Nothing is written back into the subpaths.
+    const PathVertex* qs = s > 0 ? (s == 1 && sampled ? sampled : &light[s - 1]) : nullptr;
+    const PathVertex* pt = t > 0 ? (t == 1 && sampled ? sampled : &camera[t - 1]) : nullptr;
+    const PathVertex* qsMinus = s > 1 ? &light[s - 2] : nullptr;
+    const PathVertex* ptMinus = t > 1 ? &camera[t - 2] : nullptr;
+    EndpointDensities rev;
     if (known) {
-        pt->pdfRev = known->pt;
-        qs->pdfRev = known->qs;
-        if (ptMinus) ptMinus->pdfRev = known->ptMinus;
-        if (qsMinus) qsMinus->pdfRev = known->qsMinus;
+        rev = *known;
     } else if (s == 0) {
         // The camera path ends on an emitter (t >= 2 here): a light subpath would start there.
-        paths_.emissionDensities(*pt, *ptMinus, &pt->pdfRev, &ptMinus->pdfRev);
+        paths_.emissionDensities(*pt, *ptMinus, &rev.pt, &rev.ptMinus);
     } else {
-        pt->pdfRev = paths_.pdf(*qs, qsMinus, *pt, false);
-        if (ptMinus) ptMinus->pdfRev = paths_.pdf(*pt, qs, *ptMinus, true);
-        qs->pdfRev = paths_.pdf(*pt, ptMinus, *qs, false);
-        if (qsMinus) qsMinus->pdfRev = paths_.pdf(*qs, pt, *qsMinus, true);
+        rev.pt = paths_.pdf(*qs, qsMinus, *pt, false);
+        if (ptMinus) rev.ptMinus = paths_.pdf(*pt, qs, *ptMinus, true);
+        rev.qs = paths_.pdf(*pt, ptMinus, *qs, false);
+        if (qsMinus) rev.qsMinus = paths_.pdf(*qs, pt, *qsMinus, true);
     }
 
     // Delta densities are stored as 0; they cancel in the ratios (remapped to 1), and the
@@ -195,17 +146,23 @@ float BDPTIntegrator::misWeight(PathVertex* light, PathVertex* camera, const Pat
         if (heuristic_ == MisHeuristic::Uniform) return 1.0;
         return heuristic_ == MisHeuristic::Power ? double(r) * r : double(r);
     };
+    // The join's own vertices were reached by a deterministic connection, not a specular bounce.
     double sum = 0;
     float r = 1;
     for (int i = t - 1; i > 0; --i) {
-        r *= remap(camera[i].pdfRev) / remap(camera[i].pdfFwd);
-        if (!camera[i].delta && !camera[i - 1].delta) sum += term(r);
+        float pdfRev = i == t - 1 ? rev.pt : (i == t - 2 ? rev.ptMinus : camera[i].pdfRev);
+        r *= remap(pdfRev) / remap(camera[i].pdfFwd);
+        bool delta = i != t - 1 && camera[i].delta;
+        if (!delta && !camera[i - 1].delta) sum += term(r);
     }
     r = 1;
     for (int i = s - 1; i >= 0; --i) {
-        r *= remap(light[i].pdfRev) / remap(light[i].pdfFwd);
-        bool deltaBefore = i > 0 ? light[i - 1].delta : light[0].isDeltaLight();
-        if (!light[i].delta && !deltaBefore) sum += term(r);
+        const PathVertex& v = i == s - 1 ? *qs : light[i];
+        float pdfRev = i == s - 1 ? rev.qs : (i == s - 2 ? rev.qsMinus : v.pdfRev);
+        r *= remap(pdfRev) / remap(v.pdfFwd);
+        bool delta = i != s - 1 && v.delta;
+        bool deltaBefore = i > 0 ? light[i - 1].delta : v.isDeltaLight();
+        if (!delta && !deltaBefore) sum += term(r);
     }
     if (!std::isfinite(sum)) return 0;
     return float(1 / (1 + sum));
@@ -220,6 +177,15 @@ void BDPTIntegrator::recordStrategies(int maxDepth) {
 }
 
 Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
+    switch (ctx.sampler.kind()) {
+        case Sampler::Kind::PaddedSobol: return estimate(ray, static_cast<PaddedSobolSampler&>(ctx.sampler), ctx);
+        case Sampler::Kind::Independent: return estimate(ray, static_cast<IndependentSampler&>(ctx.sampler), ctx);
+        default: return estimate(ray, ctx.sampler, ctx);
+    }
+}
+
+template <typename S>
+Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx) const {
     ScratchBuffer& scratch = ctx.scratch;
     auto allocPath = [&](int n) {
         // No construction: the walks assign every vertex they report (PathVertex is an
@@ -228,8 +194,8 @@ Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
     };
     PathVertex* camera = allocPath(paths_.maxCameraVertices());
     PathVertex* light = allocPath(paths_.maxLightVertices());
-    int nCamera = paths_.cameraSubpath(ray, ctx.sampler, scratch, ctx.stats, camera);
-    int nLight = paths_.lightSubpath(ctx.sampler, scratch, ctx.stats, light);
+    int nCamera = paths_.cameraSubpath(ray, sampler, scratch, ctx.stats, camera);
+    int nLight = paths_.lightSubpath(sampler, scratch, ctx.stats, light);
 
     Spectrum L;
     Spectrum* perStrategy = nullptr;
@@ -245,7 +211,7 @@ Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
             // (1,1) would see a light through the lens by sampling both ends; the camera
             // ray finding the light (0,2) covers those paths with weight 1.
             if ((s == 1 && t == 1) || depth < 0 || depth > maxDepth) continue;
-            Connection c = connect(light, camera, s, t, ctx.sampler, ctx.stats);
+            Connection c = connect(light, camera, s, t, sampler, ctx.stats);
             if (c.L.isBlack()) continue;
             Spectrum contribution = c.L * c.weight;
             if (strategies_) {
@@ -263,5 +229,8 @@ Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
     if (strategies_) strategies_->addCameraSample(ctx.px, ctx.py, ctx.filterWeight, perStrategy);
     return L;
 }
+
+template BDPTIntegrator::Connection BDPTIntegrator::connect<Sampler>(PathVertex*, PathVertex*, int, int, Sampler&,
+                                                                     PathStats&, bool) const;
 
 }  // namespace ps

@@ -29,7 +29,9 @@ public:
         Vec2 pRaster;
         float recomputedWeight = 0;  // see recomputeWeights
     };
-    Connection connect(PathVertex* light, PathVertex* camera, int s, int t, Sampler& sampler, PathStats& stats,
+    // S: Sampler, PaddedSobolSampler or IndependentSampler (as for Subpaths' walks).
+    template <typename S>
+    Connection connect(PathVertex* light, PathVertex* camera, int s, int t, S& sampler, PathStats& stats,
                        bool weighted = true) const;
     // The reverse densities of the vertices at and next to a connection (area measure):
     // what the weight needs beyond the densities stored by the walks.
@@ -41,7 +43,7 @@ public:
     // (null: those entries already hold it).
     // `known`: the endpoint densities if the connection computed them (s, t > 1), else
     // they are evaluated here.
-    float misWeight(PathVertex* light, PathVertex* camera, const PathVertex* sampled, int s, int t,
+    float misWeight(const PathVertex* light, const PathVertex* camera, const PathVertex* sampled, int s, int t,
                     const EndpointDensities* known = nullptr) const;
     const Subpaths& subpaths() const { return paths_; }
     // For tests: connect() also computes each weight from densities evaluated afresh at the
@@ -53,6 +55,9 @@ public:
     const StrategyImages* strategyImages() const { return strategies_.get(); }
 
 private:
+    template <typename S>
+    Spectrum estimate(const Ray& ray, S& sampler, SampleContext& ctx) const;
+
     Subpaths paths_;
     MisHeuristic heuristic_;
     std::unique_ptr<StrategyImages> strategies_;
