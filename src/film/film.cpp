@@ -12,7 +12,10 @@ namespace ps {
 
 Film::Film(int xRes, int yRes, PixelBounds bounds, const Filter* splatFilter)
     : xRes_(xRes), yRes_(yRes), bounds_(bounds), pixels_(size_t(bounds.area())), splatFilter_(splatFilter) {
+    static std::atomic<uint64_t> nextId{1};
+    id_ = nextId.fetch_add(1, std::memory_order_relaxed);
     if (splatFilter_) {
+        splatUnitsPerWeight_ = kSplatFixedPoint / double(splatFilter_->integral());
         size_t n = size_t(bounds.area()) * 6;
         perThreadSplats_ = perThreadSplatsFit(double(bounds.area()), tbb::this_task_arena::max_concurrency());
         if (!perThreadSplats_) {
@@ -47,6 +50,22 @@ std::vector<int64_t> Film::mergedSplats() const {
     return merged;
 }
 
+int64_t* Film::threadSplatSums() {
+    // The thread's own sums, found once per thread and film: a TBB thread-specific lookup
+    // per splat costs about as much as the splat. Films get unique ids, so an entry left by
+    // a destroyed film is never taken for a new one at the same address.
+    thread_local struct {
+        uint64_t film = 0;
+        int64_t* sums = nullptr;
+    } cache;
+    if (cache.film != id_) {
+        std::vector<int64_t>& local = threadSplats_.local();
+        if (local.empty()) local.assign(size_t(bounds_.area()) * 6, 0);
+        cache = {id_, local.data()};
+    }
+    return cache.sums;
+}
+
 void Film::addSplat(Vec2 pFilm, Spectrum L, int sampleIndex) {
     if (!splatFilter_) return;
     if (!L.isFinite()) {
@@ -56,23 +75,18 @@ void Film::addSplat(Vec2 pFilm, Spectrum L, int sampleIndex) {
     if (L.isBlack()) return;
     // Every pixel whose filter footprint covers pFilm gets its filter-weighted share.
     Vec2 r = splatFilter_->radius();
-    float invIntegral = 1 / splatFilter_->integral();
     int x0 = std::max(bounds_.x0, int(std::ceil(pFilm.x - 0.5f - r.x)));
     int x1 = std::min(bounds_.x1 - 1, int(std::floor(pFilm.x - 0.5f + r.x)));
     int y0 = std::max(bounds_.y0, int(std::ceil(pFilm.y - 0.5f - r.y)));
     int y1 = std::min(bounds_.y1 - 1, int(std::floor(pFilm.y - 0.5f + r.y)));
-    std::vector<int64_t>* local = nullptr;
-    if (perThreadSplats_) {
-        local = &threadSplats_.local();
-        if (local->empty()) local->assign(size_t(bounds_.area()) * 6, 0);
-    }
+    int64_t* local = perThreadSplats_ ? threadSplatSums() : nullptr;
     for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
-            float w = splatFilter_->evaluate({pFilm.x - (x + 0.5f), pFilm.y - (y + 0.5f)}) * invIntegral;
+            float w = splatFilter_->evaluate({pFilm.x - (x + 0.5f), pFilm.y - (y + 0.5f)});
             if (w == 0) continue;
             size_t base = (index(x, y) * 2 + size_t(sampleIndex & 1)) * 3;
-            double v[3] = {double(L[0]) * w * kSplatFixedPoint, double(L[1]) * w * kSplatFixedPoint,
-                           double(L[2]) * w * kSplatFixedPoint};
+            const double units = double(w) * splatUnitsPerWeight_;
+            double v[3] = {double(L[0]) * units, double(L[1]) * units, double(L[2]) * units};
             if (!(std::fabs(v[0]) < 0x1p60 && std::fabs(v[1]) < 0x1p60 && std::fabs(v[2]) < 0x1p60)) {
                 rejected_.fetch_add(1, std::memory_order_relaxed);  // would overflow the accumulator
                 continue;
@@ -86,7 +100,7 @@ void Film::addSplat(Vec2 pFilm, Spectrum L, int sampleIndex) {
                 double dither = double((h >> (21 * c)) & 0x1fffff) * 0x1p-21;
                 int64_t q = int64_t(std::floor(v[c] + dither));
                 if (q == 0) continue;
-                if (local) (*local)[base + c] += q;
+                if (local) local[base + c] += q;
                 else splats_[base + c].fetch_add(q, std::memory_order_relaxed);
             }
         }

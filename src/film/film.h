@@ -158,6 +158,9 @@ private:
     // else one shared array of atomics.
     bool perThreadSplats_ = false;
     tbb::enumerable_thread_specific<std::vector<int64_t>> threadSplats_;
+    int64_t* threadSplatSums();  // the calling thread's sums (per-thread films)
+    uint64_t id_ = 0;            // unique per film, keys threadSplatSums' per-thread cache
+    double splatUnitsPerWeight_ = 0;  // fixed-point units per unit of filter weight / integral
     std::unique_ptr<std::atomic<int64_t>[]> splats_;
 };
 
