@@ -19,6 +19,7 @@ Camera::Camera(const Params& p) : params_(p) {
     tanHalfFov_ = std::tan(radians(p.fovDeg) / 2);
     cameraFromWorld_ = p.worldFromCamera.inverse();
     forward_ = normalize(p.worldFromCamera.vector({0, 0, 1}));
+    lensCentre_ = p.worldFromCamera.point({0, 0, 0});
     filmArea_ = std::fabs((sx1_ - sx0_) * (sy1_ - sy0_)) * tanHalfFov_ * tanHalfFov_;
 }
 
@@ -43,11 +44,14 @@ bool Camera::rasterOf(Vec3 oCam, Vec3 dCam, Vec2* pRaster) const {
 
 float Camera::We(const Ray& r, Vec2* pRaster) const {
     if (!hasImportance()) return 0;
-    Vec3 d = normalize(r.d);
+    return importance(normalize(r.d), cameraFromWorld_.point(r.o), pRaster);
+}
+
+float Camera::importance(Vec3 d, Vec3 oCam, Vec2* pRaster) const {
     float cosT = dot(d, forward_);
     if (!(cosT > 0)) return 0;
     Vec3 dCam = normalize(cameraFromWorld_.vector(d));
-    if (!rasterOf(cameraFromWorld_.point(r.o), dCam, pRaster)) return 0;
+    if (!rasterOf(oCam, dCam, pRaster)) return 0;
     float cos2 = cosT * cosT;
     return 1 / (filmArea_ * lensArea() * cos2 * cos2);
 }
@@ -65,9 +69,10 @@ void Camera::pdfWe(const Ray& r, float* pdfPos, float* pdfDir) const {
 
 std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, Vec2 u) const {
     if (!hasImportance()) return std::nullopt;
-    Vec2 lens = sampleConcentricDisk(u) * params_.lensRadius;
+    // A pinhole has one lens point (u is still consumed by the caller, keeping dimensions aligned).
+    Vec2 lens = params_.lensRadius > 0 ? sampleConcentricDisk(u) * params_.lensRadius : Vec2(0, 0);
     CameraWiSample s;
-    s.pLens = params_.worldFromCamera.point({lens.x, lens.y, 0});
+    s.pLens = params_.lensRadius > 0 ? params_.worldFromCamera.point({lens.x, lens.y, 0}) : lensCentre_;
     s.nLens = forward_;
     Vec3 toLens = s.pLens - ref;
     float dist2 = lengthSquared(toLens);
@@ -77,7 +82,7 @@ std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, Vec2 u) const {
     if (!(cosLens > 0)) return std::nullopt;
     // Area density 1/lensArea on the lens, as a solid angle at ref (thesis eq. 8.10).
     s.pdf = dist2 / (cosLens * lensArea());
-    s.We = We(Ray{s.pLens, -s.wi}, &s.pRaster);
+    s.We = importance(-s.wi, {lens.x, lens.y, 0}, &s.pRaster);
     if (!(s.We > 0)) return std::nullopt;
     s.pdfDir = 1 / (filmArea_ * cosLens * cosLens * cosLens);  // as pdfWe gives it
     return s;

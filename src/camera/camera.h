@@ -62,10 +62,13 @@ private:
     float lensArea() const { return params_.lensRadius > 0 ? kPi * params_.lensRadius * params_.lensRadius : 1.0f; }
     // Film point for a camera-space direction from camera-space lens point o; false off the film.
     bool rasterOf(Vec3 oCam, Vec3 dCam, Vec2* pRaster) const;
+    // We for the unit world direction d leaving camera-space lens point oCam.
+    float importance(Vec3 d, Vec3 oCam, Vec2* pRaster) const;
 
     Params params_;
     Transform cameraFromWorld_;
     Vec3 forward_;
+    Vec3 lensCentre_;     // world position of the pinhole / lens centre
     float filmArea_ = 1;  // screen window area at z = 1, widened by the filter margin
     Vec2 margin_;         // filter radius in raster units
     float sx0_, sx1_, sy0_, sy1_;  // screen window
