@@ -10,7 +10,8 @@ Vec3 directionTo(const PathVertex& from, const PathVertex& to) { return normaliz
 
 }  // namespace
 
-int Subpaths::cameraSubpath(const Ray& ray, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats,
+template <typename S>
+int Subpaths::cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats,
                             PathVertex* path) const {
     PathVertex& cam = path[0];
     cam = PathVertex{};
@@ -26,7 +27,8 @@ int Subpaths::cameraSubpath(const Ray& ray, Sampler& sampler, ScratchBuffer& scr
                           TransportMode::Radiance);
 }
 
-int Subpaths::lightSubpath(Sampler& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const {
+template <typename S>
+int Subpaths::lightSubpath(S& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const {
     ++stats.lightPaths;
     float uLight = sampler.get1D();
     Vec2 uPos = sampler.get2D();
@@ -68,7 +70,8 @@ int Subpaths::lightSubpath(Sampler& sampler, ScratchBuffer& scratch, PathStats& 
     return 1 + n;
 }
 
-int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, Sampler& sampler, ScratchBuffer& scratch,
+template <typename S>
+int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, ScratchBuffer& scratch,
                          PathStats& stats, PathVertex* path, int maxVertices, TransportMode mode) const {
     if (maxVertices <= 0) return 0;
     int bounces = 0, passThroughs = 0;
@@ -157,6 +160,14 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, Sampler& sampler,
     }
     return bounces;
 }
+
+#define PS_SUBPATH_WALKS(S)                                                                                  \
+    template int Subpaths::cameraSubpath<S>(const Ray&, S&, ScratchBuffer&, PathStats&, PathVertex*) const;     \
+    template int Subpaths::lightSubpath<S>(S&, ScratchBuffer&, PathStats&, PathVertex*) const;
+PS_SUBPATH_WALKS(Sampler)
+PS_SUBPATH_WALKS(PaddedSobolSampler)
+PS_SUBPATH_WALKS(IndependentSampler)
+#undef PS_SUBPATH_WALKS
 
 BxDFEval Subpaths::evaluate(const PathVertex& v, Vec3 w) const {
     BxDFEval e = v.bxdf->evaluate(v.woLocal, v.frame.toLocal(w), v.mode);

@@ -20,11 +20,14 @@ public:
     int maxCameraVertices() const { return maxDepth_ + 2; }
     int maxLightVertices() const { return maxDepth_ + 1; }
 
-    // Vertex 0 on the lens, then the walk; returns the number of vertices.
-    int cameraSubpath(const Ray& ray, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats,
-                      PathVertex* path) const;
+    // Vertex 0 on the lens, then the walk; returns the number of vertices. The walks are
+    // compiled for the renderer's samplers (S: Sampler, PaddedSobolSampler or
+    // IndependentSampler) so that hot loops call them without virtual dispatch.
+    template <typename S>
+    int cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const;
     // Vertex 0 on a light chosen by power, then the walk; returns the number of vertices.
-    int lightSubpath(Sampler& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const;
+    template <typename S>
+    int lightSubpath(S& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const;
 
     // The BSDF at surface vertex v for light between v.wo and the direction to `next`,
     // including the adjoint shading-normal factor under importance transport.
@@ -55,7 +58,8 @@ public:
     const Scene& scene() const { return scene_; }
 
 private:
-    int randomWalk(Ray ray, Spectrum beta, float pdfDir, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats,
+    template <typename S>
+    int randomWalk(Ray ray, Spectrum beta, float pdfDir, S& sampler, ScratchBuffer& scratch, PathStats& stats,
                    PathVertex* path, int maxVertices, TransportMode mode) const;
 
     const Scene& scene_;
