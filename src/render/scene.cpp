@@ -73,8 +73,9 @@ const Light* Scene::sampleLight(float u, float* pmf) const {
         *pmf = 0;
         return nullptr;
     }
-    int i = lightDistribution_.sampleDiscrete(u, pmf);
-    return lights_[i].get();
+    int i = lightDistribution_.sample(u);
+    *pmf = lightDistribution_.pmf(i);
+    return lights_[size_t(i)].get();
 }
 
 float Scene::lightPmf(const Light* light) const {

@@ -10,6 +10,7 @@
 #include "film/film.h"
 #include "geometry/shape.h"
 #include "lights/light.h"
+#include "mc/alias_table.h"
 #include "materials/material.h"
 #include "mc/distribution.h"
 #include "util/error.h"
@@ -79,7 +80,7 @@ private:
     std::vector<std::shared_ptr<Material>> materials_;
     std::vector<std::unique_ptr<Light>> lights_;
     std::vector<const Light*> infiniteLights_;
-    Distribution1D lightDistribution_;
+    AliasTable lightDistribution_;  // by power
     std::unique_ptr<Camera> camera_;
     std::unique_ptr<Filter> filter_;
     PixelBounds pixelBounds_;

@@ -228,7 +228,7 @@ void SceneBuilder::build() {
         if (l.type() == LightType::Infinite) scene_.infiniteLights_.push_back(&l);
         power.push_back(l.phi().luminance());
     }
-    scene_.lightDistribution_ = Distribution1D(power);
+    scene_.lightDistribution_ = AliasTable(power);
 }
 
 std::unique_ptr<Scene> buildScene(const SceneDescription& desc) {
