@@ -51,6 +51,9 @@ struct BxDFEval {
 class BxDF {
 public:
     virtual ~BxDF() = default;
+    // Whether sample() reads uc. Single-lobe BxDFs that ignore it say so at construction
+    // (checked for every BxDF by the tests), and integrators then draw no sample for it.
+    bool usesLobeSample() const { return usesLobeSample_; }
     virtual uint8_t flags() const = 0;
     virtual Spectrum f(Vec3 wo, Vec3 wi, TransportMode mode) const = 0;
     // uc picks among lobes, u picks the direction within a lobe.
@@ -60,6 +63,13 @@ public:
         return {f(wo, wi, mode), pdf(wo, wi, mode), pdf(wi, wo, adjoint(mode))};
     }
     bool isSpecular() const { return (flags() & (kDiffuse | kGlossy)) == 0 && (flags() & kSpecular); }
+
+protected:
+    BxDF() = default;
+    explicit BxDF(bool usesLobeSample) : usesLobeSample_(usesLobeSample) {}
+
+private:
+    bool usesLobeSample_ = true;
 };
 
 }  // namespace ps

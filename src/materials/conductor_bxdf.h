@@ -8,7 +8,8 @@ namespace ps {
 
 class ConductorBxDF final : public BxDF {
 public:
-    ConductorBxDF(const TrowbridgeReitz& d, const Spectrum& eta, const Spectrum& k) : distrib_(d), eta_(eta), k_(k) {}
+    ConductorBxDF(const TrowbridgeReitz& d, const Spectrum& eta, const Spectrum& k)
+        : BxDF(false), distrib_(d), eta_(eta), k_(k) {}
     uint8_t flags() const override { return kReflection | (distrib_.effectivelySmooth() ? kSpecular : kGlossy); }
     Spectrum f(Vec3 wo, Vec3 wi, TransportMode mode) const override;
     std::optional<BSDFSample> sample(Vec3 wo, float uc, Vec2 u, TransportMode mode) const override;

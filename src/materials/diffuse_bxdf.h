@@ -7,7 +7,7 @@ namespace ps {
 
 class DiffuseBxDF final : public BxDF {
 public:
-    explicit DiffuseBxDF(const Spectrum& R) : R_(R) {}
+    explicit DiffuseBxDF(const Spectrum& R) : BxDF(false), R_(R) {}
     uint8_t flags() const override { return R_.isBlack() ? 0 : (kReflection | kDiffuse); }
     Spectrum f(Vec3 wo, Vec3 wi, TransportMode) const override {
         return sameHemisphere(wo, wi) ? R_ * kInvPi : Spectrum();

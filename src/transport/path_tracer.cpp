@@ -92,7 +92,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
         uint8_t flags = bxdf->flags();
         if (flags & (kDiffuse | kGlossy)) L += beta * sampleDirect(si, frame, *bxdf, woLocal, sampler, stats);
 
-        float uc = sampler.get1D();
+        float uc = bxdf->usesLobeSample() ? sampler.get1D() : 0.5f;
         Vec2 u = sampler.get2D();
         auto bs = bxdf->sample(woLocal, uc, u, TransportMode::Radiance);
         if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) break;

@@ -122,7 +122,7 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
         if (++bounces >= maxVertices) break;
 
         if (woLocal.z == 0) break;
-        float uc = sampler.get1D();
+        float uc = bxdf->usesLobeSample() ? sampler.get1D() : 0.5f;
         Vec2 u = sampler.get2D();
         auto bs = bxdf->sample(woLocal, uc, u, mode);
         if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) break;

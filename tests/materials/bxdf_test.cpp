@@ -135,6 +135,33 @@ TEST_P(Furnace, ImportanceSampledAlbedo) {
 
 // In radiance mode a smooth dielectric's albedo is R + T / eta'^2 (the refracted radiance
 // is compressed into a smaller solid angle, thesis §5.2).
+// Integrators draw no lobe-choice number for BxDFs that say they ignore it.
+TEST(LobeSample, IgnoredWhereFlagsSaySo) {
+    std::vector<Case> all = cases();
+    int checked = 0;
+    for (const Case& c : all) {
+        auto bxdf = c.make();
+        if (bxdf->usesLobeSample()) continue;
+        ++checked;
+        Rng rng(11);
+        for (int i = 0; i < 2000; ++i) {
+            Vec3 wo = sampleUniformSphere({rng.uniform(), rng.uniform()});
+            Vec2 u{rng.uniform(), rng.uniform()};
+            float uc1 = rng.uniform(), uc2 = rng.uniform();
+            for (TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
+                auto a = bxdf->sample(wo, uc1, u, mode), b = bxdf->sample(wo, uc2, u, mode);
+                ASSERT_EQ(bool(a), bool(b)) << c.name;
+                if (!a) continue;
+                EXPECT_EQ(a->wi.x, b->wi.x) << c.name;
+                EXPECT_EQ(a->wi.y, b->wi.y) << c.name;
+                EXPECT_EQ(a->wi.z, b->wi.z) << c.name;
+                EXPECT_EQ(a->pdf, b->pdf) << c.name;
+            }
+        }
+    }
+    EXPECT_GE(checked, 7);  // diffuse and the conductors
+}
+
 TEST(SmoothDielectric, RadianceModeScalesRefraction) {
     for (float eta : {1.5f, 1 / 1.5f})
         for (float cosO : {0.9f, 0.4f, -0.4f, -0.95f}) {
