@@ -1,6 +1,7 @@
 // Materials turn textures at a shading point into a BxDF. The BxDF is built in the
 // caller's ScratchBuffer (no heap traffic in the render loop).
 #pragma once
+#include <memory>
 #include "materials/bxdf.h"
 #include "materials/texture.h"
 #include "util/scratch.h"
@@ -20,6 +21,12 @@ public:
     // `mix` resolves to one of its members; everything else returns itself.
     virtual const Material* resolve(const MaterialEvalContext& ctx) const { (void)ctx; return this; }
     virtual bool isInterface() const { return false; }
+    // The BxDF when it is the same at every point (all textures constant), built once, so
+    // the render loop neither evaluates textures nor builds one per hit; null otherwise.
+    const BxDF* constantBxDF() const { return constant_.get(); }
+
+protected:
+    std::unique_ptr<const BxDF> constant_;
 };
 
 }  // namespace ps

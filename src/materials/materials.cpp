@@ -7,6 +7,7 @@
 #include "materials/diffuse_bxdf.h"
 #include "materials/diffuse_transmission_bxdf.h"
 #include "materials/layered_bxdf.h"
+#include "materials/textures.h"
 #include "materials/thin_dielectric_bxdf.h"
 #include "mc/rng.h"
 
@@ -50,6 +51,11 @@ LayerParams LayerTextures::evaluate(const TextureEvalContext& ctx) const {
     p.maxDepth = maxDepth;
     p.nSamples = nSamples;
     return p;
+}
+
+DiffuseMaterial::DiffuseMaterial(SpectrumTex R) : R_(std::move(R)) {
+    if (auto* c = dynamic_cast<const ConstantTexture<Spectrum>*>(R_.get()))
+        constant_ = std::make_unique<DiffuseBxDF>(clamp(c->evaluate({}), 0, 1));
 }
 
 const BxDF* DiffuseMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const {

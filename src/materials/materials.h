@@ -20,7 +20,7 @@ struct Roughness {
 
 class DiffuseMaterial final : public Material {
 public:
-    explicit DiffuseMaterial(SpectrumTex R) : R_(std::move(R)) {}
+    explicit DiffuseMaterial(SpectrumTex R);
     const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override;
 
 private:

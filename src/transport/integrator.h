@@ -30,6 +30,7 @@ struct PathStats {
 // nullptr for `interface` materials, which do not scatter.
 inline const BxDF* surfaceBxDF(const SurfaceInteraction& si, ScratchBuffer& scratch) {
     if (!si.material) return nullptr;
+    if (const BxDF* b = si.material->constantBxDF()) return b;
     MaterialEvalContext ctx;
     ctx.p = si.p;
     ctx.n = si.ns;
@@ -37,7 +38,9 @@ inline const BxDF* surfaceBxDF(const SurfaceInteraction& si, ScratchBuffer& scra
     ctx.wo = si.wo;
     ctx.dpdu = si.dpdu;
     const Material* material = si.material->resolve(ctx);
-    return material ? material->bxdf(ctx, scratch) : nullptr;
+    if (!material) return nullptr;
+    if (const BxDF* b = material->constantBxDF()) return b;
+    return material->bxdf(ctx, scratch);
 }
 
 // What one camera sample's estimator works with.
