@@ -66,6 +66,23 @@ TEST_F(Materials, DiffuseDefaultsAndTextures) {
     EXPECT_THROW(make("diffuse", Params().rgb("reflectance", 1.2, 0, 0)), InputError);  // albedo > 1, as pbrt-v4
 }
 
+// A constant reflectance gives one BxDF built with the material, equal to the per-point one;
+// a varying texture gives none.
+TEST_F(Materials, ConstantDiffuseBxDFIsBuiltOnce) {
+    reg_.spectra["bright"] = std::make_shared<ConstantTexture<Spectrum>>(Spectrum(1.5f, 0.5f, 0.2f));
+    auto constant = make("diffuse", Params().tex("reflectance", "bright"));
+    ASSERT_NE(constant->constantBxDF(), nullptr);
+    for (Vec3 wi : {kOblique, Vec3(0, 0.6f, 0.8f)}) {
+        Spectrum a = constant->constantBxDF()->f(kUp, wi, TransportMode::Radiance);
+        Spectrum b = bxdf(*constant)->f(kUp, wi, TransportMode::Radiance);
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(a[c], b[c]);
+    }
+    reg_.spectra["scaled"] = std::make_shared<ScaleTexture<Spectrum>>(reg_.spectra["bright"],
+                                                                       std::make_shared<ConstantTexture<float>>(0.5f));
+    EXPECT_EQ(make("diffuse", Params().tex("reflectance", "scaled"))->constantBxDF(), nullptr);
+    EXPECT_EQ(make("conductor", Params())->constantBxDF(), nullptr);  // not built once (yet)
+}
+
 TEST_F(Materials, ConductorForms) {
     // Default: copper, smooth.
     const BxDF* cu = bxdf(*make("conductor", Params()));
