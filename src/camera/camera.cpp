@@ -21,6 +21,14 @@ Camera::Camera(const Params& p) : params_(p) {
     forward_ = normalize(p.worldFromCamera.vector({0, 0, 1}));
     lensCentre_ = p.worldFromCamera.point({0, 0, 0});
     filmArea_ = std::fabs((sx1_ - sx0_) * (sy1_ - sy0_)) * tanHalfFov_ * tanHalfFov_;
+    invImportanceNorm_ = 1 / (filmArea_ * lensArea());
+    // Screen x = pFocus.x / (zFocus tan(fov/2)), raster x = (screen x - sx0) / (sx1 - sx0) xRes;
+    // likewise y, flipped (row 0 at the top).
+    zFocus_ = p.lensRadius > 0 ? p.focalDistance : 1.0f;
+    kx_ = float(p.xRes) / ((sx1_ - sx0_) * zFocus_ * tanHalfFov_);
+    bx_ = -sx0_ / (sx1_ - sx0_) * float(p.xRes);
+    ky_ = float(p.yRes) / ((sy1_ - sy0_) * zFocus_ * tanHalfFov_);
+    by_ = sy1_ / (sy1_ - sy0_) * float(p.yRes);
 }
 
 void Camera::setFilterMargin(Vec2 m) {
@@ -28,16 +36,16 @@ void Camera::setFilterMargin(Vec2 m) {
     float xr = float(params_.xRes), yr = float(params_.yRes);
     filmArea_ = std::fabs((sx1_ - sx0_) * (sy1_ - sy0_)) * tanHalfFov_ * tanHalfFov_ * ((xr + 2 * m.x) / xr) *
                 ((yr + 2 * m.y) / yr);
+    invImportanceNorm_ = 1 / (filmArea_ * lensArea());
 }
 
 bool Camera::rasterOf(Vec3 oCam, Vec3 dCam, Vec2* pRaster) const {
     // Every ray through a lens point focused at film point x passes through x's pinhole image
     // on the plane of focus (z = 1 for a pinhole), so that point names the film position.
-    float zFocus = params_.lensRadius > 0 ? params_.focalDistance : 1.0f;
-    Vec3 pFocus = oCam + dCam * ((zFocus - oCam.z) / dCam.z);
-    float sx = pFocus.x / (zFocus * tanHalfFov_), sy = pFocus.y / (zFocus * tanHalfFov_);
-    float rx = (sx - sx0_) / (sx1_ - sx0_) * params_.xRes;
-    float ry = (sy1_ - sy) / (sy1_ - sy0_) * params_.yRes;
+    // Only dCam's direction matters: it need not be normalised.
+    float tf = (zFocus_ - oCam.z) / dCam.z;
+    float rx = kx_ * (oCam.x + dCam.x * tf) + bx_;
+    float ry = by_ - ky_ * (oCam.y + dCam.y * tf);
     if (pRaster) *pRaster = {rx, ry};
     return rx >= -margin_.x && rx < params_.xRes + margin_.x && ry >= -margin_.y && ry < params_.yRes + margin_.y;
 }
@@ -50,10 +58,9 @@ float Camera::We(const Ray& r, Vec2* pRaster) const {
 float Camera::importance(Vec3 d, Vec3 oCam, Vec2* pRaster) const {
     float cosT = dot(d, forward_);
     if (!(cosT > 0)) return 0;
-    Vec3 dCam = normalize(cameraFromWorld_.vector(d));
-    if (!rasterOf(oCam, dCam, pRaster)) return 0;
+    if (!rasterOf(oCam, cameraFromWorld_.vector(d), pRaster)) return 0;
     float cos2 = cosT * cosT;
-    return 1 / (filmArea_ * lensArea() * cos2 * cos2);
+    return invImportanceNorm_ / (cos2 * cos2);
 }
 
 void Camera::pdfWe(const Ray& r, float* pdfPos, float* pdfDir) const {
@@ -62,7 +69,7 @@ void Camera::pdfWe(const Ray& r, float* pdfPos, float* pdfDir) const {
     Vec3 d = normalize(r.d);
     float cosT = dot(d, forward_);
     if (!(cosT > 0)) return;
-    if (!rasterOf(cameraFromWorld_.point(r.o), normalize(cameraFromWorld_.vector(d)), nullptr)) return;
+    if (!rasterOf(cameraFromWorld_.point(r.o), cameraFromWorld_.vector(d), nullptr)) return;
     *pdfPos = 1 / lensArea();
     *pdfDir = 1 / (filmArea_ * cosT * cosT * cosT);
 }

@@ -73,6 +73,10 @@ private:
     Vec2 margin_;         // filter radius in raster units
     float sx0_, sx1_, sy0_, sy1_;  // screen window
     float tanHalfFov_ = 1;
+    // rasterOf's map from the plane of focus to raster: rx = kx * x + bx, ry = by - ky * y.
+    float kx_ = 1, bx_ = 0, ky_ = 1, by_ = 0;
+    float zFocus_ = 1;
+    float invImportanceNorm_ = 1;  // 1 / (film area * lens area), for We
 };
 
 }  // namespace ps

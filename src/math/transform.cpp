@@ -140,22 +140,6 @@ bool Transform::swapsHandedness() const {
     return det < 0;
 }
 
-Vec3 Transform::point(Vec3 p) const {
-    const auto& a = m_.m;
-    float x = a[0][0] * p.x + a[0][1] * p.y + a[0][2] * p.z + a[0][3];
-    float y = a[1][0] * p.x + a[1][1] * p.y + a[1][2] * p.z + a[1][3];
-    float z = a[2][0] * p.x + a[2][1] * p.y + a[2][2] * p.z + a[2][3];
-    float w = a[3][0] * p.x + a[3][1] * p.y + a[3][2] * p.z + a[3][3];
-    return w == 1 ? Vec3(x, y, z) : Vec3(x, y, z) / w;
-}
-
-Vec3 Transform::vector(Vec3 v) const {
-    const auto& a = m_.m;
-    return {a[0][0] * v.x + a[0][1] * v.y + a[0][2] * v.z,
-            a[1][0] * v.x + a[1][1] * v.y + a[1][2] * v.z,
-            a[2][0] * v.x + a[2][1] * v.y + a[2][2] * v.z};
-}
-
 Vec3 Transform::normal(Vec3 n) const {
     const auto& a = inv_.m;
     return {a[0][0] * n.x + a[1][0] * n.y + a[2][0] * n.z,

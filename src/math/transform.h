@@ -38,8 +38,20 @@ public:
     // True when the transform flips handedness (negative determinant of the 3x3 part).
     bool swapsHandedness() const;
 
-    Vec3 point(Vec3 p) const;
-    Vec3 vector(Vec3 v) const;
+    // Inline: on the per-sample paths (camera rays, instances, lens connections).
+    Vec3 point(Vec3 p) const {
+        const auto& a = m_.m;
+        float x = a[0][0] * p.x + a[0][1] * p.y + a[0][2] * p.z + a[0][3];
+        float y = a[1][0] * p.x + a[1][1] * p.y + a[1][2] * p.z + a[1][3];
+        float z = a[2][0] * p.x + a[2][1] * p.y + a[2][2] * p.z + a[2][3];
+        float w = a[3][0] * p.x + a[3][1] * p.y + a[3][2] * p.z + a[3][3];
+        return w == 1 ? Vec3(x, y, z) : Vec3(x, y, z) / w;
+    }
+    Vec3 vector(Vec3 v) const {
+        const auto& a = m_.m;
+        return {a[0][0] * v.x + a[0][1] * v.y + a[0][2] * v.z, a[1][0] * v.x + a[1][1] * v.y + a[1][2] * v.z,
+                a[2][0] * v.x + a[2][1] * v.y + a[2][2] * v.z};
+    }
     // Normals transform by the inverse transpose.
     Vec3 normal(Vec3 n) const;
 
