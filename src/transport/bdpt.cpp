@@ -8,7 +8,7 @@ namespace ps {
 
 template <typename S>
 BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex* camera, int s, int t, S& sampler,
-                                                   PathStats& stats, bool weighted) const {
+                                                   PathStats& stats, bool weighted, const MisPrefixes* prefixes) const {
     Connection c;
     const Scene& scene = paths_.scene();
     // An escaped camera ray is an endpoint only for s = 0.
@@ -106,7 +106,7 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
     }
     c.L = L;
     const PathVertex* join = sampled ? &*sampled : nullptr;
-    c.weight = weighted ? misWeight(light, camera, join, s, t, haveKnown ? &known : nullptr) : 1.0f;
+    c.weight = weighted ? misWeight(light, camera, join, s, t, haveKnown ? &known : nullptr, prefixes) : 1.0f;
     if (recomputeWeights_) c.recomputedWeight = misWeight(light, camera, join, s, t, nullptr);
     return c;
 }
@@ -115,8 +115,38 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
 // that could have produced the same path (thesis §10.2.3, eq. 10.9): the ratio of each
 // other strategy's density to this one's follows from walking along the path and
 // exchanging one vertex's forward density for its reverse density at a time.
+namespace {
+
+// Delta densities are stored as 0; they cancel in the ratios (remapped to 1), and the
+// strategies that would need to sample a delta vertex by connection are excluded.
+inline float remapDelta(float f) { return f != 0 ? f : 1.0f; }
+
+}  // namespace
+
+BDPTIntegrator::MisPrefixes BDPTIntegrator::misPrefixes(const PathVertex* light, int nLight, const PathVertex* camera,
+                                                        int nCamera, ScratchBuffer& scratch) const {
+    if (heuristic_ == MisHeuristic::Uniform) return {};
+    const bool power = heuristic_ == MisHeuristic::Power;
+    auto term = [&](const PathVertex& v) {
+        double r = remapDelta(v.pdfRev) / remapDelta(v.pdfFwd);  // in float, as misWeight divides
+        return power ? r * r : r;
+    };
+    auto* cam = static_cast<double*>(scratch.allocBytes(sizeof(double) * size_t(std::max(nCamera, 1)), alignof(double)));
+    auto* lig = static_cast<double*>(scratch.allocBytes(sizeof(double) * size_t(std::max(nLight, 1)), alignof(double)));
+    cam[0] = 0;
+    for (int m = 1; m <= nCamera - 2; ++m) {
+        bool valid = !camera[m].delta && !camera[m - 1].delta;
+        cam[m] = term(camera[m]) * ((valid ? 1 : 0) + cam[m - 1]);
+    }
+    for (int m = 0; m <= nLight - 2; ++m) {
+        bool valid = !light[m].delta && !(m > 0 ? light[m - 1].delta : light[0].isDeltaLight());
+        lig[m] = term(light[m]) * ((valid ? 1 : 0) + (m > 0 ? lig[m - 1] : 0.0));
+    }
+    return {cam, lig};
+}
+
 float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camera, const PathVertex* sampled, int s,
-                                int t, const EndpointDensities* known) const {
+                                int t, const EndpointDensities* known, const MisPrefixes* prefixes) const {
     if (s + t == 2) return 1;
     // The path as the connection made it: the sampled vertex stands in for light[0] (s = 1)
     // or camera[0] (t = 1), and the four vertices at the join get the reverse densities of
@@ -138,14 +168,39 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
         if (qsMinus) rev.qsMinus = paths_.pdf(*qs, pt, *qsMinus, true);
     }
 
-    // Delta densities are stored as 0; they cancel in the ratios (remapped to 1), and the
-    // strategies that would need to sample a delta vertex by connection are excluded.
-    auto remap = [](float f) { return f != 0 ? f : 1.0f; };
+    auto remap = remapDelta;
     // Each other strategy's weight relative to this one's (uniform: each counts once).
     auto term = [&](float r) -> double {
         if (heuristic_ == MisHeuristic::Uniform) return 1.0;
         return heuristic_ == MisHeuristic::Power ? double(r) * r : double(r);
     };
+    if (prefixes && prefixes->camera) {
+        // The two vertices at each side of the join take this connection's densities, the
+        // rest of each side is a running sum (terms multiply, so they factor out of it).
+        // The join's own vertices were reached by a deterministic connection, not a specular bounce.
+        double sum = 0;
+        if (t >= 2) {
+            double inner = 0;
+            if (t >= 3) {
+                bool valid = !camera[t - 2].delta && !camera[t - 3].delta;
+                inner = term(remap(rev.ptMinus) / remap(camera[t - 2].pdfFwd)) *
+                        ((valid ? 1 : 0) + (t >= 4 ? prefixes->camera[t - 3] : 0.0));
+            }
+            sum += term(remap(rev.pt) / remap(pt->pdfFwd)) * ((camera[t - 2].delta ? 0 : 1) + inner);
+        }
+        if (s >= 1) {
+            double inner = 0;
+            if (s >= 2) {
+                bool valid = !light[s - 2].delta && !(s >= 3 ? light[s - 3].delta : light[0].isDeltaLight());
+                inner = term(remap(rev.qsMinus) / remap(light[s - 2].pdfFwd)) *
+                        ((valid ? 1 : 0) + (s >= 3 ? prefixes->light[s - 3] : 0.0));
+            }
+            bool valid = s >= 2 ? !light[s - 2].delta : !qs->isDeltaLight();
+            sum += term(remap(rev.qs) / remap(qs->pdfFwd)) * ((valid ? 1 : 0) + inner);
+        }
+        if (!std::isfinite(sum)) return 0;
+        return float(1 / (1 + sum));
+    }
     // The join's own vertices were reached by a deterministic connection, not a specular bounce.
     double sum = 0;
     float r = 1;
@@ -196,6 +251,7 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
     PathVertex* light = allocPath(paths_.maxLightVertices());
     int nCamera = paths_.cameraSubpath(ray, sampler, scratch, ctx.stats, camera);
     int nLight = paths_.lightSubpath(sampler, scratch, ctx.stats, light);
+    const MisPrefixes prefixes = misPrefixes(light, nLight, camera, nCamera, scratch);
 
     Spectrum L;
     Spectrum* perStrategy = nullptr;
@@ -211,7 +267,7 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
             // (1,1) would see a light through the lens by sampling both ends; the camera
             // ray finding the light (0,2) covers those paths with weight 1.
             if ((s == 1 && t == 1) || depth < 0 || depth > maxDepth) continue;
-            Connection c = connect(light, camera, s, t, sampler, ctx.stats);
+            Connection c = connect(light, camera, s, t, sampler, ctx.stats, true, &prefixes);
             if (c.L.isBlack()) continue;
             Spectrum contribution = c.L * c.weight;
             if (strategies_) {
@@ -231,6 +287,6 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
 }
 
 template BDPTIntegrator::Connection BDPTIntegrator::connect<Sampler>(PathVertex*, PathVertex*, int, int, Sampler&,
-                                                                     PathStats&, bool) const;
+                                                                     PathStats&, bool, const MisPrefixes*) const;
 
 }  // namespace ps

@@ -29,10 +29,25 @@ public:
         Vec2 pRaster;
         float recomputedWeight = 0;  // see recomputeWeights
     };
+    // Running sums of the MIS terms along each subpath, for the power and balance heuristics
+    // (whose terms multiply along a path): camera[m] sums, over the strategies that would
+    // sample camera vertices 1..m by connection, the products of density ratios from there to
+    // m; light[m] likewise over light vertices 0..m. With them a weight costs O(1) instead of
+    // a walk along both subpaths. Entries exist up to n - 2 (the last vertex has no reverse
+    // density yet).
+    struct MisPrefixes {
+        const double* camera = nullptr;
+        const double* light = nullptr;
+    };
+    // Null arrays for the uniform heuristic, which counts strategies and does not factor.
+    MisPrefixes misPrefixes(const PathVertex* light, int nLight, const PathVertex* camera, int nCamera,
+                            ScratchBuffer& scratch) const;
+
     // S: Sampler, PaddedSobolSampler or IndependentSampler (as for Subpaths' walks).
+    // `prefixes`: misPrefixes() of these subpaths, or null to walk them per weight.
     template <typename S>
     Connection connect(PathVertex* light, PathVertex* camera, int s, int t, S& sampler, PathStats& stats,
-                       bool weighted = true) const;
+                       bool weighted = true, const MisPrefixes* prefixes = nullptr) const;
     // The reverse densities of the vertices at and next to a connection (area measure):
     // what the weight needs beyond the densities stored by the walks.
     struct EndpointDensities {
@@ -44,7 +59,7 @@ public:
     // `known`: the endpoint densities if the connection computed them (s, t > 1), else
     // they are evaluated here.
     float misWeight(const PathVertex* light, const PathVertex* camera, const PathVertex* sampled, int s, int t,
-                    const EndpointDensities* known = nullptr) const;
+                    const EndpointDensities* known = nullptr, const MisPrefixes* prefixes = nullptr) const;
     const Subpaths& subpaths() const { return paths_; }
     // For tests: connect() also computes each weight from densities evaluated afresh at the
     // join, not those its BSDF evaluations produced, into Connection::recomputedWeight.

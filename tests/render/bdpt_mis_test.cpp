@@ -135,10 +135,12 @@ TEST_P(BdptMis, WeightsOfAllStrategiesSumToOne) {
     int checked = 0, withDelta = 0, deltaLight = 0, skipped = 0;
     for (int i = 0; i < 4000 && checked < 600; ++i) {
         auto [camera, light, nc, nl] = tracePair(*scene, paths, *sampler, scratch, stats, i);
+        // The weights as the renderer computes them: from the running sums along each subpath.
+        const auto prefixes = bdpt.misPrefixes(light, nl, camera, nc, scratch);
         for (int t = 2; t <= nc; ++t)
             for (int s = 2; s <= nl; ++s) {
                 if (s + t - 2 > paths.maxDepth()) continue;
-                auto c = bdpt.connect(light, camera, s, t, *sampler, stats);
+                auto c = bdpt.connect(light, camera, s, t, *sampler, stats, true, &prefixes);
                 if (c.L.isBlack()) continue;
                 FullPath fp = rebuild(paths, light, s, camera, t);
                 // Stored densities use the sampled directions, fresh ones the directions between
@@ -178,7 +180,8 @@ INSTANTIATE_TEST_SUITE_P(Heuristics, BdptMis,
                          });
 
 // Every strategy, including next-event (s = 1) and lens (t = 1) connections: the weight a
-// connection computes from the densities its own BSDF and emission queries produced equals
+// connection computes from the densities its own BSDF and emission queries produced (and the
+// running sums along its subpaths) equals
 // the weight from densities evaluated afresh at the join (to the same 2e-3 as above). The light includes a point light,
 // so delta light vertices take part.
 TEST(BdptMis, ConnectionDensitiesMatchFreshOnes) {
@@ -194,10 +197,11 @@ TEST(BdptMis, ConnectionDensitiesMatchFreshOnes) {
     int checked[3] = {0, 0, 0};  // s = 1, t = 1, both > 1
     for (int i = 0; i < 3000; ++i) {
         auto [camera, light, nc, nl] = tracePair(*scene, paths, *sampler, scratch, stats, i);
+        const auto prefixes = bdpt.misPrefixes(light, nl, camera, nc, scratch);
         for (int t = 1; t <= nc; ++t)
             for (int s = 0; s <= nl; ++s) {
                 if ((s == 1 && t == 1) || s + t - 2 > paths.maxDepth() || s + t < 2) continue;
-                auto c = bdpt.connect(light, camera, s, t, *sampler, stats);
+                auto c = bdpt.connect(light, camera, s, t, *sampler, stats, true, &prefixes);
                 if (c.L.isBlack()) continue;
                 // The walks' stored densities use the sampled directions, the fresh ones the
                 // directions between hit points (see above): skip vertices a few mm apart.
