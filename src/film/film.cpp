@@ -66,6 +66,25 @@ int64_t* Film::threadSplatSums() {
     return cache.sums;
 }
 
+void Film::prefetchSplat(Vec2 pFilm) {
+    if (!splatFilter_) return;
+    Vec2 r = splatFilter_->radius();
+    int x0 = std::max(bounds_.x0, int(std::ceil(pFilm.x - 0.5f - r.x)));
+    int x1 = std::min(bounds_.x1 - 1, int(std::floor(pFilm.x - 0.5f + r.x)));
+    int y0 = std::max(bounds_.y0, int(std::ceil(pFilm.y - 0.5f - r.y)));
+    int y1 = std::min(bounds_.y1 - 1, int(std::floor(pFilm.y - 0.5f + r.y)));
+    if (x0 > x1 || y0 > y1) return;
+    const char* sums = perThreadSplats_ ? reinterpret_cast<const char*>(threadSplatSums())
+                                        : reinterpret_cast<const char*>(splats_.get());
+    const size_t bytesPerPixel = 6 * sizeof(int64_t);
+    for (int y = y0; y <= y1; ++y) {
+        const char* first = sums + index(x0, y) * bytesPerPixel;
+        const char* last = sums + (index(x1, y) + 1) * bytesPerPixel - 1;
+        for (const char* a = first; a < last; a += 64) __builtin_prefetch(a, 1);
+        __builtin_prefetch(last, 1);
+    }
+}
+
 void Film::addSplat(Vec2 pFilm, Spectrum L, int sampleIndex) {
     if (!splatFilter_) return;
     if (!L.isFinite()) {

@@ -72,6 +72,10 @@ public:
     // Thread-safe and order-independent: splats accumulate in 64-bit fixed point, so the
     // image is bit-identical whatever the thread schedule. pFilm is a raster position.
     void addSplat(Vec2 pFilm, Spectrum L, int sampleIndex);
+    // Starts loading the sums a splat at pFilm would update (a hint, no effect on results):
+    // callers that know a splat's position before its visibility test hide the cache misses
+    // of the splat behind the ray.
+    void prefetchSplat(Vec2 pFilm);
     bool acceptsSplats() const { return splatFilter_ != nullptr; }
 
     // The image of the crop region: each pixel the weighted mean of its samples, plus the

@@ -8,7 +8,8 @@ namespace ps {
 
 template <typename S>
 BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex* camera, int s, int t, S& sampler,
-                                                   PathStats& stats, bool weighted, const MisPrefixes* prefixes) const {
+                                                   PathStats& stats, bool weighted, const MisPrefixes* prefixes,
+                                                   Film* splatFilm) const {
     Connection c;
     const Scene& scene = paths_.scene();
     // An escaped camera ray is an endpoint only for s = 0.
@@ -46,7 +47,10 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
             L = qs.beta * paths_.f(qs, lens, TransportMode::Importance) * lens.beta;
             if (qs.onSurface()) L *= std::fabs(dot(cs->wi, qs.ns));
         }
-        if (!L.isBlack() && !paths_.visible(qs, lens, stats)) L = Spectrum();
+        if (!L.isBlack()) {
+            if (splatFilm) splatFilm->prefetchSplat(c.pRaster);
+            if (!paths_.visible(qs, lens, stats)) L = Spectrum();
+        }
     } else if (s == 1) {
         // Next-event estimation: a light point sampled as seen from the camera vertex.
         const PathVertex& pt = camera[t - 1];
@@ -267,7 +271,7 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
             // (1,1) would see a light through the lens by sampling both ends; the camera
             // ray finding the light (0,2) covers those paths with weight 1.
             if ((s == 1 && t == 1) || depth < 0 || depth > maxDepth) continue;
-            Connection c = connect(light, camera, s, t, sampler, ctx.stats, true, &prefixes);
+            Connection c = connect(light, camera, s, t, sampler, ctx.stats, true, &prefixes, &ctx.film);
             if (c.L.isBlack()) continue;
             Spectrum contribution = c.L * c.weight;
             if (strategies_) {
@@ -287,6 +291,6 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
 }
 
 template BDPTIntegrator::Connection BDPTIntegrator::connect<Sampler>(PathVertex*, PathVertex*, int, int, Sampler&,
-                                                                     PathStats&, bool, const MisPrefixes*) const;
+                                                                     PathStats&, bool, const MisPrefixes*, Film*) const;
 
 }  // namespace ps
