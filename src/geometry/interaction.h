@@ -19,7 +19,13 @@ struct SurfaceInteraction {
     const Material* material = nullptr;
     const Light* areaLight = nullptr;  // the emitter at this point, if any
 
-    Frame shadingFrame() const { return Frame::fromNormalTangent(ns, dpdu); }
+    // dpdu is already the unit tangent of the shading frame (orthogonal to ns), as triangles
+    // with a fixed normal precompute it, so the frame needs no Gram-Schmidt step per hit.
+    bool tangentIsFrameAxis = false;
+
+    Frame shadingFrame() const {
+        return tangentIsFrameAxis ? Frame(dpdu, cross(ns, dpdu), ns) : Frame::fromNormalTangent(ns, dpdu);
+    }
 };
 
 }  // namespace ps

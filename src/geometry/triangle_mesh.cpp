@@ -53,6 +53,18 @@ TriangleMesh::TriangleMesh(TriangleMeshData data, const Transform& toScene, bool
             flatNormals_[i] = same && lengthSquared(a) > 0;
         }
     }
+    tangentIsFrameAxis_.assign(n, 0);
+    for (int i = 0; i < n; ++i) {
+        if (!normals_.empty() && !flatNormals_[i]) continue;  // interpolated: varies over the triangle
+        Vec3 ns = normals_.empty() ? faceNormal_[i] : normals_[indices_[3 * i]];
+        // Exactly Frame::fromNormalTangent's first axis, kept only where it did not fall back.
+        Vec3 d = faceDpdu_[i];
+        Vec3 t = d - ns * dot(ns, d);
+        float l2 = lengthSquared(t);
+        if (!(l2 > 1e-10f * lengthSquared(d)) || !std::isfinite(l2)) continue;
+        faceDpdu_[i] = t / std::sqrt(l2);
+        tangentIsFrameAxis_[i] = 1;
+    }
 }
 
 RTCGeometry TriangleMesh::buildGeometry(RTCDevice device) const {
@@ -145,6 +157,7 @@ int TriangleMesh::interaction(const Ray& r, float t, int embreePrim, float u, fl
     }
     si.ng = ng;
     si.dpdu = dpdu;
+    si.tangentIsFrameAxis = tangentIsFrameAxis_[prim];
     return prim;
 }
 

@@ -45,6 +45,9 @@ private:
     // Per triangle, with N: its three normals are equal, so the shading normal is that one
     // normal everywhere on it (flat-shaded exports) and needs no interpolation.
     std::vector<uint8_t> flatNormals_;
+    // Per triangle whose shading normal is fixed (no N, or flat N): faceDpdu_ holds the
+    // shading frame's unit tangent, Gram-Schmidt done once here instead of at every hit.
+    std::vector<uint8_t> tangentIsFrameAxis_;
     bool flipNormal_ = false;  // ReverseOrientation XOR transform swaps handedness
     // Per triangle, filled by prepareSampling for emitters: vertex 0, edges, oriented
     // geometric normal and area, so light sampling touches one cache line per triangle.

@@ -51,6 +51,7 @@ bool Scene::intersect(const Ray& r, SurfaceInteraction& si) const {
         si.ng = normalize(T.normal(si.ng));
         si.ns = normalize(T.normal(si.ns));
         si.dpdu = T.vector(si.dpdu);
+        si.tangentIsFrameAxis = false;  // the transform may scale it
         si.material = shape->material;
         si.areaLight = nullptr;  // emitters inside instances are not supported (as in pbrt-v4)
     }
