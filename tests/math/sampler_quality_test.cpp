@@ -60,6 +60,27 @@ std::vector<std::vector<float>> read1D(Sampler& s, int px, int py, int n, int di
 // --- Orthogonal arrays -------------------------------------------------------------------
 
 // Bose's array itself: in any two of its p + 1 columns every symbol pair occurs once.
+// Bit reversal (behind every Owen-scrambled sample value) against
+// the definition, on single bits, their neighbours and pseudo-random words.
+TEST(Sobol, ReverseBitsMatchesTheDefinition) {
+    auto naive = [](uint32_t v) {
+        uint32_t r = 0;
+        for (int b = 0; b < 32; ++b) r |= ((v >> b) & 1u) << (31 - b);
+        return r;
+    };
+    for (int b = 0; b < 32; ++b) {
+        uint32_t v = 1u << b;
+        EXPECT_EQ(reverseBits32(v), naive(v));
+        EXPECT_EQ(reverseBits32(v - 1), naive(v - 1));
+    }
+    uint64_t x = 0x9e3779b97f4a7c15ULL;
+    for (int i = 0; i < 100000; ++i) {
+        x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+        uint32_t v = uint32_t(x >> 32);
+        ASSERT_EQ(reverseBits32(v), naive(v)) << v;
+    }
+}
+
 TEST(OrthogonalArray, BoseArrayHasStrengthTwo) {
     for (uint32_t p : {2u, 3u, 5u, 7u, 11u})
         for (uint32_t c1 = 0; c1 <= p; ++c1)
