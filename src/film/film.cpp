@@ -66,7 +66,7 @@ int64_t* Film::threadSplatSums() {
     return cache.sums;
 }
 
-void Film::prefetchSplat(Vec2 pFilm) {
+void Film::prefetchSplat(Vec2 pFilm, int sampleIndex) {
     if (!splatFilter_) return;
     Vec2 r = splatFilter_->radius();
     int x0 = std::max(bounds_.x0, int(std::ceil(pFilm.x - 0.5f - r.x)));
@@ -76,10 +76,9 @@ void Film::prefetchSplat(Vec2 pFilm) {
     if (x0 > x1 || y0 > y1) return;
     const char* sums = perThreadSplats_ ? reinterpret_cast<const char*>(threadSplatSums())
                                         : reinterpret_cast<const char*>(splats_.get());
-    const size_t bytesPerPixel = 6 * sizeof(int64_t);
     for (int y = y0; y <= y1; ++y) {
-        const char* first = sums + index(x0, y) * bytesPerPixel;
-        const char* last = sums + (index(x1, y) + 1) * bytesPerPixel - 1;
+        const char* first = sums + splatOffset(index(x0, y), sampleIndex & 1) * sizeof(int64_t);
+        const char* last = sums + (splatOffset(index(x1, y), sampleIndex & 1) + 3) * sizeof(int64_t) - 1;
         for (const char* a = first; a < last; a += 64) __builtin_prefetch(a, 1);
         __builtin_prefetch(last, 1);
     }
@@ -103,7 +102,7 @@ void Film::addSplat(Vec2 pFilm, Spectrum L, int sampleIndex) {
         for (int x = x0; x <= x1; ++x) {
             float w = splatFilter_->evaluate({pFilm.x - (x + 0.5f), pFilm.y - (y + 0.5f)});
             if (w == 0) continue;
-            size_t base = (index(x, y) * 2 + size_t(sampleIndex & 1)) * 3;
+            size_t base = splatOffset(index(x, y), sampleIndex & 1);
             const double units = double(w) * splatUnitsPerWeight_;
             double v[3] = {double(L[0]) * units, double(L[1]) * units, double(L[2]) * units};
             if (!(std::fabs(v[0]) < 0x1p60 && std::fabs(v[1]) < 0x1p60 && std::fabs(v[2]) < 0x1p60)) {

@@ -75,7 +75,7 @@ public:
     // Starts loading the sums a splat at pFilm would update (a hint, no effect on results):
     // callers that know a splat's position before its visibility test hide the cache misses
     // of the splat behind the ray.
-    void prefetchSplat(Vec2 pFilm);
+    void prefetchSplat(Vec2 pFilm, int sampleIndex);
     bool acceptsSplats() const { return splatFilter_ != nullptr; }
 
     // The image of the crop region: each pixel the weighted mean of its samples, plus the
@@ -136,7 +136,7 @@ private:
     double pixelVariance(size_t i, double lightPaths, const std::vector<int64_t>& splats, double& mean) const;
     static constexpr double kSplatFixedPoint = 268435456.0;  // 2^28 units per radiance unit
     static constexpr double kPerThreadSplatBytes = 1024.0 * 1024 * 1024;  // cap on all threads' splat copies
-    static constexpr double kSplatBytesPerPixel = 6 * sizeof(int64_t);  // [half][channel] sums
+    static constexpr double kSplatBytesPerPixel = 6 * sizeof(int64_t);  // two halves' channel sums
     // Whether every thread gets its own splat sums (else one shared array of atomics).
     static bool perThreadSplatsFit(double pixels, int threads);
     // The film widened by the filter radius on every side, in pixels: the area over which
@@ -147,8 +147,11 @@ private:
     }
     // The splat sums of every thread, merged (integer sums: the order does not matter).
     std::vector<int64_t> mergedSplats() const;
-    static double splatValue(const std::vector<int64_t>& splats, size_t pixel, int half, int c) {
-        return double(splats[(pixel * 2 + size_t(half)) * 3 + size_t(c)]) / kSplatFixedPoint;
+    // Splat sums are two planes, one per half-buffer, each [pixel][channel]: a splat touches
+    // only its own half's cache lines.
+    size_t splatOffset(size_t pixel, int half) const { return (size_t(half) * size_t(bounds_.area()) + pixel) * 3; }
+    double splatValue(const std::vector<int64_t>& splats, size_t pixel, int half, int c) const {
+        return double(splats[splatOffset(pixel, half) + size_t(c)]) / kSplatFixedPoint;
     }
     size_t index(int px, int py) const { return size_t(py - bounds_.y0) * bounds_.width() + (px - bounds_.x0); }
 

@@ -9,7 +9,7 @@ namespace ps {
 template <typename S>
 BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex* camera, int s, int t, S& sampler,
                                                    PathStats& stats, bool weighted, const MisPrefixes* prefixes,
-                                                   Film* splatFilm) const {
+                                                   const SampleContext* splatTo) const {
     Connection c;
     const Scene& scene = paths_.scene();
     // An escaped camera ray is an endpoint only for s = 0.
@@ -48,7 +48,7 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
             if (qs.onSurface()) L *= std::fabs(dot(cs->wi, qs.ns));
         }
         if (!L.isBlack()) {
-            if (splatFilm) splatFilm->prefetchSplat(c.pRaster);
+            if (splatTo) splatTo->film.prefetchSplat(c.pRaster, splatTo->sampleIndex);
             if (!paths_.visible(qs, lens, stats)) L = Spectrum();
         }
     } else if (s == 1) {
@@ -271,7 +271,7 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
             // (1,1) would see a light through the lens by sampling both ends; the camera
             // ray finding the light (0,2) covers those paths with weight 1.
             if ((s == 1 && t == 1) || depth < 0 || depth > maxDepth) continue;
-            Connection c = connect(light, camera, s, t, sampler, ctx.stats, true, &prefixes, &ctx.film);
+            Connection c = connect(light, camera, s, t, sampler, ctx.stats, true, &prefixes, &ctx);
             if (c.L.isBlack()) continue;
             Spectrum contribution = c.L * c.weight;
             if (strategies_) {
@@ -291,6 +291,7 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
 }
 
 template BDPTIntegrator::Connection BDPTIntegrator::connect<Sampler>(PathVertex*, PathVertex*, int, int, Sampler&,
-                                                                     PathStats&, bool, const MisPrefixes*, Film*) const;
+                                                                     PathStats&, bool, const MisPrefixes*,
+                                                                     const SampleContext*) const;
 
 }  // namespace ps

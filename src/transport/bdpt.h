@@ -45,11 +45,12 @@ public:
 
     // S: Sampler, PaddedSobolSampler or IndependentSampler (as for Subpaths' walks).
     // `prefixes`: misPrefixes() of these subpaths, or null to walk them per weight.
-    // `splatFilm`: the film lens connections (t = 1) will splat to, warned of the position
-    // before the visibility test (a cache hint only).
+    // `splatTo`: the camera sample whose film lens connections (t = 1) will splat to, warned
+    // of the position before the visibility test (a cache hint only).
     template <typename S>
     Connection connect(PathVertex* light, PathVertex* camera, int s, int t, S& sampler, PathStats& stats,
-                       bool weighted = true, const MisPrefixes* prefixes = nullptr, Film* splatFilm = nullptr) const;
+                       bool weighted = true, const MisPrefixes* prefixes = nullptr,
+                       const SampleContext* splatTo = nullptr) const;
     // The reverse densities of the vertices at and next to a connection (area measure):
     // what the weight needs beyond the densities stored by the walks.
     struct EndpointDensities {
