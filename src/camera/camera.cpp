@@ -74,6 +74,12 @@ void Camera::pdfWe(const Ray& r, float* pdfPos, float* pdfDir) const {
     *pdfDir = 1 / (filmArea_ * cosT * cosT * cosT);
 }
 
+float Camera::generatedRayPdfDir(Vec3 d) const {
+    if (!hasImportance()) return 0;
+    float cosT = dot(normalize(d), forward_);
+    return cosT > 0 ? 1 / (filmArea_ * cosT * cosT * cosT) : 0.0f;
+}
+
 std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, Vec2 u) const {
     if (!hasImportance()) return std::nullopt;
     // A pinhole has one lens point (u is still consumed by the caller, keeping dimensions aligned).

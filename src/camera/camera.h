@@ -49,6 +49,9 @@ public:
     float We(const Ray& r, Vec2* pRaster = nullptr) const;
     // Densities of generateRay choosing r: position on the lens (area) and direction.
     void pdfWe(const Ray& r, float* pdfPos, float* pdfDir) const;
+    // pdfWe's directional density for a ray this camera generated itself: on the film by
+    // construction, so without the raster test (once per camera subpath).
+    float generatedRayPdfDir(Vec3 d) const;
     // Samples a lens point seen from ref and the importance it sends there.
     std::optional<CameraWiSample> sampleWi(Vec3 ref, Vec2 u) const;
     // The viewing direction in world space (the lens normal).

@@ -25,8 +25,7 @@ int Subpaths::cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, 
     cam.mode = TransportMode::Radiance;
     cam.p = ray.o;
     cam.beta = Spectrum(1.0f);
-    float pdfPos, pdfDir;
-    scene_.camera().pdfWe(ray, &pdfPos, &pdfDir);
+    float pdfDir = scene_.camera().generatedRayPdfDir(ray.d);
     ++stats.cameraPaths;
     if (!(pdfDir > 0)) return 1;
     return 1 + randomWalk(ray, cam.beta, pdfDir, sampler, scratch, stats, path + 1, maxCameraVertices() - 1,

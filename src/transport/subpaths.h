@@ -20,9 +20,10 @@ public:
     int maxCameraVertices() const { return maxDepth_ + 2; }
     int maxLightVertices() const { return maxDepth_ + 1; }
 
-    // Vertex 0 on the lens, then the walk; returns the number of vertices. The walks are
-    // compiled for the renderer's samplers (S: Sampler, PaddedSobolSampler or
-    // IndependentSampler) so that hot loops call them without virtual dispatch.
+    // Vertex 0 on the lens, then the walk along `ray`, which the scene camera generated;
+    // returns the number of vertices. The walks are compiled for the renderer's samplers
+    // (S: Sampler, PaddedSobolSampler or IndependentSampler) so that hot loops call them
+    // without virtual dispatch.
     template <typename S>
     int cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const;
     // Vertex 0 on a light chosen by power, then the walk; returns the number of vertices.
