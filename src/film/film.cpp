@@ -66,13 +66,18 @@ int64_t* Film::threadSplatSums() {
     return cache.sums;
 }
 
-void Film::prefetchSplat(Vec2 pFilm, int sampleIndex) {
-    if (!splatFilter_) return;
+Film::PixelRange Film::splatFootprint(Vec2 pFilm) const {
     Vec2 r = splatFilter_->radius();
     int x0 = std::max(bounds_.x0, int(std::ceil(pFilm.x - 0.5f - r.x)));
     int x1 = std::min(bounds_.x1 - 1, int(std::floor(pFilm.x - 0.5f + r.x)));
     int y0 = std::max(bounds_.y0, int(std::ceil(pFilm.y - 0.5f - r.y)));
     int y1 = std::min(bounds_.y1 - 1, int(std::floor(pFilm.y - 0.5f + r.y)));
+    return {x0, x1, y0, y1};
+}
+
+void Film::prefetchSplat(Vec2 pFilm, int sampleIndex) {
+    if (!splatFilter_) return;
+    const auto [x0, x1, y0, y1] = splatFootprint(pFilm);
     if (x0 > x1 || y0 > y1) return;
     const char* sums = perThreadSplats_ ? reinterpret_cast<const char*>(threadSplatSums())
                                         : reinterpret_cast<const char*>(splats_.get());
@@ -92,11 +97,7 @@ void Film::addSplat(Vec2 pFilm, Spectrum L, int sampleIndex) {
     }
     if (L.isBlack()) return;
     // Every pixel whose filter footprint covers pFilm gets its filter-weighted share.
-    Vec2 r = splatFilter_->radius();
-    int x0 = std::max(bounds_.x0, int(std::ceil(pFilm.x - 0.5f - r.x)));
-    int x1 = std::min(bounds_.x1 - 1, int(std::floor(pFilm.x - 0.5f + r.x)));
-    int y0 = std::max(bounds_.y0, int(std::ceil(pFilm.y - 0.5f - r.y)));
-    int y1 = std::min(bounds_.y1 - 1, int(std::floor(pFilm.y - 0.5f + r.y)));
+    const auto [x0, x1, y0, y1] = splatFootprint(pFilm);
     int64_t* local = perThreadSplats_ ? threadSplatSums() : nullptr;
     for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {

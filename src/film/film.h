@@ -166,6 +166,12 @@ private:
     bool perThreadSplats_ = false;
     tbb::enumerable_thread_specific<std::vector<int64_t>> threadSplats_;
     int64_t* threadSplatSums();  // the calling thread's sums (per-thread films)
+    // The pixels whose filter footprint covers raster position pFilm, clipped to the film
+    // (empty when x0 > x1 or y0 > y1): what a splat there updates.
+    struct PixelRange {
+        int x0, x1, y0, y1;
+    };
+    PixelRange splatFootprint(Vec2 pFilm) const;
     uint64_t id_ = 0;            // unique per film, keys threadSplatSums' per-thread cache
     double splatUnitsPerWeight_ = 0;  // fixed-point units per unit of filter weight / integral
     std::unique_ptr<std::atomic<int64_t>[]> splats_;
