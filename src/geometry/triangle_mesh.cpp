@@ -57,13 +57,11 @@ TriangleMesh::TriangleMesh(TriangleMeshData data, const Transform& toScene, bool
     for (int i = 0; i < n; ++i) {
         if (!normals_.empty() && !flatNormals_[i]) continue;  // interpolated: varies over the triangle
         Vec3 ns = normals_.empty() ? faceNormal_[i] : normals_[indices_[3 * i]];
-        // Exactly Frame::fromNormalTangent's first axis, kept only where it did not fall back.
-        Vec3 d = faceDpdu_[i];
-        Vec3 t = d - ns * dot(ns, d);
-        float l2 = lengthSquared(t);
-        if (!(l2 > 1e-10f * lengthSquared(d)) || !std::isfinite(l2)) continue;
-        faceDpdu_[i] = t / std::sqrt(l2);
-        tangentIsFrameAxis_[i] = 1;
+        // Kept only where Frame::fromNormalTangent would not fall back to an arbitrary tangent.
+        if (std::optional<Vec3> t = Frame::unitTangent(ns, faceDpdu_[i])) {
+            faceDpdu_[i] = *t;
+            tangentIsFrameAxis_[i] = 1;
+        }
     }
 }
 

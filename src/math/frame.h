@@ -1,5 +1,6 @@
 // Orthonormal frames: shading computations happen in a local frame with the normal on +z.
 #pragma once
+#include <optional>
 #include "math/vec.h"
 
 namespace ps {
@@ -25,12 +26,16 @@ struct Frame {
     }
     // Frame with normal n whose first axis follows the tangent dpdu (Gram-Schmidt).
     static Frame fromNormalTangent(Vec3 n, Vec3 dpdu) {
+        if (std::optional<Vec3> s = unitTangent(n, dpdu)) return Frame(*s, cross(n, *s), n);
+        return fromNormal(n);  // zero, parallel to n, or non-finite: any tangent will do
+    }
+    // fromNormalTangent's first axis: dpdu made orthogonal to n and unit, or nothing where
+    // dpdu is zero, parallel to n or not finite.
+    static std::optional<Vec3> unitTangent(Vec3 n, Vec3 dpdu) {
         Vec3 s = dpdu - n * dot(n, dpdu);
         float l2 = lengthSquared(s);
-        // Zero, parallel to n, or non-finite: any tangent will do.
-        if (!(l2 > 1e-10f * lengthSquared(dpdu)) || !std::isfinite(l2)) return fromNormal(n);
-        s = s / std::sqrt(l2);
-        return Frame(s, cross(n, s), n);
+        if (!(l2 > 1e-10f * lengthSquared(dpdu)) || !std::isfinite(l2)) return std::nullopt;
+        return s / std::sqrt(l2);
     }
     Vec3 toLocal(Vec3 v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
     Vec3 toWorld(Vec3 v) const { return s * v.x + t * v.y + n * v.z; }
