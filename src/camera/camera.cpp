@@ -71,13 +71,13 @@ void Camera::pdfWe(const Ray& r, float* pdfPos, float* pdfDir) const {
     if (!(cosT > 0)) return;
     if (!rasterOf(cameraFromWorld_.point(r.o), cameraFromWorld_.vector(d), nullptr)) return;
     *pdfPos = 1 / lensArea();
-    *pdfDir = 1 / (filmArea_ * cosT * cosT * cosT);
+    *pdfDir = pdfDirAt(cosT);
 }
 
 float Camera::generatedRayPdfDir(Vec3 d) const {
     if (!hasImportance()) return 0;
     float cosT = dot(normalize(d), forward_);
-    return cosT > 0 ? 1 / (filmArea_ * cosT * cosT * cosT) : 0.0f;
+    return cosT > 0 ? pdfDirAt(cosT) : 0.0f;
 }
 
 std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, Vec2 u) const {
@@ -97,7 +97,7 @@ std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, Vec2 u) const {
     s.pdf = dist2 / (cosLens * lensArea());
     s.We = importance(-s.wi, {lens.x, lens.y, 0}, &s.pRaster);
     if (!(s.We > 0)) return std::nullopt;
-    s.pdfDir = 1 / (filmArea_ * cosLens * cosLens * cosLens);  // as pdfWe gives it
+    s.pdfDir = pdfDirAt(cosLens);  // as pdfWe gives it
     return s;
 }
 

@@ -67,6 +67,9 @@ private:
     bool rasterOf(Vec3 oCam, Vec3 dCam, Vec2* pRaster) const;
     // We for the unit world direction d leaving camera-space lens point oCam.
     float importance(Vec3 d, Vec3 oCam, Vec2* pRaster) const;
+    // pdfWe's directional density for a direction at cosT to the viewing direction: uniform
+    // over the film area at z = 1, converted to solid angle.
+    float pdfDirAt(float cosT) const { return 1 / (filmArea_ * cosT * cosT * cosT); }
 
     Params params_;
     Transform cameraFromWorld_;
