@@ -145,6 +145,18 @@ private:
     uint64_t dimension_ = 0;
 };
 
+// Calls f with the sampler as its concrete type where hot loops are compiled for it (padded
+// Sobol, independent), else as Sampler: integrators dispatch once per camera sample instead
+// of making a virtual call per sample value.
+template <typename F>
+decltype(auto) withConcreteSampler(Sampler& sampler, F&& f) {
+    switch (sampler.kind()) {
+        case Sampler::Kind::PaddedSobol: return f(static_cast<PaddedSobolSampler&>(sampler));
+        case Sampler::Kind::Independent: return f(static_cast<IndependentSampler&>(sampler));
+        default: return f(sampler);
+    }
+}
+
 // Stratified sampling over a pixel's N samples (thesis §2.7.1), padded across dimensions:
 // every 1-D request is jittered in N strata, sample i taking stratum pi_d(i) of a random
 // permutation per (pixel, dimension). 2-D requests use an m x m jittered grid when N = m^2

@@ -12,7 +12,6 @@
 #include "lights/light.h"
 #include "mc/alias_table.h"
 #include "materials/material.h"
-#include "mc/distribution.h"
 #include "util/error.h"
 
 namespace ps {

@@ -236,11 +236,7 @@ void BDPTIntegrator::recordStrategies(int maxDepth) {
 }
 
 Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
-    switch (ctx.sampler.kind()) {
-        case Sampler::Kind::PaddedSobol: return estimate(ray, static_cast<PaddedSobolSampler&>(ctx.sampler), ctx);
-        case Sampler::Kind::Independent: return estimate(ray, static_cast<IndependentSampler&>(ctx.sampler), ctx);
-        default: return estimate(ray, ctx.sampler, ctx);
-    }
+    return withConcreteSampler(ctx.sampler, [&](auto& sampler) { return estimate(ray, sampler, ctx); });
 }
 
 template <typename S>

@@ -26,14 +26,8 @@ Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& fra
 }
 
 Spectrum PathTracer::Li(const Ray& ray, SampleContext& ctx) const {
-    Sampler& sampler = ctx.sampler;
-    ScratchBuffer& scratch = ctx.scratch;
-    PathStats& stats = ctx.stats;
-    switch (sampler.kind()) {
-        case Sampler::Kind::PaddedSobol: return estimate(ray, static_cast<PaddedSobolSampler&>(sampler), scratch, stats);
-        case Sampler::Kind::Independent: return estimate(ray, static_cast<IndependentSampler&>(sampler), scratch, stats);
-        default: return estimate(ray, sampler, scratch, stats);
-    }
+    return withConcreteSampler(ctx.sampler,
+                               [&](auto& sampler) { return estimate(ray, sampler, ctx.scratch, ctx.stats); });
 }
 
 template <typename S>
