@@ -115,40 +115,47 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
     return c;
 }
 
-// The weight of strategy (s, t) relative to every other strategy (s', t') with s' + t' = s + t
-// that could have produced the same path (thesis §10.2.3, eq. 10.9): the ratio of each
-// other strategy's density to this one's follows from walking along the path and
-// exchanging one vertex's forward density for its reverse density at a time.
 namespace {
 
 // Delta densities are stored as 0; they cancel in the ratios (remapped to 1), and the
 // strategies that would need to sample a delta vertex by connection are excluded.
 inline float remapDelta(float f) { return f != 0 ? f : 1.0f; }
 
+// Another strategy's weight relative to this one's, from the ratio r of their densities
+// (uniform: each strategy counts once). For all three heuristics the term of a product is
+// the product of the terms (1 = 1 x 1 for uniform), so sums along a path factor.
+double misTerm(MisHeuristic h, float r) {
+    if (h == MisHeuristic::Uniform) return 1.0;
+    return h == MisHeuristic::Power ? double(r) * r : double(r);
+}
+
+// One step of the running sums (see MisPrefixes): vertex m's exchanged density ratio times
+// (whether a connection could sample vertex m, plus the sum up to m - 1).
+double cameraPrefixStep(MisHeuristic h, const PathVertex* camera, int m, double before) {
+    bool valid = !camera[m].delta && !camera[m - 1].delta;
+    return misTerm(h, remapDelta(camera[m].pdfRev) / remapDelta(camera[m].pdfFwd)) * ((valid ? 1 : 0) + before);
+}
+double lightPrefixStep(MisHeuristic h, const PathVertex* light, int m, double before) {
+    bool valid = !light[m].delta && !(m > 0 ? light[m - 1].delta : light[0].isDeltaLight());
+    return misTerm(h, remapDelta(light[m].pdfRev) / remapDelta(light[m].pdfFwd)) * ((valid ? 1 : 0) + before);
+}
+
 }  // namespace
 
 BDPTIntegrator::MisPrefixes BDPTIntegrator::misPrefixes(const PathVertex* light, int nLight, const PathVertex* camera,
                                                         int nCamera, ScratchBuffer& scratch) const {
-    if (heuristic_ == MisHeuristic::Uniform) return {};
-    const bool power = heuristic_ == MisHeuristic::Power;
-    auto term = [&](const PathVertex& v) {
-        double r = remapDelta(v.pdfRev) / remapDelta(v.pdfFwd);  // in float, as misWeight divides
-        return power ? r * r : r;
-    };
     auto* cam = static_cast<double*>(scratch.allocBytes(sizeof(double) * size_t(std::max(nCamera, 1)), alignof(double)));
     auto* lig = static_cast<double*>(scratch.allocBytes(sizeof(double) * size_t(std::max(nLight, 1)), alignof(double)));
     cam[0] = 0;
-    for (int m = 1; m <= nCamera - 2; ++m) {
-        bool valid = !camera[m].delta && !camera[m - 1].delta;
-        cam[m] = term(camera[m]) * ((valid ? 1 : 0) + cam[m - 1]);
-    }
-    for (int m = 0; m <= nLight - 2; ++m) {
-        bool valid = !light[m].delta && !(m > 0 ? light[m - 1].delta : light[0].isDeltaLight());
-        lig[m] = term(light[m]) * ((valid ? 1 : 0) + (m > 0 ? lig[m - 1] : 0.0));
-    }
+    for (int m = 1; m <= nCamera - 2; ++m) cam[m] = cameraPrefixStep(heuristic_, camera, m, cam[m - 1]);
+    for (int m = 0; m <= nLight - 2; ++m) lig[m] = lightPrefixStep(heuristic_, light, m, m > 0 ? lig[m - 1] : 0.0);
     return {cam, lig};
 }
 
+// The weight of strategy (s, t) relative to every other strategy (s', t') with s' + t' = s + t
+// that could have produced the same path (thesis §10.2.3, eq. 10.9): the ratio of each
+// other strategy's density to this one's follows from walking along the path and
+// exchanging one vertex's forward density for its reverse density at a time.
 float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camera, const PathVertex* sampled, int s,
                                 int t, const EndpointDensities* known, const MisPrefixes* prefixes) const {
     if (s + t == 2) return 1;
@@ -172,56 +179,35 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
         if (qsMinus) rev.qsMinus = paths_.pdf(*qs, pt, *qsMinus, true);
     }
 
-    auto remap = remapDelta;
-    // Each other strategy's weight relative to this one's (uniform: each counts once).
-    auto term = [&](float r) -> double {
-        if (heuristic_ == MisHeuristic::Uniform) return 1.0;
-        return heuristic_ == MisHeuristic::Power ? double(r) * r : double(r);
-    };
-    if (prefixes && prefixes->camera) {
-        // The two vertices at each side of the join take this connection's densities, the
-        // rest of each side is a running sum (terms multiply, so they factor out of it).
-        // The join's own vertices were reached by a deterministic connection, not a specular bounce.
-        double sum = 0;
-        if (t >= 2) {
-            double inner = 0;
-            if (t >= 3) {
-                bool valid = !camera[t - 2].delta && !camera[t - 3].delta;
-                inner = term(remap(rev.ptMinus) / remap(camera[t - 2].pdfFwd)) *
-                        ((valid ? 1 : 0) + (t >= 4 ? prefixes->camera[t - 3] : 0.0));
-            }
-            sum += term(remap(rev.pt) / remap(pt->pdfFwd)) * ((camera[t - 2].delta ? 0 : 1) + inner);
-        }
-        if (s >= 1) {
-            double inner = 0;
-            if (s >= 2) {
-                bool valid = !light[s - 2].delta && !(s >= 3 ? light[s - 3].delta : light[0].isDeltaLight());
-                inner = term(remap(rev.qsMinus) / remap(light[s - 2].pdfFwd)) *
-                        ((valid ? 1 : 0) + (s >= 3 ? prefixes->light[s - 3] : 0.0));
-            }
-            bool valid = s >= 2 ? !light[s - 2].delta : !qs->isDeltaLight();
-            sum += term(remap(rev.qs) / remap(qs->pdfFwd)) * ((valid ? 1 : 0) + inner);
-        }
-        if (!std::isfinite(sum)) return 0;
-        return float(1 / (1 + sum));
-    }
-    // The join's own vertices were reached by a deterministic connection, not a specular bounce.
+    // Beyond the two vertices at each side of the join, each side contributes its running
+    // sum: from the prefixes, or walked here.
+    double cameraTail = 0, lightTail = 0;
+    if (t >= 4 && prefixes) cameraTail = prefixes->camera[t - 3];
+    if (t >= 4 && !prefixes)
+        for (int m = 1; m <= t - 3; ++m) cameraTail = cameraPrefixStep(heuristic_, camera, m, cameraTail);
+    if (s >= 3 && prefixes) lightTail = prefixes->light[s - 3];
+    if (s >= 3 && !prefixes)
+        for (int m = 0; m <= s - 3; ++m) lightTail = lightPrefixStep(heuristic_, light, m, lightTail);
+    // The join's own vertices take this connection's densities, and were reached by a
+    // deterministic connection, not a specular bounce.
+    auto term = [&](float pdfRev, float pdfFwd) { return misTerm(heuristic_, remapDelta(pdfRev) / remapDelta(pdfFwd)); };
     double sum = 0;
-    float r = 1;
-    for (int i = t - 1; i > 0; --i) {
-        float pdfRev = i == t - 1 ? rev.pt : (i == t - 2 ? rev.ptMinus : camera[i].pdfRev);
-        r *= remap(pdfRev) / remap(camera[i].pdfFwd);
-        bool delta = i != t - 1 && camera[i].delta;
-        if (!delta && !camera[i - 1].delta) sum += term(r);
+    if (t >= 2) {
+        double inner = 0;
+        if (t >= 3) {
+            bool valid = !camera[t - 2].delta && !camera[t - 3].delta;
+            inner = term(rev.ptMinus, camera[t - 2].pdfFwd) * ((valid ? 1 : 0) + cameraTail);
+        }
+        sum += term(rev.pt, pt->pdfFwd) * ((camera[t - 2].delta ? 0 : 1) + inner);
     }
-    r = 1;
-    for (int i = s - 1; i >= 0; --i) {
-        const PathVertex& v = i == s - 1 ? *qs : light[i];
-        float pdfRev = i == s - 1 ? rev.qs : (i == s - 2 ? rev.qsMinus : v.pdfRev);
-        r *= remap(pdfRev) / remap(v.pdfFwd);
-        bool delta = i != s - 1 && v.delta;
-        bool deltaBefore = i > 0 ? light[i - 1].delta : v.isDeltaLight();
-        if (!delta && !deltaBefore) sum += term(r);
+    if (s >= 1) {
+        double inner = 0;
+        if (s >= 2) {
+            bool valid = !light[s - 2].delta && !(s >= 3 ? light[s - 3].delta : light[0].isDeltaLight());
+            inner = term(rev.qsMinus, light[s - 2].pdfFwd) * ((valid ? 1 : 0) + lightTail);
+        }
+        bool valid = s >= 2 ? !light[s - 2].delta : !qs->isDeltaLight();
+        sum += term(rev.qs, qs->pdfFwd) * ((valid ? 1 : 0) + inner);
     }
     if (!std::isfinite(sum)) return 0;
     return float(1 / (1 + sum));

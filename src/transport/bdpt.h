@@ -29,17 +29,15 @@ public:
         Vec2 pRaster;
         float recomputedWeight = 0;  // see recomputeWeights
     };
-    // Running sums of the MIS terms along each subpath, for the power and balance heuristics
-    // (whose terms multiply along a path): camera[m] sums, over the strategies that would
-    // sample camera vertices 1..m by connection, the products of density ratios from there to
-    // m; light[m] likewise over light vertices 0..m. With them a weight costs O(1) instead of
-    // a walk along both subpaths. Entries exist up to n - 2 (the last vertex has no reverse
-    // density yet).
+    // Running sums of the MIS terms along each subpath (the terms of every heuristic multiply
+    // along a path): camera[m] sums, over the strategies that would sample camera vertices
+    // 1..m by connection, the terms of the density ratios from there to m; light[m] likewise
+    // over light vertices 0..m. With them a weight costs O(1) instead of a walk along both
+    // subpaths. Entries exist up to n - 2 (the last vertex has no reverse density yet).
     struct MisPrefixes {
         const double* camera = nullptr;
         const double* light = nullptr;
     };
-    // Null arrays for the uniform heuristic, which counts strategies and does not factor.
     MisPrefixes misPrefixes(const PathVertex* light, int nLight, const PathVertex* camera, int nCamera,
                             ScratchBuffer& scratch) const;
 
