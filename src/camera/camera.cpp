@@ -76,7 +76,7 @@ void Camera::pdfWe(const Ray& r, float* pdfPos, float* pdfDir) const {
 
 float Camera::generatedRayPdfDir(Vec3 d) const {
     if (!hasImportance()) return 0;
-    float cosT = dot(normalize(d), forward_);
+    float cosT = dot(d, forward_);
     return cosT > 0 ? pdfDirAt(cosT) : 0.0f;
 }
 

@@ -50,7 +50,8 @@ public:
     // Densities of generateRay choosing r: position on the lens (area) and direction.
     void pdfWe(const Ray& r, float* pdfPos, float* pdfDir) const;
     // pdfWe's directional density for a ray this camera generated itself: on the film by
-    // construction, so without the raster test (once per camera subpath).
+    // construction, so without the raster test (once per camera subpath). d is the ray's
+    // direction as generateRay returned it: already unit length.
     float generatedRayPdfDir(Vec3 d) const;
     // Samples a lens point seen from ref and the importance it sends there.
     std::optional<CameraWiSample> sampleWi(Vec3 ref, Vec2 u) const;

@@ -177,6 +177,7 @@ std::optional<ShapeSample> Sphere::sampleToward(int prim, Vec3 ref, Vec2 u) cons
     Vec3 pObj = toScene_.inverse().point(s.p);
     s.uv = {phiOf(pObj) / phiMax_, (safeAcos(pObj.z / radius_) - thetaZMin_) / (thetaZMax_ - thetaZMin_)};
     s.pdf = 1 / (2 * kPi * oneMinusCosMax);
+    s.pdfArea = pdfArea(prim);
     if (!std::isfinite(s.pdf)) return std::nullopt;
     return s;
 }

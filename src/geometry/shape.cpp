@@ -6,6 +6,7 @@ namespace ps {
 
 std::optional<ShapeSample> Shape::sampleToward(int prim, Vec3 ref, Vec2 u) const {
     ShapeSample s = sampleArea(prim, u);
+    s.pdfArea = s.pdf;
     Vec3 d = s.p - ref;
     float dist2 = lengthSquared(d);
     if (!(dist2 > 0)) return std::nullopt;

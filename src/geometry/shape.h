@@ -14,6 +14,8 @@ struct ShapeSample {
     Vec2 uv;
     float pdf = 0;      // area measure for sampleArea, solid angle for sampleToward
     Vec3 wi;            // sampleToward only: unit direction from the reference point
+    float pdfArea = 0;  // sampleToward only: the area density sampleArea has at p (what a
+                        // light subpath starting on the shape needs for its weights)
 };
 
 class Shape {

@@ -206,6 +206,7 @@ std::optional<ShapeSample> TriangleMesh::sampleToward(int prim, Vec3 ref, Vec2 u
     float cosLight = absDot(s.n, s.wi);
     if (!(cosLight > 0)) return std::nullopt;
     s.pdf = dist2 / (cosLight * t.area);
+    s.pdfArea = 1 / t.area;
     if (!std::isfinite(s.pdf)) return std::nullopt;
     return s;  // uv is not needed by uniform emitters
 }

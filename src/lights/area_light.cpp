@@ -10,7 +10,7 @@ std::optional<LightLiSample> DiffuseAreaLight::sampleLi(const LightSampleContext
     if (!s) return std::nullopt;
     Spectrum Le = L(s->p, s->n, s->uv, -s->wi);
     if (Le.isBlack()) return std::nullopt;
-    return LightLiSample{Le, s->wi, s->pdf, s->p, s->n};
+    return LightLiSample{Le, s->wi, s->pdf, s->p, s->n, s->pdfArea, emittedDirectionPdf(dot(s->n, -s->wi))};
 }
 
 float DiffuseAreaLight::pdfLi(const LightSampleContext& ctx, Vec3, const SurfaceInteraction* hit) const {
@@ -49,8 +49,7 @@ std::optional<LightLeSample> DiffuseAreaLight::sampleLe(Vec2 uPos, Vec2 uDir) co
 
 void DiffuseAreaLight::pdfLe(Vec3, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const {
     *pdfPos = shape_->pdfArea(prim_);
-    float c = dot(n, w);
-    *pdfDir = twoSided_ ? 0.5f * std::fabs(c) * kInvPi : cosineHemispherePdf(c);
+    *pdfDir = emittedDirectionPdf(dot(n, w));
 }
 
 }  // namespace ps

@@ -3,6 +3,7 @@
 #pragma once
 #include "geometry/shape.h"
 #include "lights/light.h"
+#include "math/warp.h"
 
 namespace ps {
 
@@ -23,6 +24,11 @@ public:
     Spectrum phi() const override { return Lemit_ * (kPi * (twoSided_ ? 2.0f : 1.0f) * shape_->area(prim_)); }
 
 private:
+    // sampleLe's solid-angle density of a direction at cosine c to the oriented normal.
+    float emittedDirectionPdf(float c) const {
+        return twoSided_ ? 0.5f * std::fabs(c) * kInvPi : cosineHemispherePdf(c);
+    }
+
     const Shape* shape_;
     int prim_;
     Spectrum Lemit_;

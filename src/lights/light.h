@@ -22,6 +22,10 @@ struct LightLiSample {
     float pdf = 0;   // solid angle at the receiver; 1 for delta lights
     Vec3 pLight;     // point on the light (far away for distant/infinite lights)
     Vec3 nLight;     // its normal (zero for non-surface lights)
+    // Area lights: pdfLe's densities for the reverse ray from pLight along -wi (the area
+    // density of pLight and the solid-angle density of -wi), which BDPT's weights need; both
+    // zero where a light does not give them.
+    float pdfEmitPos = 0, pdfEmitDir = 0;
 };
 
 // A ray leaving a light (light tracing and BDPT start their subpaths here, thesis §10.2).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <new>
 #include <optional>
+#include <type_traits>
 
 namespace ps {
 
@@ -10,109 +11,144 @@ template <typename S>
 BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex* camera, int s, int t, S& sampler,
                                                    PathStats& stats, bool weighted, const MisPrefixes* prefixes,
                                                    const SampleContext* splatTo) const {
+    Join j;
     Connection c;
-    const Scene& scene = paths_.scene();
-    // An escaped camera ray is an endpoint only for s = 0.
-    if (t > 1 && s != 0 && camera[t - 1].isInfiniteLight()) return c;
-    // Where a connection evaluates the BSDFs at its ends, the same calls give the densities
-    // the weight needs (thesis §10.2: the reverse densities at and next to the join).
-    EndpointDensities known;
-    bool haveKnown = false;
-    Spectrum L;
-    std::optional<PathVertex> sampled;  // the vertex a connection samples (s = 1, t = 1)
     if (s == 0) {
-        // The camera subpath found an emitter on its own.
-        const PathVertex& pt = camera[t - 1];
-        if (pt.isLight()) L = paths_.Le(pt, camera[t - 2]) * pt.beta;
+        j = joinEmitter(camera, t);
+    } else if (t > 1 && camera[t - 1].isInfiniteLight()) {
+        return c;  // an escaped camera ray is an endpoint only for s = 0
     } else if (t == 1) {
-        // Connect the light subpath to a sampled lens point and splat (thesis §10.2).
-        const PathVertex& qs = light[s - 1];
-        if (!qs.connectible()) return c;
-        auto cs = scene.camera().sampleWi(qs.p, sampler.get2D());
-        if (!cs) return c;
-        PathVertex& lens = sampled.emplace();
-        lens.kind = VertexKind::Camera;
-        lens.mode = TransportMode::Radiance;
-        lens.p = cs->pLens;
-        lens.beta = Spectrum(cs->We / cs->pdf);
-        c.pRaster = cs->pRaster;
-        if (qs.kind == VertexKind::Surface && qs.bxdf) {
-            BxDFEval e = paths_.evaluate(qs, cs->wi);
-            L = qs.beta * e.f * lens.beta * std::fabs(dot(cs->wi, qs.ns));
-            known.pt = e.pdfFwd * areaFactor(qs, lens);
-            known.qs = cs->pdfDir * areaFactor(lens, qs);
-            known.qsMinus = e.pdfRev * qs.toPrevArea;
-            haveKnown = true;
-        } else {
-            L = qs.beta * paths_.f(qs, lens, TransportMode::Importance) * lens.beta;
-            if (qs.onSurface()) L *= std::fabs(dot(cs->wi, qs.ns));
-        }
-        if (!L.isBlack()) {
-            if (splatTo) splatTo->film.prefetchSplat(c.pRaster, splatTo->sampleIndex);
-            if (!paths_.visible(qs, lens, stats)) L = Spectrum();
-        }
+        j = joinLens(light[s - 1], sampler, stats, splatTo);
+        c.pRaster = j.pRaster;
     } else if (s == 1) {
-        // Next-event estimation: a light point sampled as seen from the camera vertex.
-        const PathVertex& pt = camera[t - 1];
-        if (!pt.connectible()) return c;
-        float pmf;
-        const Light* lt = scene.sampleLight(sampler.get1D(), &pmf);
-        Vec2 u = sampler.get2D();
-        if (!lt || !(pmf > 0)) return c;
-        auto ls = lt->sampleLi(LightSampleContext{pt.p, pt.ng}, u);
-        if (!ls || ls->L.isBlack() || !(ls->pdf > 0)) return c;
-        PathVertex& lv = sampled.emplace();
-        lv.kind = VertexKind::Light;
-        lv.mode = TransportMode::Importance;
-        lv.light = lt;
-        lv.infinite = lt->atInfinity();
-        lv.p = ls->pLight;
-        lv.ng = lv.ns = ls->nLight;
-        lv.beta = ls->L / (ls->pdf * pmf);
-        if (pt.kind == VertexKind::Surface && pt.bxdf) {
-            BxDFEval e = paths_.evaluate(pt, ls->wi);
-            L = pt.beta * e.f * lv.beta * std::fabs(dot(ls->wi, pt.ns));
-            paths_.emissionDensities(lv, pt, &lv.pdfFwd, &known.pt);
-            known.qs = e.pdfFwd * areaFactor(pt, lv);
-            known.ptMinus = e.pdfRev * pt.toPrevArea;
-            haveKnown = true;
-        } else {
-            lv.pdfFwd = paths_.pdfLightOrigin(lv, pt);
-            L = pt.beta * paths_.f(pt, lv, TransportMode::Radiance) * lv.beta;
-            if (pt.onSurface()) L *= std::fabs(dot(ls->wi, pt.ns));
-        }
-        if (!L.isBlack() && !paths_.visible(pt, lv, stats)) L = Spectrum();
+        j = joinLight(camera[t - 1], sampler, stats);
     } else {
-        // Both subpaths contribute a vertex; join them deterministically. One direction
-        // serves both BSDFs, the geometry term and the four densities the weight needs.
-        const PathVertex& qs = light[s - 1];
-        const PathVertex& pt = camera[t - 1];
-        if (!qs.connectible() || !pt.connectible()) return c;
-        Vec3 d = pt.p - qs.p;
-        float d2 = lengthSquared(d);
-        if (!(d2 > 0)) return c;
-        float invDist2 = 1 / d2;
-        Vec3 w = d * std::sqrt(invDist2);  // from qs towards pt
-        BxDFEval atQs = paths_.evaluate(qs, w), atPt = paths_.evaluate(pt, -w);
-        float g = std::fabs(dot(qs.ns, w)) * std::fabs(dot(pt.ns, w)) * invDist2;
-        L = qs.beta * atQs.f * atPt.f * pt.beta * g;
-        if (!L.isBlack() && !paths_.visible(qs, pt, stats)) L = Spectrum();
-        known.pt = atQs.pdfFwd * std::fabs(dot(pt.ng, w)) * invDist2;
-        known.qs = atPt.pdfFwd * std::fabs(dot(qs.ng, w)) * invDist2;
-        known.ptMinus = atPt.pdfRev * pt.toPrevArea;
-        known.qsMinus = atQs.pdfRev * qs.toPrevArea;
-        haveKnown = true;
+        j = joinInner(light[s - 1], camera[t - 1], stats);
     }
-    if (L.isBlack()) return c;
-    if (!L.isFinite()) {
+    if (j.L.isBlack()) return c;
+    if (!j.L.isFinite()) {
         ++stats.guarded;
         return c;
     }
-    c.L = L;
-    const PathVertex* join = sampled ? &*sampled : nullptr;
-    c.weight = weighted ? misWeight(light, camera, join, s, t, haveKnown ? &known : nullptr, prefixes) : 1.0f;
-    if (recomputeWeights_) c.recomputedWeight = misWeight(light, camera, join, s, t, nullptr);
+    c.L = j.L;
+    const PathVertex* sampled = j.sampled ? &*j.sampled : nullptr;
+    c.weight = weighted ? misWeight(light, camera, sampled, s, t, j.haveKnown ? &j.known : nullptr, prefixes) : 1.0f;
+    if (recomputeWeights_) c.recomputedWeight = misWeight(light, camera, sampled, s, t, nullptr);
     return c;
+}
+
+// The camera subpath found an emitter on its own (s = 0).
+BDPTIntegrator::Join BDPTIntegrator::joinEmitter(const PathVertex* camera, int t) const {
+    Join j;
+    const PathVertex& pt = camera[t - 1];
+    if (pt.isLight()) j.L = paths_.Le(pt, camera[t - 2]) * pt.beta;
+    return j;
+}
+
+// Connect light vertex qs to a sampled lens point, to be splatted (t = 1, thesis §10.2).
+template <typename S>
+BDPTIntegrator::Join BDPTIntegrator::joinLens(const PathVertex& qs, S& sampler, PathStats& stats,
+                                              const SampleContext* splatTo) const {
+    Join j;
+    if (!qs.connectible()) return j;
+    auto cs = paths_.scene().camera().sampleWi(qs.p, sampler.get2D());
+    if (!cs) return j;
+    PathVertex& lens = j.sampled.emplace();
+    lens.kind = VertexKind::Camera;
+    lens.mode = TransportMode::Radiance;
+    lens.p = cs->pLens;
+    lens.beta = Spectrum(cs->We / cs->pdf);
+    j.pRaster = cs->pRaster;
+    if (qs.kind == VertexKind::Surface && qs.bxdf) {
+        float cosQs;
+        BxDFEval e = paths_.evaluate(qs, cs->wi, &cosQs);
+        j.L = qs.beta * e.f * lens.beta * cosQs;
+        j.known.pt = e.pdfFwd * areaFactor(qs, lens);
+        j.known.qs = cs->pdfDir * areaFactor(lens, qs);
+        j.known.qsMinus = e.pdfRev * qs.toPrevArea;
+        j.haveKnown = true;
+    } else {
+        j.L = qs.beta * paths_.f(qs, lens, TransportMode::Importance) * lens.beta;
+        if (qs.onSurface()) j.L *= std::fabs(dot(cs->wi, qs.ns));
+    }
+    if (!j.L.isBlack()) {
+        if (splatTo) splatTo->film.prefetchSplat(j.pRaster, splatTo->sampleIndex);
+        if (!paths_.visible(qs, lens, stats)) j.L = Spectrum();
+    }
+    return j;
+}
+
+// Next-event estimation (s = 1): a light point sampled as seen from camera vertex pt.
+template <typename S>
+BDPTIntegrator::Join BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stats) const {
+    Join j;
+    if (!pt.connectible()) return j;
+    float pmf;
+    const Light* lt = paths_.scene().sampleLight(sampler.get1D(), &pmf);
+    Vec2 u = sampler.get2D();
+    if (!lt || !(pmf > 0)) return j;
+    auto ls = lt->sampleLi(LightSampleContext{pt.p, pt.ng}, u);
+    if (!ls || ls->L.isBlack() || !(ls->pdf > 0)) return j;
+    PathVertex& lv = j.sampled.emplace();
+    lv.kind = VertexKind::Light;
+    lv.mode = TransportMode::Importance;
+    lv.light = lt;
+    lv.infinite = lt->atInfinity();
+    lv.p = ls->pLight;
+    lv.ng = lv.ns = ls->nLight;
+    lv.beta = ls->L / (ls->pdf * pmf);
+    if (pt.kind == VertexKind::Surface && pt.bxdf) {
+        float cosPt;
+        BxDFEval e = paths_.evaluate(pt, ls->wi, &cosPt);
+        j.L = pt.beta * e.f * lv.beta * cosPt;
+        if (ls->pdfEmitPos > 0) {
+            // The light gave its emission densities; only their conversions to area remain.
+            float toPt, toLight;
+            areaFactors(lv, pt, &toPt, &toLight);
+            lv.pdfFwd = pmf * ls->pdfEmitPos;
+            j.known.pt = ls->pdfEmitDir * toPt;
+            j.known.qs = e.pdfFwd * toLight;
+        } else {
+            paths_.emissionDensities(lv, pt, &lv.pdfFwd, &j.known.pt);
+            j.known.qs = e.pdfFwd * areaFactor(pt, lv);
+        }
+        j.known.ptMinus = e.pdfRev * pt.toPrevArea;
+        j.haveKnown = true;
+    } else {
+        lv.pdfFwd = paths_.pdfLightOrigin(lv, pt);
+        j.L = pt.beta * paths_.f(pt, lv, TransportMode::Radiance) * lv.beta;
+        if (pt.onSurface()) j.L *= std::fabs(dot(ls->wi, pt.ns));
+    }
+    if (!j.L.isBlack() && !paths_.visible(pt, lv, stats)) j.L = Spectrum();
+    return j;
+}
+
+// Both subpaths contribute a vertex (s, t > 1); join them deterministically. One direction
+// serves both BSDFs, the geometry term and the four densities the weight needs.
+BDPTIntegrator::Join BDPTIntegrator::joinInner(const PathVertex& qs, const PathVertex& pt, PathStats& stats) const {
+    Join j;
+    if (!qs.connectible() || !pt.connectible()) return j;
+    Vec3 d = pt.p - qs.p;
+    float d2 = lengthSquared(d);
+    if (!(d2 > 0)) return j;
+    float invDist2 = 1 / d2;
+    Vec3 w = d * std::sqrt(invDist2);  // from qs towards pt
+    float cosQs, cosPt;
+    BxDFEval atQs = paths_.evaluate(qs, w, &cosQs);
+    if (atQs.f.isBlack()) return j;  // often: w leaves qs on the wrong side
+    BxDFEval atPt = paths_.evaluate(pt, -w, &cosPt);
+    float g = cosQs * cosPt * invDist2;
+    j.L = qs.beta * atQs.f * atPt.f * pt.beta * g;
+    if (j.L.isBlack() || !paths_.visible(qs, pt, stats)) {
+        j.L = Spectrum();
+        return j;
+    }
+    j.known.pt = atQs.pdfFwd * std::fabs(dot(pt.ng, w)) * invDist2;
+    j.known.qs = atPt.pdfFwd * std::fabs(dot(qs.ng, w)) * invDist2;
+    j.known.ptMinus = atPt.pdfRev * pt.toPrevArea;
+    j.known.qsMinus = atQs.pdfRev * qs.toPrevArea;
+    j.haveKnown = true;
+    return j;
 }
 
 namespace {
@@ -123,21 +159,38 @@ inline float remapDelta(float f) { return f != 0 ? f : 1.0f; }
 
 // Another strategy's weight relative to this one's, from the ratio r of their densities
 // (uniform: each strategy counts once). For all three heuristics the term of a product is
-// the product of the terms (1 = 1 x 1 for uniform), so sums along a path factor.
-double misTerm(MisHeuristic h, float r) {
-    if (h == MisHeuristic::Uniform) return 1.0;
-    return h == MisHeuristic::Power ? double(r) * r : double(r);
+// the product of the terms (1 = 1 x 1 for uniform), so sums along a path factor. The
+// heuristic is a template parameter: weights are the innermost loop of BDPT.
+template <MisHeuristic H>
+double misTerm(float pdfRev, float pdfFwd) {
+    if constexpr (H == MisHeuristic::Uniform) return 1.0;
+    double r = double(remapDelta(pdfRev)) / remapDelta(pdfFwd);
+    if constexpr (H == MisHeuristic::Power) return r * r;
+    return r;
 }
 
 // One step of the running sums (see MisPrefixes): vertex m's exchanged density ratio times
 // (whether a connection could sample vertex m, plus the sum up to m - 1).
-double cameraPrefixStep(MisHeuristic h, const PathVertex* camera, int m, double before) {
+template <MisHeuristic H>
+double cameraPrefixStep(const PathVertex* camera, int m, double before) {
     bool valid = !camera[m].delta && !camera[m - 1].delta;
-    return misTerm(h, remapDelta(camera[m].pdfRev) / remapDelta(camera[m].pdfFwd)) * ((valid ? 1 : 0) + before);
+    return misTerm<H>(camera[m].pdfRev, camera[m].pdfFwd) * ((valid ? 1 : 0) + before);
 }
-double lightPrefixStep(MisHeuristic h, const PathVertex* light, int m, double before) {
+template <MisHeuristic H>
+double lightPrefixStep(const PathVertex* light, int m, double before) {
     bool valid = !light[m].delta && !(m > 0 ? light[m - 1].delta : light[0].isDeltaLight());
-    return misTerm(h, remapDelta(light[m].pdfRev) / remapDelta(light[m].pdfFwd)) * ((valid ? 1 : 0) + before);
+    return misTerm<H>(light[m].pdfRev, light[m].pdfFwd) * ((valid ? 1 : 0) + before);
+}
+
+// Calls f with the heuristic as a compile-time constant.
+template <typename F>
+auto withHeuristic(MisHeuristic h, F&& f) {
+    switch (h) {
+        case MisHeuristic::Balance: return f(std::integral_constant<MisHeuristic, MisHeuristic::Balance>{});
+        case MisHeuristic::Uniform: return f(std::integral_constant<MisHeuristic, MisHeuristic::Uniform>{});
+        case MisHeuristic::Power: break;
+    }
+    return f(std::integral_constant<MisHeuristic, MisHeuristic::Power>{});
 }
 
 }  // namespace
@@ -146,9 +199,12 @@ BDPTIntegrator::MisPrefixes BDPTIntegrator::misPrefixes(const PathVertex* light,
                                                         int nCamera, ScratchBuffer& scratch) const {
     auto* cam = static_cast<double*>(scratch.allocBytes(sizeof(double) * size_t(std::max(nCamera, 1)), alignof(double)));
     auto* lig = static_cast<double*>(scratch.allocBytes(sizeof(double) * size_t(std::max(nLight, 1)), alignof(double)));
-    cam[0] = 0;
-    for (int m = 1; m <= nCamera - 2; ++m) cam[m] = cameraPrefixStep(heuristic_, camera, m, cam[m - 1]);
-    for (int m = 0; m <= nLight - 2; ++m) lig[m] = lightPrefixStep(heuristic_, light, m, m > 0 ? lig[m - 1] : 0.0);
+    withHeuristic(heuristic_, [&](auto h) {
+        constexpr MisHeuristic H = decltype(h)::value;
+        cam[0] = 0;
+        for (int m = 1; m <= nCamera - 2; ++m) cam[m] = cameraPrefixStep<H>(camera, m, cam[m - 1]);
+        for (int m = 0; m <= nLight - 2; ++m) lig[m] = lightPrefixStep<H>(light, m, m > 0 ? lig[m - 1] : 0.0);
+    });
     return {cam, lig};
 }
 
@@ -179,38 +235,41 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
         if (qsMinus) rev.qsMinus = paths_.pdf(*qs, pt, *qsMinus, true);
     }
 
-    // Beyond the two vertices at each side of the join, each side contributes its running
-    // sum: from the prefixes, or walked here.
-    double cameraTail = 0, lightTail = 0;
-    if (t >= 4 && prefixes) cameraTail = prefixes->camera[t - 3];
-    if (t >= 4 && !prefixes)
-        for (int m = 1; m <= t - 3; ++m) cameraTail = cameraPrefixStep(heuristic_, camera, m, cameraTail);
-    if (s >= 3 && prefixes) lightTail = prefixes->light[s - 3];
-    if (s >= 3 && !prefixes)
-        for (int m = 0; m <= s - 3; ++m) lightTail = lightPrefixStep(heuristic_, light, m, lightTail);
-    // The join's own vertices take this connection's densities, and were reached by a
-    // deterministic connection, not a specular bounce.
-    auto term = [&](float pdfRev, float pdfFwd) { return misTerm(heuristic_, remapDelta(pdfRev) / remapDelta(pdfFwd)); };
-    double sum = 0;
-    if (t >= 2) {
-        double inner = 0;
-        if (t >= 3) {
-            bool valid = !camera[t - 2].delta && !camera[t - 3].delta;
-            inner = term(rev.ptMinus, camera[t - 2].pdfFwd) * ((valid ? 1 : 0) + cameraTail);
+    double sum = withHeuristic(heuristic_, [&](auto h) {
+        constexpr MisHeuristic H = decltype(h)::value;
+        // Beyond the two vertices at each side of the join, each side contributes its
+        // running sum: from the prefixes, or walked here.
+        double cameraTail = 0, lightTail = 0;
+        if (t >= 4 && prefixes) cameraTail = prefixes->camera[t - 3];
+        if (t >= 4 && !prefixes)
+            for (int m = 1; m <= t - 3; ++m) cameraTail = cameraPrefixStep<H>(camera, m, cameraTail);
+        if (s >= 3 && prefixes) lightTail = prefixes->light[s - 3];
+        if (s >= 3 && !prefixes)
+            for (int m = 0; m <= s - 3; ++m) lightTail = lightPrefixStep<H>(light, m, lightTail);
+        // The join's own vertices take this connection's densities, and were reached by a
+        // deterministic connection, not a specular bounce.
+        double total = 0;
+        if (t >= 2) {
+            double inner = 0;
+            if (t >= 3) {
+                bool valid = !camera[t - 2].delta && !camera[t - 3].delta;
+                inner = misTerm<H>(rev.ptMinus, camera[t - 2].pdfFwd) * ((valid ? 1 : 0) + cameraTail);
+            }
+            total += misTerm<H>(rev.pt, pt->pdfFwd) * ((camera[t - 2].delta ? 0 : 1) + inner);
         }
-        sum += term(rev.pt, pt->pdfFwd) * ((camera[t - 2].delta ? 0 : 1) + inner);
-    }
-    if (s >= 1) {
-        double inner = 0;
-        if (s >= 2) {
-            bool valid = !light[s - 2].delta && !(s >= 3 ? light[s - 3].delta : light[0].isDeltaLight());
-            inner = term(rev.qsMinus, light[s - 2].pdfFwd) * ((valid ? 1 : 0) + lightTail);
+        if (s >= 1) {
+            double inner = 0;
+            if (s >= 2) {
+                bool valid = !light[s - 2].delta && !(s >= 3 ? light[s - 3].delta : light[0].isDeltaLight());
+                inner = misTerm<H>(rev.qsMinus, light[s - 2].pdfFwd) * ((valid ? 1 : 0) + lightTail);
+            }
+            bool valid = s >= 2 ? !light[s - 2].delta : !qs->isDeltaLight();
+            total += misTerm<H>(rev.qs, qs->pdfFwd) * ((valid ? 1 : 0) + inner);
         }
-        bool valid = s >= 2 ? !light[s - 2].delta : !qs->isDeltaLight();
-        sum += term(rev.qs, qs->pdfFwd) * ((valid ? 1 : 0) + inner);
-    }
+        return total;
+    });
     if (!std::isfinite(sum)) return 0;
-    return float(1 / (1 + sum));
+    return 1.0f / float(1 + sum);
 }
 
 void BDPTIntegrator::recordStrategies(int maxDepth) {
@@ -253,6 +312,8 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
             // (1,1) would see a light through the lens by sampling both ends; the camera
             // ray finding the light (0,2) covers those paths with weight 1.
             if ((s == 1 && t == 1) || depth < 0 || depth > maxDepth) continue;
+            // Most camera vertices emit nothing: skip the call for the s = 0 strategy.
+            if (s == 0 && !camera[t - 1].isLight()) continue;
             Connection c = connect(light, camera, s, t, sampler, ctx.stats, true, &prefixes, &ctx);
             if (c.L.isBlack()) continue;
             Spectrum contribution = c.L * c.weight;

@@ -4,6 +4,7 @@
 // other pixels and are splatted.
 #pragma once
 #include <memory>
+#include <optional>
 #include "transport/integrator.h"
 #include "transport/strategy_images.h"
 #include "transport/subpaths.h"
@@ -73,6 +74,23 @@ public:
 private:
     template <typename S>
     Spectrum estimate(const Ray& ray, S& sampler, SampleContext& ctx) const;
+
+    // One strategy's path before weighting: its unweighted contribution (visibility
+    // included), the endpoint densities where its BSDF evaluations gave them, and the
+    // vertex it sampled (s = 1: on a light; t = 1: on the lens, landing at pRaster).
+    struct Join {
+        Spectrum L;
+        EndpointDensities known;
+        bool haveKnown = false;
+        std::optional<PathVertex> sampled;
+        Vec2 pRaster;
+    };
+    Join joinEmitter(const PathVertex* camera, int t) const;
+    template <typename S>
+    Join joinLens(const PathVertex& qs, S& sampler, PathStats& stats, const SampleContext* splatTo) const;
+    template <typename S>
+    Join joinLight(const PathVertex& pt, S& sampler, PathStats& stats) const;
+    Join joinInner(const PathVertex& qs, const PathVertex& pt, PathStats& stats) const;
 
     Subpaths paths_;
     MisHeuristic heuristic_;

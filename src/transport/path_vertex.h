@@ -20,6 +20,8 @@ struct PathVertex {
     bool delta = false;     // scattered by a specular lobe, or a delta light's position
     bool infinite = false;  // at infinity: a light vertex of an infinite or distant light,
                             // or where a camera ray escaped
+    bool nonSpecular = false;  // surfaces: the BxDF has a diffuse or glossy lobe
+    bool flatShading = false;  // surfaces: ns == ng, so the adjoint shading factor is 1
     Spectrum beta;          // throughput of the subpath up to and including this vertex
     Vec3 p;
     Vec3 ng, ns;            // zero for points without a surface (pinhole, point lights)
@@ -43,7 +45,7 @@ struct PathVertex {
         switch (kind) {
             case VertexKind::Camera: return true;
             case VertexKind::Light: return !light || light->type() != LightType::DeltaDirection;
-            case VertexKind::Surface: return bxdf && (bxdf->flags() & (kDiffuse | kGlossy));
+            case VertexKind::Surface: return bxdf && nonSpecular;
         }
         return false;
     }
@@ -59,6 +61,24 @@ inline float areaFactor(const PathVertex& from, const PathVertex& to) {
     if (!(d2 > 0)) return 0;
     float invDist2 = 1 / d2;
     return to.onSurface() ? std::fabs(dot(to.ng, w * std::sqrt(invDist2))) * invDist2 : invDist2;
+}
+// areaFactor(a, b) and areaFactor(b, a) from one distance (a walk needs both at each vertex).
+inline void areaFactors(const PathVertex& a, const PathVertex& b, float* aToB, float* bToA) {
+    if (a.isInfiniteLight() || b.isInfiniteLight()) {
+        *aToB = areaFactor(a, b);
+        *bToA = areaFactor(b, a);
+        return;
+    }
+    Vec3 w = b.p - a.p;
+    float d2 = lengthSquared(w);
+    if (!(d2 > 0)) {
+        *aToB = *bToA = 0;
+        return;
+    }
+    float invDist2 = 1 / d2;
+    Vec3 wn = w * std::sqrt(invDist2);
+    *aToB = b.onSurface() ? std::fabs(dot(b.ng, wn)) * invDist2 : invDist2;
+    *bToA = a.onSurface() ? std::fabs(dot(a.ng, -wn)) * invDist2 : invDist2;
 }
 inline float solidAngleToArea(const PathVertex& from, float pdf, const PathVertex& to) {
     return pdf * areaFactor(from, to);

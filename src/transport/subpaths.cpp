@@ -119,10 +119,13 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
         v.uv = si.uv;
         v.frame = si.shadingFrame();
         v.bxdf = bxdf;
+        v.nonSpecular = (bxdf->flags() & (kDiffuse | kGlossy)) != 0;
+        v.flatShading = si.ns == si.ng;
         v.light = si.areaLight;
         v.beta = beta;
-        v.pdfFwd = solidAngleToArea(prev, pdfFwd, v);
-        v.toPrevArea = areaFactor(v, prev);
+        float toThisArea;
+        areaFactors(prev, v, &toThisArea, &v.toPrevArea);
+        v.pdfFwd = pdfFwd * toThisArea;
         Vec3 woLocal = v.woLocal = v.frame.toLocal(si.wo);
         if (++bounces >= maxVertices) break;
 
@@ -133,7 +136,8 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
         if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) break;
         Vec3 wi = v.frame.toWorld(bs->wi);
         Spectrum weight = bs->f * (absCosTheta(bs->wi) / bs->pdf);
-        if (mode == TransportMode::Importance) weight *= adjointShadingFactor(si.wo, wi, si.ns, si.ng);
+        if (mode == TransportMode::Importance && !v.flatShading)
+            weight *= adjointShadingFactor(si.wo, wi, si.ns, si.ng);
         if (!weight.isFinite()) {
             ++stats.guarded;
             break;
@@ -174,9 +178,12 @@ PS_SUBPATH_WALKS(PaddedSobolSampler)
 PS_SUBPATH_WALKS(IndependentSampler)
 #undef PS_SUBPATH_WALKS
 
-BxDFEval Subpaths::evaluate(const PathVertex& v, Vec3 w) const {
-    BxDFEval e = v.bxdf->evaluate(v.woLocal, v.frame.toLocal(w), v.mode);
-    if (v.mode == TransportMode::Importance) e.f *= adjointShadingFactor(v.wo, w, v.ns, v.ng);
+BxDFEval Subpaths::evaluate(const PathVertex& v, Vec3 w, float* absCosShading) const {
+    Vec3 wLocal = v.frame.toLocal(w);
+    if (absCosShading) *absCosShading = std::fabs(wLocal.z);
+    BxDFEval e = v.bxdf->evaluate(v.woLocal, wLocal, v.mode);
+    // With ns == ng the factor is 1, or 0 only where a cosine the caller multiplies by is 0.
+    if (v.mode == TransportMode::Importance && !v.flatShading) e.f *= adjointShadingFactor(v.wo, w, v.ns, v.ng);
     return e;
 }
 

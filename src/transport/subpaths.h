@@ -35,8 +35,8 @@ public:
     Spectrum f(const PathVertex& v, const PathVertex& next, TransportMode mode) const;
     // Surface vertex v of a walk (bxdf set) seen along unit direction w: f as f() gives it for
     // v's own mode, the solid-angle density of sampling w (pdfFwd) and of sampling back
-    // towards v's previous vertex from w (pdfRev), in one BxDF call.
-    BxDFEval evaluate(const PathVertex& v, Vec3 w) const;
+    // towards v's previous vertex from w (pdfRev), in one BxDF call; and |w.ns|, if asked.
+    BxDFEval evaluate(const PathVertex& v, Vec3 w, float* absCosShading = nullptr) const;
     // Area density at `next` of sampling it from v (prev: the vertex before v in the
     // direction of sampling). `reverse` when sampling against v's own subpath, which uses
     // the adjoint BSDF's density.

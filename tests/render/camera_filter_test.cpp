@@ -58,6 +58,31 @@ TEST(Camera, Orthographic) {
     EXPECT_NEAR(r.d.z, 1.0f, 1e-6f);
 }
 
+// The walk's shortcut for its own first direction (no raster test, no normalisation) must
+// give pdfWe's density, for pinhole and thin lens, under a camera transform that scales
+// directions (so a direction left unnormalised would show).
+TEST(Camera, GeneratedRayDensityMatchesPdfWe) {
+    for (float lensRadius : {0.0f, 0.1f}) {
+        Camera::Params p;
+        p.xRes = 48;
+        p.yRes = 32;
+        p.fovDeg = 50;
+        p.lensRadius = lensRadius;
+        p.focalDistance = 2;
+        p.worldFromCamera = Transform::translate({1, 2, 3}) * Transform::rotate(30, {0, 1, 1}) *
+                            Transform::scale({0.5f, 0.5f, 0.5f});
+        Camera cam(p);
+        Rng rng(11);
+        for (int i = 0; i < 200; ++i) {
+            Ray r = cam.generateRay({{rng.uniform() * 48, rng.uniform() * 32}, {rng.uniform(), rng.uniform()}});
+            float pdfPos, pdfDir;
+            cam.pdfWe(r, &pdfPos, &pdfDir);
+            ASSERT_GT(pdfDir, 0);
+            EXPECT_NEAR(cam.generatedRayPdfDir(r.d), pdfDir, 1e-4f * pdfDir);
+        }
+    }
+}
+
 // Camera samples carry weight f/pdf and pixels divide by the summed weights, so a pixel
 // estimates the filter-weighted mean: sum(w g(x)) / sum(w) -> int f g / int f. Checked for
 // g = x^2 + y^2 against quadrature of f, with the standard error of the ratio estimator.
