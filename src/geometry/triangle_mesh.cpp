@@ -104,15 +104,6 @@ void TriangleMesh::prepareSampling() {
     sampling_ = std::move(data);
 }
 
-Vec3 TriangleMesh::geometricNormal(int prim) const {
-    const unsigned* v = &indices_[3 * prim];
-    Vec3 p0 = loadP(positions_, v[0]), p1 = loadP(positions_, v[1]), p2 = loadP(positions_, v[2]);
-    Vec3 n = cross(p1 - p0, p2 - p0);
-    float l = length(n);
-    n = l > 0 ? n / l : Vec3(0, 0, 1);
-    return flipNormal_ ? -n : n;
-}
-
 // pbrt's default per-triangle parameterisation when a mesh has no uv.
 Vec2 TriangleMesh::uvAt(int vertex, int corner) const {
     if (!uv_.empty()) return uv_[vertex];

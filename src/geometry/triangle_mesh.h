@@ -31,7 +31,7 @@ public:
     void prepareSampling() override;
 
 private:
-    Vec3 geometricNormal(int prim) const;
+    Vec3 geometricNormal(int prim) const { return faceNormal_[prim]; }  // unit, oriented
     Vec2 uvAt(int vertex, int corner) const;
 
     std::vector<float> positions_;  // xyz per vertex plus padding for Embree's SSE loads

@@ -11,19 +11,19 @@ template <typename S>
 BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex* camera, int s, int t, S& sampler,
                                                    PathStats& stats, bool weighted, const MisPrefixes* prefixes,
                                                    const SampleContext* splatTo) const {
-    Join j;
+    Join j;  // filled in place: it holds a whole vertex
     Connection c;
     if (s == 0) {
-        j = joinEmitter(camera, t);
+        joinEmitter(camera, t, j);
     } else if (t > 1 && camera[t - 1].isInfiniteLight()) {
         return c;  // an escaped camera ray is an endpoint only for s = 0
     } else if (t == 1) {
-        j = joinLens(light[s - 1], sampler, stats, splatTo);
+        joinLens(light[s - 1], sampler, stats, splatTo, j);
         c.pRaster = j.pRaster;
     } else if (s == 1) {
-        j = joinLight(camera[t - 1], sampler, stats);
+        joinLight(camera[t - 1], sampler, stats, j);
     } else {
-        j = joinInner(light[s - 1], camera[t - 1], stats);
+        joinInner(light[s - 1], camera[t - 1], stats, j);
     }
     if (j.L.isBlack()) return c;
     if (!j.L.isFinite()) {
@@ -38,21 +38,18 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
 }
 
 // The camera subpath found an emitter on its own (s = 0).
-BDPTIntegrator::Join BDPTIntegrator::joinEmitter(const PathVertex* camera, int t) const {
-    Join j;
+void BDPTIntegrator::joinEmitter(const PathVertex* camera, int t, Join& j) const {
     const PathVertex& pt = camera[t - 1];
     if (pt.isLight()) j.L = paths_.Le(pt, camera[t - 2]) * pt.beta;
-    return j;
 }
 
 // Connect light vertex qs to a sampled lens point, to be splatted (t = 1, thesis §10.2).
 template <typename S>
-BDPTIntegrator::Join BDPTIntegrator::joinLens(const PathVertex& qs, S& sampler, PathStats& stats,
-                                              const SampleContext* splatTo) const {
-    Join j;
-    if (!qs.connectible()) return j;
+void BDPTIntegrator::joinLens(const PathVertex& qs, S& sampler, PathStats& stats, const SampleContext* splatTo,
+                              Join& j) const {
+    if (!qs.connectible()) return;
     auto cs = paths_.scene().camera().sampleWi(qs.p, sampler.get2D());
-    if (!cs) return j;
+    if (!cs) return;
     PathVertex& lens = j.sampled.emplace();
     lens.kind = VertexKind::Camera;
     lens.mode = TransportMode::Radiance;
@@ -75,20 +72,18 @@ BDPTIntegrator::Join BDPTIntegrator::joinLens(const PathVertex& qs, S& sampler, 
         if (splatTo) splatTo->film.prefetchSplat(j.pRaster, splatTo->sampleIndex);
         if (!paths_.visible(qs, lens, stats)) j.L = Spectrum();
     }
-    return j;
 }
 
 // Next-event estimation (s = 1): a light point sampled as seen from camera vertex pt.
 template <typename S>
-BDPTIntegrator::Join BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stats) const {
-    Join j;
-    if (!pt.connectible()) return j;
+void BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stats, Join& j) const {
+    if (!pt.connectible()) return;
     float pmf;
     const Light* lt = paths_.scene().sampleLight(sampler.get1D(), &pmf);
     Vec2 u = sampler.get2D();
-    if (!lt || !(pmf > 0)) return j;
+    if (!lt || !(pmf > 0)) return;
     auto ls = lt->sampleLi(LightSampleContext{pt.p, pt.ng}, u);
-    if (!ls || ls->L.isBlack() || !(ls->pdf > 0)) return j;
+    if (!ls || ls->L.isBlack() || !(ls->pdf > 0)) return;
     PathVertex& lv = j.sampled.emplace();
     lv.kind = VertexKind::Light;
     lv.mode = TransportMode::Importance;
@@ -120,35 +115,32 @@ BDPTIntegrator::Join BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler,
         if (pt.onSurface()) j.L *= std::fabs(dot(ls->wi, pt.ns));
     }
     if (!j.L.isBlack() && !paths_.visible(pt, lv, stats)) j.L = Spectrum();
-    return j;
 }
 
 // Both subpaths contribute a vertex (s, t > 1); join them deterministically. One direction
 // serves both BSDFs, the geometry term and the four densities the weight needs.
-BDPTIntegrator::Join BDPTIntegrator::joinInner(const PathVertex& qs, const PathVertex& pt, PathStats& stats) const {
-    Join j;
-    if (!qs.connectible() || !pt.connectible()) return j;
+void BDPTIntegrator::joinInner(const PathVertex& qs, const PathVertex& pt, PathStats& stats, Join& j) const {
+    if (!qs.connectible() || !pt.connectible()) return;
     Vec3 d = pt.p - qs.p;
     float d2 = lengthSquared(d);
-    if (!(d2 > 0)) return j;
+    if (!(d2 > 0)) return;
     float invDist2 = 1 / d2;
     Vec3 w = d * std::sqrt(invDist2);  // from qs towards pt
     float cosQs, cosPt;
     BxDFEval atQs = paths_.evaluate(qs, w, &cosQs);
-    if (atQs.f.isBlack()) return j;  // often: w leaves qs on the wrong side
+    if (atQs.f.isBlack()) return;  // often: w leaves qs on the wrong side
     BxDFEval atPt = paths_.evaluate(pt, -w, &cosPt);
     float g = cosQs * cosPt * invDist2;
     j.L = qs.beta * atQs.f * atPt.f * pt.beta * g;
     if (j.L.isBlack() || !paths_.visible(qs, pt, stats)) {
         j.L = Spectrum();
-        return j;
+        return;
     }
     j.known.pt = atQs.pdfFwd * std::fabs(dot(pt.ng, w)) * invDist2;
     j.known.qs = atPt.pdfFwd * std::fabs(dot(qs.ng, w)) * invDist2;
     j.known.ptMinus = atPt.pdfRev * pt.toPrevArea;
     j.known.qsMinus = atQs.pdfRev * qs.toPrevArea;
     j.haveKnown = true;
-    return j;
 }
 
 namespace {

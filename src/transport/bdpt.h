@@ -77,7 +77,8 @@ private:
 
     // One strategy's path before weighting: its unweighted contribution (visibility
     // included), the endpoint densities where its BSDF evaluations gave them, and the
-    // vertex it sampled (s = 1: on a light; t = 1: on the lens, landing at pRaster).
+    // vertex it sampled (s = 1: on a light; t = 1: on the lens, landing at pRaster). The
+    // join functions fill a fresh Join and leave L black where the strategy gives nothing.
     struct Join {
         Spectrum L;
         EndpointDensities known;
@@ -85,12 +86,12 @@ private:
         std::optional<PathVertex> sampled;
         Vec2 pRaster;
     };
-    Join joinEmitter(const PathVertex* camera, int t) const;
+    void joinEmitter(const PathVertex* camera, int t, Join& j) const;
     template <typename S>
-    Join joinLens(const PathVertex& qs, S& sampler, PathStats& stats, const SampleContext* splatTo) const;
+    void joinLens(const PathVertex& qs, S& sampler, PathStats& stats, const SampleContext* splatTo, Join& j) const;
     template <typename S>
-    Join joinLight(const PathVertex& pt, S& sampler, PathStats& stats) const;
-    Join joinInner(const PathVertex& qs, const PathVertex& pt, PathStats& stats) const;
+    void joinLight(const PathVertex& pt, S& sampler, PathStats& stats, Join& j) const;
+    void joinInner(const PathVertex& qs, const PathVertex& pt, PathStats& stats, Join& j) const;
 
     Subpaths paths_;
     MisHeuristic heuristic_;

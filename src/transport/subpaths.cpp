@@ -178,15 +178,6 @@ PS_SUBPATH_WALKS(PaddedSobolSampler)
 PS_SUBPATH_WALKS(IndependentSampler)
 #undef PS_SUBPATH_WALKS
 
-BxDFEval Subpaths::evaluate(const PathVertex& v, Vec3 w, float* absCosShading) const {
-    Vec3 wLocal = v.frame.toLocal(w);
-    if (absCosShading) *absCosShading = std::fabs(wLocal.z);
-    BxDFEval e = v.bxdf->evaluate(v.woLocal, wLocal, v.mode);
-    // With ns == ng the factor is 1, or 0 only where a cosine the caller multiplies by is 0.
-    if (v.mode == TransportMode::Importance && !v.flatShading) e.f *= adjointShadingFactor(v.wo, w, v.ns, v.ng);
-    return e;
-}
-
 Spectrum Subpaths::f(const PathVertex& v, const PathVertex& next, TransportMode mode) const {
     if (v.kind != VertexKind::Surface || !v.bxdf) return {};
     Vec3 wi = directionTo(v, next);

@@ -77,4 +77,14 @@ inline float adjointShadingFactor(Vec3 wo, Vec3 wi, Vec3 ns, Vec3 ng) {
     return std::fabs(dot(wo, ns)) * std::fabs(dot(wi, ng)) / denom;
 }
 
+// Inline: called for most connections, from BDPT's translation unit.
+inline BxDFEval Subpaths::evaluate(const PathVertex& v, Vec3 w, float* absCosShading) const {
+    Vec3 wLocal = v.frame.toLocal(w);
+    if (absCosShading) *absCosShading = std::fabs(wLocal.z);
+    BxDFEval e = v.bxdf->evaluate(v.woLocal, wLocal, v.mode);
+    // With ns == ng the factor is 1, or 0 only where a cosine the caller multiplies by is 0.
+    if (v.mode == TransportMode::Importance && !v.flatShading) e.f *= adjointShadingFactor(v.wo, w, v.ns, v.ng);
+    return e;
+}
+
 }  // namespace ps
