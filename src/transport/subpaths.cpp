@@ -82,7 +82,13 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
     int bounces = 0, passThroughs = 0;
     Spectrum scatter(1.0f);  // the walk's own throughput, for Russian roulette
     float etaScale = 1;
+    bool haveU = false;
+    Vec2 u;
     while (true) {
+        // The next direction sample does not depend on the hit: drawn before the ray is
+        // traced, the sampler's hashing overlaps the traversal instead of following it.
+        if (!haveU) u = sampler.get2D();
+        haveU = true;
         SurfaceInteraction si;
         ++stats.rays;
         PathVertex& prev = path[bounces - 1];
@@ -131,8 +137,8 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
 
         if (woLocal.z == 0) break;
         float uc = bxdf->usesLobeSample() ? sampler.get1D() : 0.5f;
-        Vec2 u = sampler.get2D();
         auto bs = bxdf->sample(woLocal, uc, u, mode);
+        haveU = false;
         if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) break;
         Vec3 wi = v.frame.toWorld(bs->wi);
         Spectrum weight = bs->f * (absCosTheta(bs->wi) / bs->pdf);

@@ -1,18 +1,22 @@
 // Agreement with pbrt-v4 itself: the shared reference renders (../shared/refs, made by pbrt-v4
 // at high sample counts) against our renders of the same scene files. Region means (16x16
 // pixel blocks) must agree within 4 standard errors, measured from the spread of K
-// independent renders, plus an allowance for pbrt-v4's spectral rendering of saturated
+// independent renders and from the reference's fireflies (see referenceFireflyError), plus an allowance for pbrt-v4's spectral rendering of saturated
 // colours that was measured and is documented in the README (largest measured differences
 // beyond 4 sigma, relative to block + image mean, Cornell box: R 0.047, G 0.013, B 0.105;
 // veach-mis: R 0.018, G 0.005, B 0.002; allowances are those plus a third or more).
 // veach-bidir and caustic-glass are pbrt-v4's BDPT references, rendered here by our BDPT:
-// veach-bidir's image means agree within 0.06%, blocks within 0.019 beyond 4 sigma
-// (allowance 0.03, which also covers the 512-spp reference's own noise). caustic-glass
+// veach-bidir's image means agree within 0.5% and blocks within 0.001 beyond 4 sigma
+// (allowance 0.03); its 512-spp reference has fireflies (the glass egg's block mean, 0.60,
+// is two thirds one splatted path; ours without it 0.21), which referenceFireflyError
+// measures. caustic-glass
 // comes out 1.8% darker in every channel (blocks within 0.021 beyond 4 sigma; allowance
 // 0.035); our path tracer shows the same offset in the regions it can render (the spot
 // light's blackbody spectrum and the coated-diffuse floor as RGB), so it is not BDPT's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "image/image.h"
@@ -23,6 +27,36 @@ using namespace ps::test;
 namespace fs = std::filesystem;
 
 namespace {
+
+// A pixel's excess over the median of its 3x3 neighbourhood in channel c: isolated bright
+// pixels and small clusters (a splatted firefly covers 2x2), but also thin features and corners.
+double excessOverMedian(const Image& img, int x, int y, int c) {
+    float nb[9];
+    int n = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+            nb[n++] = img.get(std::clamp(x + dx, 0, img.width - 1), std::clamp(y + dy, 0, img.height - 1))[c];
+    std::nth_element(nb, nb + 4, nb + 9);
+    return std::max(0.0, double(img.get(x, y)[c]) - nb[4]);
+}
+
+// The reference's own noise in a block mean, from its fireflies: the excess of each reference
+// pixel over its neighbourhood beyond the excess our averaged renders have at the same pixel
+// (features of the image, thin lines and small lights, stand out in both and cancel),
+// summed in quadrature over the block and divided by the pixel count. Converged blocks get
+// almost nothing; a block whose mean is carried by one or two rare paths of the reference's
+// renderer (veach-bidir's glass egg: camera paths that reach the spotlight through the glass,
+// E S S D S S L, sampled only by rare hits) gets an uncertainty the size of those paths, which
+// its mean really has.
+double referenceFireflyError(const Image& ref, const Image& ours, int x0, int x1, int y0, int y1, int c) {
+    double sum2 = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            double e = std::max(0.0, excessOverMedian(ref, x, y, c) - excessOverMedian(ours, x, y, c));
+            sum2 += e * e;
+        }
+    return std::sqrt(sum2) / double((x1 - x0) * (y1 - y0));
+}
 
 struct Reference {
     const char* scene;
@@ -49,7 +83,9 @@ TEST_P(PbrtReference, BlockMeansAgree) {
 
     const int B = 16, bw = pbrt.width / B, bh = pbrt.height / B;
     const int K = ref.renders;
-    std::vector<double> sum(size_t(bw) * bh * 3, 0.0), sum2(sum.size(), 0.0), refMean(sum.size(), 0.0);
+    std::vector<double> sum(size_t(bw) * bh * 3, 0.0), sum2(sum.size(), 0.0), refMean(sum.size(), 0.0),
+        refErr(sum.size(), 0.0);
+    Image oursMean(pbrt.width, pbrt.height);
     for (int k = 0; k < K; ++k) {
         RenderOptions opts;
         opts.spp = ref.spp;
@@ -57,6 +93,7 @@ TEST_P(PbrtReference, BlockMeansAgree) {
         opts.sampler = scene->settings().sampler;
         opts.progress = false;
         RenderResult r = render(*scene, *integrator, opts);
+        for (size_t p = 0; p < oursMean.rgb.size(); ++p) oursMean.rgb[p] += r.image.rgb[p] / float(K);
         for (int by = 0; by < bh; ++by)
             for (int bx = 0; bx < bw; ++bx) {
                 RegionStats s = regionStats(r.image, bx * B, bx * B + B, by * B, by * B + B);
@@ -73,17 +110,21 @@ TEST_P(PbrtReference, BlockMeansAgree) {
             RegionStats s = regionStats(pbrt, bx * B, bx * B + B, by * B, by * B + B);
             for (int c = 0; c < 3; ++c) {
                 refMean[(size_t(by) * bw + bx) * 3 + c] = s.mean[c];
+                refErr[(size_t(by) * bw + bx) * 3 + c] = referenceFireflyError(pbrt, oursMean, bx * B, bx * B + B, by * B, by * B + B, c);
                 imageMean[c] += s.mean[c] / (bw * bh);
             }
         }
     int failures = 0, checked = 0, failuresPerChannel[3] = {0, 0, 0};
-    double oursTotal[3] = {0, 0, 0}, worstPerChannel[3] = {0, 0, 0};
+    double oursTotal[3] = {0, 0, 0}, worstPerChannel[3] = {0, 0, 0}, worstRefErr = 0;
+    int widened = 0;  // blocks x channels where the reference's fireflies dominate the error
     for (size_t i = 0; i < sum.size(); ++i) {
         int c = int(i % 3);
         double mean = sum[i] / K;
         oursTotal[c] += mean / (bw * bh);
         double var = std::max(0.0, (sum2[i] / K - mean * mean) * K / (K - 1));
-        double se = std::sqrt(var / K);
+        if (refErr[i] * refErr[i] > var / K) ++widened;
+        double se = std::sqrt(var / K + refErr[i] * refErr[i]);
+        worstRefErr = std::max(worstRefErr, refErr[i] / (refMean[i] + 1e-3));
         double r = refMean[i];
         ++checked;
         // The spectral allowance scales with the block and with the image's mean level, so
@@ -103,7 +144,9 @@ TEST_P(PbrtReference, BlockMeansAgree) {
                     "to (block + image mean) %.4f; blocks outside tolerance %d\n",
                     c, oursTotal[c], imageMean[c], oursTotal[c] / imageMean[c], worstPerChannel[c], failuresPerChannel[c]);
     }
-    std::printf("  %d blocks x channels checked, outside tolerance: %d\n", checked, failures);
+    std::printf("  %d blocks x channels checked, outside tolerance: %d; the reference's fireflies dominate the error "
+                "in %d (largest relative to its block %.3f)\n",
+                checked, failures, widened, worstRefErr);
     EXPECT_EQ(failures, 0);
 }
 
