@@ -286,8 +286,10 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
     };
     PathVertex* camera = allocPath(paths_.maxCameraVertices());
     PathVertex* light = allocPath(paths_.maxLightVertices());
+    // The light subpath's origin first: its sampling then overlaps the camera walk.
+    const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, ctx.stats, light);
     int nCamera = paths_.cameraSubpath(ray, sampler, scratch, ctx.stats, camera);
-    int nLight = paths_.lightSubpath(sampler, scratch, ctx.stats, light);
+    int nLight = paths_.continueLightSubpath(origin, sampler, scratch, ctx.stats, light);
     const MisPrefixes prefixes = misPrefixes(light, nLight, camera, nCamera, scratch);
 
     Spectrum L;

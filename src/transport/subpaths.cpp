@@ -34,15 +34,22 @@ int Subpaths::cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, 
 
 template <typename S>
 int Subpaths::lightSubpath(S& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const {
+    LightOrigin origin = lightOrigin(sampler, stats, path);
+    return continueLightSubpath(origin, sampler, scratch, stats, path);
+}
+
+template <typename S>
+Subpaths::LightOrigin Subpaths::lightOrigin(S& sampler, PathStats& stats, PathVertex* path) const {
+    LightOrigin o;
     ++stats.lightPaths;
     float uLight = sampler.get1D();
     Vec2 uPos = sampler.get2D();
     Vec2 uDir = sampler.get2D();
     float pmf;
     const Light* light = scene_.sampleLight(uLight, &pmf);
-    if (!light || !(pmf > 0)) return 0;
+    if (!light || !(pmf > 0)) return o;
     auto les = light->sampleLe(uPos, uDir);
-    if (!les || !(les->pdfPos > 0) || !(les->pdfDir > 0) || les->L.isBlack()) return 0;
+    if (!les || !(les->pdfPos > 0) || !(les->pdfDir > 0) || les->L.isBlack()) return o;
 
     PathVertex& v = path[0];
     resetVertex(v);
@@ -55,22 +62,34 @@ int Subpaths::lightSubpath(S& sampler, ScratchBuffer& scratch, PathStats& stats,
     v.beta = les->L;
     v.pdfFwd = pmf * les->pdfPos;
     float cosLight = v.onSurface() ? std::fabs(dot(les->n, les->ray.d)) : 1.0f;
-    Spectrum beta = les->L * (cosLight / (pmf * les->pdfPos * les->pdfDir));
-    if (!beta.isFinite()) {
+    o.beta = les->L * (cosLight / (pmf * les->pdfPos * les->pdfDir));
+    if (!o.beta.isFinite()) {
         ++stats.guarded;
-        return 0;
+        return o;
     }
-    Ray ray = v.onSurface() ? spawnRay(les->ray.o, les->n, les->ray.d) : les->ray;
-    int n = randomWalk(ray, beta, les->pdfDir, sampler, scratch, stats, path + 1, maxLightVertices() - 1,
+    o.ray = v.onSurface() ? spawnRay(les->ray.o, les->n, les->ray.d) : les->ray;
+    o.direction = les->ray.d;
+    o.pdfPos = les->pdfPos;
+    o.pdfDir = les->pdfDir;
+    o.valid = true;
+    return o;
+}
+
+template <typename S>
+int Subpaths::continueLightSubpath(const LightOrigin& o, S& sampler, ScratchBuffer& scratch, PathStats& stats,
+                                   PathVertex* path) const {
+    if (!o.valid) return 0;
+    PathVertex& v = path[0];
+    int n = randomWalk(o.ray, o.beta, o.pdfDir, sampler, scratch, stats, path + 1, maxLightVertices() - 1,
                        TransportMode::Importance);
     // From a disk at infinity the second vertex's density is the disk's area density
     // projected onto its surface, and the first is the directional density (thesis §10.2).
     if (v.infinite) {
         if (n > 0) {
-            path[1].pdfFwd = les->pdfPos;
-            if (path[1].onSurface()) path[1].pdfFwd *= std::fabs(dot(les->ray.d, path[1].ng));
+            path[1].pdfFwd = o.pdfPos;
+            if (path[1].onSurface()) path[1].pdfFwd *= std::fabs(dot(o.direction, path[1].ng));
         }
-        v.pdfFwd = infiniteLightDensity(-les->ray.d);
+        v.pdfFwd = infiniteLightDensity(-o.direction);
     }
     return 1 + n;
 }
@@ -178,7 +197,10 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
 
 #define PS_SUBPATH_WALKS(S)                                                                                  \
     template int Subpaths::cameraSubpath<S>(const Ray&, S&, ScratchBuffer&, PathStats&, PathVertex*) const;     \
-    template int Subpaths::lightSubpath<S>(S&, ScratchBuffer&, PathStats&, PathVertex*) const;
+    template int Subpaths::lightSubpath<S>(S&, ScratchBuffer&, PathStats&, PathVertex*) const;                 \
+    template Subpaths::LightOrigin Subpaths::lightOrigin<S>(S&, PathStats&, PathVertex*) const;                 \
+    template int Subpaths::continueLightSubpath<S>(const LightOrigin&, S&, ScratchBuffer&, PathStats&,          \
+                                                   PathVertex*) const;
 PS_SUBPATH_WALKS(Sampler)
 PS_SUBPATH_WALKS(PaddedSobolSampler)
 PS_SUBPATH_WALKS(IndependentSampler)

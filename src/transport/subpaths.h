@@ -29,6 +29,21 @@ public:
     // Vertex 0 on a light chosen by power, then the walk; returns the number of vertices.
     template <typename S>
     int lightSubpath(S& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const;
+    // lightSubpath in two steps: the emitted ray (vertex 0 written to path[0]), then the walk.
+    // BDPT samples the origin before tracing its camera subpath, so that the emission
+    // sampling's latency overlaps that walk (only the order of sample dimensions changes).
+    struct LightOrigin {
+        bool valid = false;  // false: no light subpath (no light, or nothing emitted)
+        Ray ray;             // the first ray, offset from the light's surface
+        Vec3 direction;      // its unit direction
+        Spectrum beta;       // throughput after the first segment's emission factors
+        float pdfPos = 0, pdfDir = 0;  // sampleLe's densities
+    };
+    template <typename S>
+    LightOrigin lightOrigin(S& sampler, PathStats& stats, PathVertex* path) const;
+    template <typename S>
+    int continueLightSubpath(const LightOrigin& origin, S& sampler, ScratchBuffer& scratch, PathStats& stats,
+                             PathVertex* path) const;
 
     // The BSDF at surface vertex v for light between v.wo and the direction to `next`,
     // including the adjoint shading-normal factor under importance transport.
