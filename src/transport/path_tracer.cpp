@@ -4,11 +4,8 @@
 
 namespace ps {
 
-template <typename S>
 Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
-                                  S& sampler, PathStats& stats) const {
-    float uLight = sampler.get1D();
-    Vec2 u = sampler.get2D();
+                                  float uLight, Vec2 u, PathStats& stats) const {
     float pmf;
     const Light* light = scene_.sampleLight(uLight, &pmf);
     if (!light || !(pmf > 0)) return {};
@@ -41,7 +38,18 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
     LightSampleContext prevCtx;
     ++stats.cameraPaths;
 
+    bool haveSamples = false;
+    float uLight = 0;
+    Vec2 uLightPoint, uBsdf;
     while (true) {
+        // This vertex's light and BSDF samples do not depend on the hit: drawn before the ray
+        // is traced, the sampler's hashing overlaps the traversal instead of following it.
+        if (!haveSamples) {
+            uBsdf = sampler.get2D();
+            uLight = sampler.get1D();
+            uLightPoint = sampler.get2D();
+            haveSamples = true;
+        }
         SurfaceInteraction si;
         ++stats.rays;
         if (!scene_.intersect(ray, si)) {
@@ -83,12 +91,13 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
         Frame frame = si.shadingFrame();
         Vec3 woLocal = frame.toLocal(si.wo);
         if (woLocal.z == 0) break;
-        uint8_t flags = bxdf->flags();
-        if (flags & (kDiffuse | kGlossy)) L += beta * sampleDirect(si, frame, *bxdf, woLocal, sampler, stats);
-
+        // The next direction first, so that the next ray does not wait behind the shadow ray.
         float uc = bxdf->usesLobeSample() ? sampler.get1D() : 0.5f;
-        Vec2 u = sampler.get2D();
-        auto bs = bxdf->sample(woLocal, uc, u, TransportMode::Radiance);
+        auto bs = bxdf->sample(woLocal, uc, uBsdf, TransportMode::Radiance);
+        haveSamples = false;
+        uint8_t flags = bxdf->flags();
+        if (flags & (kDiffuse | kGlossy))
+            L += beta * sampleDirect(si, frame, *bxdf, woLocal, uLight, uLightPoint, stats);
         if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) break;
         Vec3 wi = frame.toWorld(bs->wi);
         Spectrum weight = bs->f * (absCosTheta(bs->wi) / bs->pdf);

@@ -15,10 +15,10 @@ private:
     // The estimator, instantiated per concrete sampler so its calls inline on the hot path.
     template <typename S>
     Spectrum estimate(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats) const;
-    // Direct lighting at a surface by one light sample, MIS-weighted against BSDF sampling.
-    template <typename S>
+    // Direct lighting at a surface by one light sample (uLight picks the light, u the point on
+    // it), MIS-weighted against BSDF sampling.
     Spectrum sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
-                          S& sampler, PathStats& stats) const;
+                          float uLight, Vec2 u, PathStats& stats) const;
 
     const Scene& scene_;
     int maxDepth_;
