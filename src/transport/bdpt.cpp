@@ -60,8 +60,10 @@ void BDPTIntegrator::joinLens(const PathVertex& qs, S& sampler, PathStats& stats
         float cosQs;
         BxDFEval e = paths_.evaluate(qs, cs->wi, &cosQs);
         j.L = qs.beta * e.f * lens.beta * cosQs;
-        j.known.pt = e.pdfFwd * areaFactor(qs, lens);
-        j.known.qs = cs->pdfDir * areaFactor(lens, qs);
+        float toLens, toQs;
+        areaFactors(qs, lens, &toLens, &toQs);
+        j.known.pt = e.pdfFwd * toLens;
+        j.known.qs = cs->pdfDir * toQs;
         j.known.qsMinus = e.pdfRev * qs.toPrevArea;
         j.haveKnown = true;
     } else {
