@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@ struct AgreementCase {
     std::vector<std::string> integrators;  // the first is compared with each other one
     int spp;
     int renders = 16;
+    std::map<std::string, int> sppOf = {};  // per-integrator spp where one needs more than `spp`
 };
 
 // The smallest uniform relative difference the pooled test must be able to detect.
@@ -35,8 +37,10 @@ constexpr int kAgreementBlocks = 4;
 
 inline void expectAgreement(const AgreementCase& c) {
     std::vector<BlockMeans> results;
-    for (const std::string& integ : c.integrators)
-        results.push_back(blockMeans(c.scene, integ, c.spp, c.renders, kAgreementBlocks));
+    for (const std::string& integ : c.integrators) {
+        auto own = c.sppOf.find(integ);
+        results.push_back(blockMeans(c.scene, integ, own == c.sppOf.end() ? c.spp : own->second, c.renders, kAgreementBlocks));
+    }
     const BlockMeans& a = results[0];
     ASSERT_GT(a.imageMean, 0.01) << c.name << ": the scene must be lit";
     for (size_t k = 1; k < results.size(); ++k) {

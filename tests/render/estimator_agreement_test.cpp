@@ -69,7 +69,7 @@ TEST(EstimatorAgreement, GlassSphereCaustic) {
           Shape "sphere" "float radius" [ 0.5 ]
         AttributeEnd
     )";
-    expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", "light", "path"}, 64});
+    expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", "light", "path"}, 384, 16, {{"light", 768}, {"path", 832}}});
 }
 
 TEST(EstimatorAgreement, GlossyConductor) {
@@ -84,7 +84,7 @@ TEST(EstimatorAgreement, AreaLightSeenInMirror) {
     expectAgreement(AgreementCase{"mirror", box(R"(
         Material "conductor" "rgb reflectance" [ 0.9 0.9 0.9 ] "float roughness" [ 0 ]
         Shape "bilinearmesh" "point3 P" [ -0.45 0.01 0.3   0.45 0.01 0.3   -0.45 0.01 -0.45   0.45 0.01 -0.45 ]
-    )"), {"path", "bdpt"}, 16});
+    )"), {"path", "bdpt"}, 32});
 }
 
 // The environment is seen directly at the image's top: path tracing against BDPT; light
@@ -106,7 +106,7 @@ TEST(EstimatorAgreement, EnvironmentLitObject) {
     )";
     };
     expectAgreement(AgreementCase{"environment (side)", scene("LookAt 0 0.6 3  0 0.4 0  0 1 0"), {"path", "bdpt"}, 16});
-    expectAgreement(AgreementCase{"environment (above)", scene("LookAt 0 3 0.01  0 0 0  0 1 0"), {"path", "light", "bdpt"}, 16});
+    expectAgreement(AgreementCase{"environment (above)", scene("LookAt 0 3 0.01  0 0 0  0 1 0"), {"path", "light", "bdpt"}, 16, 16, {{"light", 224}}});
 }
 
 TEST(EstimatorAgreement, PointAndSpotLights) {
@@ -117,7 +117,7 @@ TEST(EstimatorAgreement, PointAndSpotLights) {
     expectAgreement(AgreementCase{"point and spot", box(R"(
         Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ]
         Shape "sphere" "float radius" [ 0.2 ]
-    )", "5", lights), {"path", "light", "bdpt"}, 16});
+    )", "5", lights), {"path", "light", "bdpt"}, 32});
 }
 
 // Non-symmetric scattering (thesis ch. 5): a coarse octahedron with smooth vertex normals
@@ -150,5 +150,5 @@ TEST(EstimatorAgreement, SmoothNormalsAndRefractiveSlab) {
             "normal N" [ 1 0 0  -1 0 0  0 1 0  0 -1 0  0 0 1  0 0 -1 ]
             "integer indices" [ 0 2 4  2 1 4  1 3 4  3 0 4  2 0 5  1 2 5  3 1 5  0 3 5 ]
     )";
-    expectAgreement(AgreementCase{"smooth normals, slab", scene, {"path", "light", "bdpt"}, 64});
+    expectAgreement(AgreementCase{"smooth normals, slab", scene, {"path", "light", "bdpt"}, 1024, 16, {{"light", 1536}, {"bdpt", 768}}});
 }
