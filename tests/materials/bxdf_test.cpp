@@ -115,6 +115,8 @@ class Sampling : public ::testing::TestWithParam<Case> {};       // chi-square c
 
 // E[f |cos| / pdf] over sampled directions = directional albedo: <= 1 always, = 1 when no
 // energy is absorbed. Importance mode leaves out the radiance scaling of refraction.
+// bxdf_reference_test.cpp anchors the values of the rough and coated lobes against an
+// independent reference.
 TEST_P(Furnace, ImportanceSampledAlbedo) {
     const Case& c = GetParam();
     auto b = c.make();

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -87,14 +88,24 @@ TEST(Spectra, NamedSpectra) {
     auto cuEta = namedSpectrumToRGB("metal-Cu-eta", SpectrumKind::Unbounded);
     auto cuK = namedSpectrumToRGB("metal-Cu-k", SpectrumKind::Unbounded);
     ASSERT_TRUE(cuEta && cuK);
-    expectRGB(*cuEta, 0.2004f, 0.9240f, 1.1022f, 1e-3);
-    expectRGB(*cuK, 3.9129f, 2.4528f, 2.1422f, 1e-3);
+    // Not our own output: the RGB reduction of measured copper published with the Tungsten
+    // renderer (B. Bitterli, src/core/bsdfs/ComplexIorData.hpp, entry "Cu"), which pbrt-v4
+    // has no equivalent of (it evaluates its eta(lambda), k(lambda) curves per wavelength).
+    expectRGB(*cuEta, 0.2004377f, 0.9240334f, 1.1022120f, 1e-5);
+    expectRGB(*cuK, 3.9129485f, 2.4528477f, 2.1421880f, 1e-5);
     for (const char* m : {"Ag", "Al", "Au", "Cu", "CuZn", "MgO", "TiO2"})
         for (const char* part : {"-eta", "-k"})
             EXPECT_TRUE(namedSpectrumToRGB(std::string("metal-") + m + part, SpectrumKind::Unbounded).has_value()) << m << part;
     auto bk7 = namedSpectrumToRGB("glass-BK7", SpectrumKind::Unbounded);
     ASSERT_TRUE(bk7);
-    expectRGB(*bk7, 1.5168f, 1.5168f, 1.5168f, 1e-4);
+    // Schott's Sellmeier formula for N-BK7 (catalogue coefficients) at the helium d line,
+    // 587.5618 nm: the catalogue's n_d = 1.5168.
+    const double B[3] = {1.03961212, 0.231792344, 1.01046945}, C[3] = {0.00600069867, 0.0200179144, 103.560653};
+    const double l2 = 0.5875618 * 0.5875618;  // micrometres squared
+    double n2 = 1;
+    for (int i = 0; i < 3; ++i) n2 += B[i] * l2 / (l2 - C[i]);
+    const float nd = float(std::sqrt(n2));
+    expectRGB(*bk7, nd, nd, nd, 1e-4);
     for (const char* g : {"glass-BAF10", "glass-FK51A", "glass-LASF9", "glass-F5", "glass-F10", "glass-F11"}) {
         auto s = namedSpectrumToRGB(g, SpectrumKind::Unbounded);
         ASSERT_TRUE(s) << g;
