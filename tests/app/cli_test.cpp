@@ -1,16 +1,14 @@
-// End-to-end tests of the pathspace command: exit codes, outputs, statistics, early stops.
+// End-to-end tests of the pathspace command: exit codes, outputs, statistics, options.
+// (Early stops: interrupt_test.cpp.)
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <sys/wait.h>
-#include <thread>
-#include <unistd.h>
 #include <vector>
 
 #include "image/image.h"
@@ -23,40 +21,7 @@ namespace {
 using ps::test::Result;
 Result run(const std::string& args) { return ps::test::runPathspace(args); }
 
-// Starts `pathspace ARGS`, sends it SIGINT after 1.5 s and returns its exit status (-1 if it
-// did not exit normally, -2 if it could not be started).
-int interruptedRun(const std::vector<std::string>& args) {
-    std::vector<char*> argv{const_cast<char*>(PATHSPACE_BINARY)};
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    pid_t pid = fork();
-    if (pid < 0) return -2;
-    if (pid == 0) {
-        execv(PATHSPACE_BINARY, argv.data());
-        _exit(127);
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-    kill(pid, SIGINT);
-    int st = 0;
-    waitpid(pid, &st, 0);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-
-class Cli : public ::testing::Test {
-protected:
-    void SetUp() override {
-        dir = fs::temp_directory_path() / ("pathspace-cli-" + std::to_string(getpid()) + "-" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
-    std::string write(const std::string& name, const std::string& text) {
-        fs::path p = dir / name;
-        std::ofstream(p) << text;
-        return p.string();
-    }
-    fs::path dir;
-};
+class Cli : public ps::test::CliDirTest {};
 
 const char* kSmallScene = R"(LookAt 0 0 5  0 0 0  0 1 0
 Camera "perspective" "float fov" [ 30 ]
@@ -126,54 +91,6 @@ TEST_F(Cli, SeveralOutputsAndCrop) {
     EXPECT_EQ(a.height, 12);
     EXPECT_EQ(a.rgb, b.rgb);
     EXPECT_TRUE(fs::exists(png));
-}
-
-TEST_F(Cli, TimeBudgetWritesPartialImage) {
-    std::string scene = write("s.pbrt", kSmallScene);
-    std::string out = (dir / "t.exr").string(), stats = (dir / "t.json").string();
-    Result r = run("render --quiet --spp 100000000 --time 1 --stats " + stats + " " + scene + " -o " + out);
-    ASSERT_EQ(r.status, 0) << r.out;
-    nlohmann::json j = nlohmann::json::parse(std::ifstream(stats));
-    EXPECT_TRUE(j["stopped_early"].get<bool>());
-    EXPECT_LT(j["spp_mean"].get<double>(), 1e8);
-    EXPECT_GT(j["spp_mean"].get<double>(), 1.0);
-    ps::Image img = ps::readImage(out);
-    // Every pixel of the sphere under a white sky is 0.5 (albedo 0.5): an early stop is not darker.
-    double sum = 0;
-    for (float v : img.rgb) sum += v;
-    EXPECT_GT(sum / img.rgb.size(), 0.1);
-}
-
-// SIGINT during any integrator's render writes the image so far, normalised by the samples
-// actually taken: it must agree with a complete render of the same scene within noise
-// (the per-pixel differences average to zero within 4 standard errors).
-TEST_F(Cli, InterruptWritesImageSoFar) {
-    std::string scene = write("s.pbrt", kSmallScene);
-    for (const char* integrator : {"path", "light", "bdpt"}) {
-        SCOPED_TRACE(integrator);
-        std::string out = (dir / (std::string("i_") + integrator + ".exr")).string();
-        std::string full = (dir / (std::string("f_") + integrator + ".exr")).string();
-        Result f = run(std::string("render --quiet --spp 64 --seed 9 --integrator ") + integrator + " " + scene + " -o " + full);
-        ASSERT_EQ(f.status, 0) << f.out;
-        ASSERT_EQ(interruptedRun({"render", "--quiet", "--spp", "100000000", "--integrator", integrator, scene, "-o", out}),
-                  130);
-        ASSERT_TRUE(fs::exists(out));
-        ps::Image img = ps::readImage(out), ref = ps::readImage(full);
-        ASSERT_EQ(img.width, 32);
-        ASSERT_EQ(img.rgb.size(), ref.rgb.size());
-        double s = 0, s2 = 0, level = 0;
-        size_t n = img.rgb.size();
-        for (size_t i = 0; i < n; ++i) {
-            ASSERT_TRUE(std::isfinite(img.rgb[i]));
-            double d = double(img.rgb[i]) - ref.rgb[i];
-            s += d;
-            s2 += d * d;
-            level += ref.rgb[i];
-        }
-        double mean = s / n, se = std::sqrt(std::max(0.0, s2 / n - mean * mean) / (n - 1));
-        EXPECT_GT(level / n, 0.1) << "the reference must be lit";
-        EXPECT_LT(std::fabs(mean), 4 * se + 1e-6) << "interrupted image mean differs from the full render by " << mean;
-    }
 }
 
 TEST_F(Cli, McWritesJsonAndSvgAndRejectsUnknownNames) {
@@ -280,17 +197,6 @@ TEST_F(Cli, AdaptiveSampling) {
     EXPECT_EQ(run("render --quiet --adaptive sequential --integrator bdpt " + scene + " -o " + (dir / "b.exr").string()).status, 2);
 }
 
-// Ctrl-C during a two-stage render still writes a normalised image.
-TEST_F(Cli, InterruptAdaptiveWritesNormalisedImage) {
-    std::string scene = write("s.pbrt", kSmallScene);
-    std::string out = (dir / "i.exr").string();
-    ASSERT_EQ(interruptedRun({"render", "--quiet", "--adaptive", "twostage", "--spp", "100000000", scene, "-o", out}), 130);
-    ps::Image img = ps::readImage(out);
-    double sum = 0;
-    for (float v : img.rgb) sum += v;
-    EXPECT_GT(sum / img.rgb.size(), 0.1);  // as in TimeBudgetWritesPartialImage: not darkened
-}
-
 // --max-memory: the film, textures and meshes are checked against it before they are
 // allocated; the error names the input, what it needs and the limit.
 TEST_F(Cli, MaxMemoryLimitsWhatARenderMayAllocate) {
@@ -333,3 +239,4 @@ TEST_F(Cli, MaxMemoryLimitsWhatARenderMayAllocate) {
     nlohmann::json j = nlohmann::json::parse(std::ifstream(stats));
     EXPECT_EQ(j["memory_limit_bytes"].get<uint64_t>(), uint64_t(2) << 20);
 }
+
