@@ -1,8 +1,21 @@
-// Runs the pathspace binary with arguments and collects its exit status and output.
+// Runs the pathspace binary with arguments and collects its exit status and output; or starts
+// it in the background, to signal it while it renders.
 #pragma once
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+#include <vector>
 
 namespace ps::test {
 
@@ -23,5 +36,118 @@ inline Result runPathspace(const std::string& args) {
     r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
     return r;
 }
+
+// `pathspace ARGS` in the background. Readiness is read from /proc rather than guessed with
+// a sleep, so the signal tests hold on a loaded machine and under the sanitizers: the process
+// renders once its signal handlers are installed, and its CPU time says how much it has
+// rendered since, whatever the load.
+class RunningPathspace {
+public:
+    explicit RunningPathspace(const std::vector<std::string>& args) {
+        std::vector<char*> argv{const_cast<char*>(PATHSPACE_BINARY)};
+        for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        pid_ = fork();
+        if (pid_ == 0) {
+            execv(PATHSPACE_BINARY, argv.data());
+            _exit(127);
+        }
+    }
+    ~RunningPathspace() {
+        if (pid_ > 0 && !exited_) {
+            kill(pid_, SIGKILL);
+            waitpid(pid_, nullptr, 0);
+        }
+    }
+    RunningPathspace(const RunningPathspace&) = delete;
+    RunningPathspace& operator=(const RunningPathspace&) = delete;
+
+    // Waits until the process renders (it has installed its SIGINT handler, which it does
+    // just before the render starts) and has then used `cpuSeconds` of CPU time (all threads).
+    // False if it exited first, or after a minute: a watchdog against a hang, not a measurement.
+    bool waitUntilRendering(double cpuSeconds) {
+        double start = -1;
+        return pollUntil([&] {
+            if (start < 0 && (statusMask("SigCgt:") >> (SIGINT - 1) & 1)) start = cpuTime();
+            return start >= 0 && cpuTime() - start >= cpuSeconds;
+        });
+    }
+    // Sends `sig` and waits until it is no longer pending, i.e. a thread has taken it (two
+    // signals sent before either is taken would merge into one).
+    bool signalAndWaitTaken(int sig) {
+        if (pid_ <= 0 || exited_ || kill(pid_, sig) != 0) return false;
+        return pollUntil([&] { return !((statusMask("ShdPnd:") | statusMask("SigPnd:")) >> (sig - 1) & 1); }) ||
+               exited_;
+    }
+    // The exit status; -1 if it was killed by a signal, -2 if it could not be started.
+    int wait() {
+        if (pid_ <= 0) return -2;
+        if (!exited_) {
+            waitpid(pid_, &status_, 0);
+            exited_ = true;
+        }
+        return WIFEXITED(status_) ? WEXITSTATUS(status_) : -1;
+    }
+
+private:
+    template <class Done>
+    bool pollUntil(Done done) {
+        auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+        while (std::chrono::steady_clock::now() < deadline) {
+            if (pid_ <= 0 || exited_ || waitpid(pid_, &status_, WNOHANG) == pid_) {
+                exited_ = pid_ > 0;
+                return false;
+            }
+            if (done()) return true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        }
+        return false;
+    }
+    // A hexadecimal signal mask from /proc/PID/status (bit k-1 = signal k); 0 if unreadable.
+    unsigned long long statusMask(const char* field) const {
+        std::ifstream f("/proc/" + std::to_string(pid_) + "/status");
+        std::string line;
+        while (std::getline(f, line))
+            if (line.rfind(field, 0) == 0) return std::stoull(line.substr(std::strlen(field)), nullptr, 16);
+        return 0;
+    }
+    // User + system CPU seconds of the whole process, from /proc/PID/stat.
+    double cpuTime() const {
+        std::ifstream f("/proc/" + std::to_string(pid_) + "/stat");
+        std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+        size_t close = text.rfind(')');
+        if (close == std::string::npos) return 0;
+        std::istringstream in(text.substr(close + 2));
+        std::string field;
+        unsigned long long utime = 0, stime = 0;
+        for (int i = 3; i <= 15 && in >> field; ++i) {  // fields 14 and 15 (1-based, man 5 proc)
+            if (i == 14) utime = std::stoull(field);
+            if (i == 15) stime = std::stoull(field);
+        }
+        return double(utime + stime) / double(sysconf(_SC_CLK_TCK));
+    }
+
+    pid_t pid_ = -1;
+    int status_ = 0;
+    bool exited_ = false;
+};
+
+// A fresh directory per test, removed afterwards.
+class CliDirTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = std::filesystem::temp_directory_path() /
+              ("pathspace-cli-" + std::to_string(getpid()) + "-" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        std::filesystem::create_directories(dir);
+    }
+    void TearDown() override { std::filesystem::remove_all(dir); }
+    std::string write(const std::string& name, const std::string& text) {
+        std::filesystem::path p = dir / name;
+        std::ofstream(p) << text;
+        return p.string();
+    }
+    std::filesystem::path dir;
+};
 
 }  // namespace ps::test

@@ -13,6 +13,7 @@
 
 #include "image/image_test_util.h"
 #include "image/png_builder.h"
+#include "shared_data.h"
 
 using namespace ps;
 using namespace ps::test;
@@ -276,7 +277,7 @@ TEST_F(ImageRead, ReferenceExrAndPfmAgree) {
     fs::path refs = fs::path(PATHSPACE_SHARED_DIR) / "refs";
     std::string exr = (refs / "cornell-box-path-4096spp.exr").string();
     std::string pfm = (refs / "cornell-box-path-4096spp.pfm").string();
-    if (!fs::exists(exr) || !fs::exists(pfm)) GTEST_SKIP() << "no reference images in " << refs;
+    REQUIRE_SHARED_DATA(exr, pfm);
     Image a = readImage(exr), b = readImage(pfm);
     ASSERT_EQ(a.width, 256);
     ASSERT_EQ(a.height, 256);

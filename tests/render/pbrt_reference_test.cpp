@@ -21,6 +21,7 @@
 
 #include "image/image.h"
 #include "render_helpers.h"
+#include "shared_data.h"
 
 using namespace ps;
 using namespace ps::test;
@@ -72,7 +73,7 @@ TEST_P(PbrtReference, BlockMeansAgree) {
     const Reference& ref = GetParam();
     fs::path shared(PATHSPACE_SHARED_DIR);
     fs::path scenePath = shared / "scenes" / ref.scene, imagePath = shared / "refs" / ref.image;
-    if (!fs::exists(scenePath) || !fs::exists(imagePath)) GTEST_SKIP() << "shared scenes/refs not present";
+    REQUIRE_SHARED_DATA(scenePath, imagePath);
     setWarningsQuiet(true);
     Image pbrt = readImage(imagePath.string());
     SceneDescription desc = parseSceneFile(scenePath.string());

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "render_helpers.h"
+#include "shared_data.h"
 
 using namespace ps;
 namespace fs = std::filesystem;
@@ -15,7 +16,7 @@ class SharedScene : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(SharedScene, RendersWithoutError) {
     fs::path file = fs::path(PATHSPACE_SHARED_DIR) / "scenes" / GetParam();
-    if (!fs::exists(file)) GTEST_SKIP() << file << " not present";
+    REQUIRE_SHARED_DATA(file);
     setWarningsQuiet(true);
     SceneDescription desc = parseSceneFile(file.string());
     auto scene = buildScene(desc);

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "scene/parser.h"
+#include "shared_data.h"
 
 using namespace ps;
 namespace fs = std::filesystem;
@@ -673,7 +674,7 @@ Shape "sphere" "bool b" true
 // The shared pbrt-v4 scenes parse, with the expected numbers of shapes and lights.
 TEST(Parser, SharedScenes) {
     const fs::path root = fs::path(PATHSPACE_SHARED_DIR) / "scenes";
-    if (!fs::exists(root)) GTEST_SKIP() << root << " is missing";
+    REQUIRE_SHARED_DATA(root);
     struct Expect {
         const char* file;
         size_t shapes, lights, areaLights, emissiveShapes;
@@ -710,7 +711,7 @@ TEST(Parser, SharedScenes) {
 // pbrt-v3 files in the shared scenes are refused with a message that says so.
 TEST(Parser, SharedPbrtV3SceneIsRefusedClearly) {
     fs::path f = fs::path(PATHSPACE_SHARED_DIR) / "scenes/caustic-glass/glass.pbrt";
-    if (!fs::exists(f)) GTEST_SKIP();
+    REQUIRE_SHARED_DATA(f);
     std::string e = fileErrorOf(f);
     EXPECT_NE(e.find("pbrt-v3"), std::string::npos) << e;
     EXPECT_NE(e.find("glass.pbrt:"), std::string::npos) << e;

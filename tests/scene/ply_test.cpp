@@ -2,6 +2,7 @@
 // a mutation fuzz loop, a speed check, and the PLY meshes of the shared pbrt-v4 scenes.
 #include "scene/ply.h"
 #include "util/memory_limit.h"
+#include "shared_data.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -525,7 +526,7 @@ TEST_F(Ply, MillionTriangleBinaryMesh) {
 
 TEST_F(Ply, SharedSceneMeshes) {
     const fs::path shared = fs::path(PATHSPACE_SHARED_DIR) / "scenes";
-    if (!fs::exists(shared)) GTEST_SKIP() << "no shared scenes at " << shared;
+    REQUIRE_SHARED_DATA(shared);
     auto check = [](const fs::path& f) {
         SCOPED_TRACE(f.string());
         PlyMesh m = readPly(f.string());

@@ -1,0 +1,129 @@
+// Early stops of the pathspace command: SIGINT, SIGTERM and --time write the image so far,
+// each pixel normalised by the samples it received, so it must match the exact image of
+// kSkyScene within noise; a second Ctrl-C leaves at once without writing anything.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "image/image.h"
+#include "run_binary.h"
+#include "sky_scene.h"
+
+namespace fs = std::filesystem;
+using namespace ps::test;
+
+namespace {
+
+// CPU seconds of rendering before a signal, scaled for the sanitizer build (3-5x slower), so
+// that its images are as precise as the Release build's.
+double cpuSeconds(double release) {
+#ifdef __SANITIZE_ADDRESS__
+    return 4 * release;
+#else
+    return release;
+#endif
+}
+
+class CliStop : public CliDirTest {
+protected:
+    // Renders kSkyScene with `options` (a sample count it cannot reach) to out.exr and
+    // out.json, and sends `sig` once it has rendered for `cpu` seconds of CPU time; returns
+    // the exit status.
+    int renderAndSignal(int sig, const std::vector<std::string>& options, double cpu) {
+        fs::remove(out());
+        fs::remove(stats());
+        std::vector<std::string> args{"render", "--quiet", "--spp", "100000000", "--stats", stats(), write("s.pbrt", kSkyScene),
+                                      "-o", out()};
+        args.insert(args.end(), options.begin(), options.end());
+        RunningPathspace p(args);
+        EXPECT_TRUE(p.waitUntilRendering(cpu)) << "pathspace exited or hung before rendering";
+        EXPECT_TRUE(p.signalAndWaitTaken(sig));
+        return p.wait();
+    }
+    std::string out() const { return (dir / "out.exr").string(); }
+    std::string stats() const { return (dir / "out.json").string(); }
+    nlohmann::json readStats() const { return nlohmann::json::parse(std::ifstream(stats())); }
+};
+
+}  // namespace
+
+// SIGINT during any integrator's render: status 130 (README) and the image so far, exact
+// within noise. (Light tracing is the noisiest here: it renders longer.)
+TEST_F(CliStop, InterruptWritesNormalisedImage) {
+    for (const std::string integrator : {"path", "light", "bdpt"}) {
+        SCOPED_TRACE(integrator);
+        const bool light = integrator == "light";
+        ASSERT_EQ(renderAndSignal(SIGINT, {"--integrator", integrator}, cpuSeconds(light ? 1.5 : 0.3)), 130);
+        expectExactSkyImage(ps::readImage(out()), "SIGINT " + integrator, light ? 0.0 : 1.0);
+        nlohmann::json j = readStats();
+        EXPECT_TRUE(j["interrupted"].get<bool>());
+        EXPECT_TRUE(j["stopped_early"].get<bool>());
+    }
+}
+
+// SIGTERM (what a job scheduler sends) is handled as SIGINT is.
+TEST_F(CliStop, TerminateWritesNormalisedImage) {
+    for (const char* integrator : {"path", "bdpt"}) {
+        SCOPED_TRACE(integrator);
+        ASSERT_EQ(renderAndSignal(SIGTERM, {"--integrator", integrator}, cpuSeconds(0.3)), 130);
+        expectExactSkyImage(ps::readImage(out()), std::string("SIGTERM ") + integrator);
+        EXPECT_TRUE(readStats()["interrupted"].get<bool>());
+    }
+}
+
+// A two-stage render stopped in its pilot (here certainly: the pilot is a quarter of 10^8
+// samples per pixel) has no second-stage samples; the pilot's own mean per pixel is the image.
+TEST_F(CliStop, InterruptDuringTwoStagePilotWritesNormalisedImage) {
+    ASSERT_EQ(renderAndSignal(SIGINT, {"--adaptive", "twostage"}, cpuSeconds(0.3)), 130);
+    expectExactSkyImage(ps::readImage(out()), "SIGINT in the two-stage pilot");
+    EXPECT_LT(readStats()["spp_mean"].get<double>(), 1e8 / 4) << "the stop was not in the pilot";
+}
+
+// The time budget is not an interruption (status 0). A uniform render stops between passes;
+// a two-stage render turns the budget into a sample budget for both stages (here it usually
+// finishes within it; a cut second stage leaves the pilot's value in the pixels it missed).
+TEST_F(CliStop, TimeBudgetWritesNormalisedImage) {
+    for (const char* adaptive : {"none", "twostage"}) {
+        SCOPED_TRACE(adaptive);
+        fs::remove(out());
+        ps::test::Result r = ps::test::runPathspace(std::string("render --quiet --spp 100000000 --time 0.5 --adaptive ") +
+                                                    adaptive + " --stats " + stats() + " " + write("s.pbrt", kSkyScene) +
+                                                    " -o " + out());
+        ASSERT_EQ(r.status, 0) << r.out;
+        nlohmann::json j = readStats();
+        EXPECT_FALSE(j["interrupted"].get<bool>());
+        EXPECT_LT(j["spp_mean"].get<double>(), 1e8);
+        EXPECT_GT(j["spp_mean"].get<double>(), 1.0);
+        expectExactSkyImage(ps::readImage(out()), std::string("--time, adaptive ") + adaptive);
+    }
+}
+
+// A second Ctrl-C leaves at once with status 130, writing nothing. The render is one 16x16
+// tile on one thread whose paths never end before depth 20000 (albedo 1 inside a closed
+// sphere), so a first pass takes seconds and a process that honoured only the first signal
+// would still be rendering when the second arrives, and would then write the image.
+TEST_F(CliStop, SecondInterruptAbortsWithoutWriting) {
+    const std::string scene = write("endless.pbrt", R"(LookAt 0 0 0  0 0 1  0 1 0
+Camera "perspective" "float fov" [ 60 ]
+Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+Integrator "path" "integer maxdepth" [ 20000 ]
+WorldBegin
+AreaLightSource "diffuse" "rgb L" [ 0.1 0.1 0.1 ]
+Material "diffuse" "rgb reflectance" [ 1 1 1 ]
+ReverseOrientation
+Shape "sphere" "float radius" [ 1 ]
+)");
+    RunningPathspace p({"render", "--quiet", "--threads", "1", "--stats", stats(), scene, "-o", out()});
+    ASSERT_TRUE(p.waitUntilRendering(cpuSeconds(0.05)));
+    ASSERT_TRUE(p.signalAndWaitTaken(SIGINT));
+    ASSERT_TRUE(p.signalAndWaitTaken(SIGINT));
+    EXPECT_EQ(p.wait(), 130);
+    std::vector<std::string> left;
+    for (const fs::directory_entry& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+    EXPECT_EQ(left, std::vector<std::string>{"endless.pbrt"}) << "no image, temporary file or statistics";
+}
