@@ -19,7 +19,7 @@ namespace {
 // sphere (radiance kLe) with probability kHit, else the background: rare large values, with
 // the exact pixel value kHit * kLe + (1 - kHit) * kBg. With `leftHalfOnly` the right half
 // has only the background (zero variance).
-constexpr int kRes = 16;
+constexpr int kRes = 64;
 constexpr double kHit = 1.0 / 16, kLe = 16, kBg = 0.25;
 const double kExact = kHit * kLe + (1 - kHit) * kBg;
 
@@ -107,15 +107,16 @@ TEST(SampleAllocation, ProportionalWithMinimumAndExactTotal) {
 // the tests below assume.
 TEST(Adaptive, RareValueSceneIsExactWithUniformSampling) {
     Spread u = meanOverRenders(rareValueScene(), AdaptiveMode::None, 16, 8);
+    std::printf("rare values, uniform: %.5f +- %.5f (%.2f%%), exact %.5f\n", u.mean, u.stdErr, 100 * u.stdErr / kExact, kExact);
     EXPECT_NEAR(u.mean, kExact, 4 * u.stdErr) << "exact " << kExact;
-    EXPECT_LT(u.stdErr, 0.05 * kExact);
+    EXPECT_LT(u.stdErr, 0.005 * kExact);  // a 2% error fails
 }
 
 TEST(Adaptive, TwoStageIsUnbiasedOnTheClosedFurnace) {
     Spread t = meanOverRenders(kFurnace, AdaptiveMode::TwoStage, 32, 12);
     std::printf("two-stage furnace: %.5f +- %.5f, exact %.5f\n", t.mean, t.stdErr, kFurnaceExact);
     EXPECT_NEAR(t.mean, kFurnaceExact, 4 * t.stdErr + 1e-4 * kFurnaceExact);
-    EXPECT_LT(t.stdErr, 0.01 * kFurnaceExact);
+    EXPECT_LT(t.stdErr, 0.005 * kFurnaceExact);  // a 2% error fails
 }
 
 // The sequential rule never refines a pixel whose first samples all missed the rare bright
@@ -128,7 +129,7 @@ TEST(Adaptive, SequentialIsBiasedWhereTwoStageIsNot) {
                 kExact, seq.mean, seq.stdErr, (seq.mean - kExact) / seq.stdErr, two.mean, two.stdErr,
                 (two.mean - kExact) / two.stdErr);
     EXPECT_NEAR(two.mean, kExact, 4 * two.stdErr);
-    EXPECT_LT(two.stdErr, 0.1 * kExact);  // (measured 0.04): small against the sequential bias
+    EXPECT_LT(two.stdErr, 0.005 * kExact);  // a 2% error of the two-stage scheme fails
     EXPECT_LT(seq.mean, kExact - 4 * seq.stdErr);
     EXPECT_LT(seq.mean, kExact - 4 * two.stdErr);  // also outside two-stage's band
 }
@@ -162,8 +163,10 @@ TEST(Adaptive, DeterministicForSeedAndThreads) {
     }
 }
 
-// A time budget turns into a sample budget: the render ends near the limit, and the image
-// is complete and correctly normalised.
+// A time budget turns into a sample budget, and the image is complete and correctly
+// normalised: exact within 4 sigma (the pixels are independent estimates of one value), with
+// sigma small enough that a 2% error fails. (How close to the limit it ends is a matter of
+// timing, which is no test on a loaded machine.)
 TEST(Adaptive, TimeBudget) {
     for (AdaptiveMode mode : {AdaptiveMode::Sequential, AdaptiveMode::TwoStage}) {
         RenderOptions o;
@@ -171,11 +174,14 @@ TEST(Adaptive, TimeBudget) {
         o.timeLimit = 0.5;
         o.adaptive = mode;
         RenderResult r = renderWith(kFurnace, o);
-        EXPECT_LT(r.seconds, 1.5);
         EXPECT_GT(r.meanSpp, 8);
         for (int n : r.pixelSamples) ASSERT_GT(n, 0);
         RegionStats s = wholeImage(r.image);
-        EXPECT_NEAR(s.mean[0], kFurnaceExact, 0.05 * kFurnaceExact);
+        std::printf("%s, time budget: %.0f spp, %.5f +- %.5f, exact %.5f\n",
+                    mode == AdaptiveMode::Sequential ? "sequential" : "two-stage", r.meanSpp, s.mean[0], s.stdErr[0],
+                    kFurnaceExact);
+        EXPECT_LT(s.stdErr[0], 0.005 * kFurnaceExact);
+        EXPECT_NEAR(s.mean[0], kFurnaceExact, 4 * s.stdErr[0] + 1e-4 * kFurnaceExact);
     }
 }
 
