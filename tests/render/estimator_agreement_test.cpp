@@ -1,19 +1,15 @@
 // Agreement of independent estimators (thesis ch. 10's strongest check): path tracing,
-// light tracing and BDPT estimate the same image, so each block's mean over independent
-// renders must agree within 4 standard errors (measured from the spread of 12 renders) plus
-// 1% of the image mean.
+// light tracing and BDPT estimate the same image (see agreement.h for the tests).
 // Light tracing cannot see specular surfaces or the environment directly (no camera
 // connection through a delta lobe), so scenes showing those compare path tracing and BDPT.
 #include <gtest/gtest.h>
 
-#include "render_helpers.h"
+#include "agreement.h"
 
 using namespace ps;
 using namespace ps::test;
 
 namespace {
-
-constexpr int kBlocks = 4;
 
 // A 1 x 1 x 1 box open towards the camera, with coloured side walls, a ceiling light and
 // whatever `contents` adds; `light` replaces the ceiling light when given.
@@ -43,49 +39,10 @@ std::string box(const std::string& contents, const std::string& integratorDepth 
     )" + contents;
 }
 
-struct Case {
-    const char* name;
-    std::string scene;
-    std::vector<std::string> integrators;  // the first is compared with each other one
-    int spp;
-};
-
-void expectAgreement(const Case& c) {
-    const int K = 12;
-    std::vector<BlockMeans> results;
-    for (const std::string& integ : c.integrators) results.push_back(blockMeans(c.scene, integ, c.spp, K, kBlocks));
-    const BlockMeans& a = results[0];
-    double imageMean = 0;
-    for (double m : a.mean) imageMean += m / a.mean.size();
-    ASSERT_GT(imageMean, 0.01) << "the scene must be lit";
-    for (size_t k = 1; k < results.size(); ++k) {
-        const BlockMeans& b = results[k];
-        int failures = 0;
-        double worst = 0;
-        for (size_t i = 0; i < a.mean.size(); ++i) {
-            double se = std::sqrt(a.stdErr[i] * a.stdErr[i] + b.stdErr[i] * b.stdErr[i]);
-            double z = std::fabs(a.mean[i] - b.mean[i]) / std::max(se, 1e-12);
-            worst = std::max(worst, z);
-            // The comparison must be able to fail: the noise must be small against the image.
-            EXPECT_LT(se, 0.08 * imageMean + 0.08 * a.mean[i]) << c.integrators[k] << " block " << i << " too noisy";
-            // A floor of 1% of the image mean: dim blocks of heavy-tailed estimates (light
-            // tracing at grazing angles) have standard errors that 12 renders underestimate.
-            if (std::fabs(a.mean[i] - b.mean[i]) > 4 * se + 0.01 * imageMean) {
-                ++failures;
-                ADD_FAILURE() << c.name << ": " << c.integrators[0] << " vs " << c.integrators[k] << " block " << i
-                              << ": " << a.mean[i] << " +- " << a.stdErr[i] << " vs " << b.mean[i] << " +- "
-                              << b.stdErr[i];
-            }
-        }
-        std::printf("  %s: %s vs %s: largest |diff| %.2f sigma, %d blocks beyond 4 sigma\n", c.name,
-                    c.integrators[0].c_str(), c.integrators[k].c_str(), worst, failures);
-    }
-}
-
 }  // namespace
 
 TEST(EstimatorAgreement, DiffuseBox) {
-    expectAgreement({"diffuse box", box(R"(
+    expectAgreement(AgreementCase{"diffuse box", box(R"(
         Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ]
         Shape "sphere" "float radius" [ 0.2 ]
     )"), {"path", "light", "bdpt"}, 16});
@@ -112,11 +69,11 @@ TEST(EstimatorAgreement, GlassSphereCaustic) {
           Shape "sphere" "float radius" [ 0.5 ]
         AttributeEnd
     )";
-    expectAgreement({"glass caustic", scene, {"bdpt", "light", "path"}, 64});
+    expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", "light", "path"}, 64});
 }
 
 TEST(EstimatorAgreement, GlossyConductor) {
-    expectAgreement({"rough conductor", box(R"(
+    expectAgreement(AgreementCase{"rough conductor", box(R"(
         Material "conductor" "spectrum eta" "metal-Cu-eta" "spectrum k" "metal-Cu-k" "float roughness" [ 0.25 ]
         Shape "sphere" "float radius" [ 0.3 ]
     )"), {"path", "light", "bdpt"}, 16});
@@ -124,7 +81,7 @@ TEST(EstimatorAgreement, GlossyConductor) {
 
 // A smooth mirror shows the light: light tracing cannot connect through it.
 TEST(EstimatorAgreement, AreaLightSeenInMirror) {
-    expectAgreement({"mirror", box(R"(
+    expectAgreement(AgreementCase{"mirror", box(R"(
         Material "conductor" "rgb reflectance" [ 0.9 0.9 0.9 ] "float roughness" [ 0 ]
         Shape "bilinearmesh" "point3 P" [ -0.45 0.01 0.3   0.45 0.01 0.3   -0.45 0.01 -0.45   0.45 0.01 -0.45 ]
     )"), {"path", "bdpt"}, 16});
@@ -148,8 +105,8 @@ TEST(EstimatorAgreement, EnvironmentLitObject) {
         Shape "sphere" "float radius" [ 0.4 ]
     )";
     };
-    expectAgreement({"environment (side)", scene("LookAt 0 0.6 3  0 0.4 0  0 1 0"), {"path", "bdpt"}, 16});
-    expectAgreement({"environment (above)", scene("LookAt 0 3 0.01  0 0 0  0 1 0"), {"path", "light", "bdpt"}, 16});
+    expectAgreement(AgreementCase{"environment (side)", scene("LookAt 0 0.6 3  0 0.4 0  0 1 0"), {"path", "bdpt"}, 16});
+    expectAgreement(AgreementCase{"environment (above)", scene("LookAt 0 3 0.01  0 0 0  0 1 0"), {"path", "light", "bdpt"}, 16});
 }
 
 TEST(EstimatorAgreement, PointAndSpotLights) {
@@ -157,7 +114,7 @@ TEST(EstimatorAgreement, PointAndSpotLights) {
         LightSource "point" "rgb I" [ 0.6 0.6 0.6 ] "point3 from" [ -0.2 0.8 0.1 ]
         LightSource "spotlight" "rgb I" [ 2 2 2 ] "point3 from" [ 0.3 0.9 0.3 ] "point3 to" [ 0 0 0 ]
             "float coneangle" [ 30 ] "float conedelta" [ 10 ])";
-    expectAgreement({"point and spot", box(R"(
+    expectAgreement(AgreementCase{"point and spot", box(R"(
         Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ]
         Shape "sphere" "float radius" [ 0.2 ]
     )", "5", lights), {"path", "light", "bdpt"}, 16});
@@ -193,5 +150,5 @@ TEST(EstimatorAgreement, SmoothNormalsAndRefractiveSlab) {
             "normal N" [ 1 0 0  -1 0 0  0 1 0  0 -1 0  0 0 1  0 0 -1 ]
             "integer indices" [ 0 2 4  2 1 4  1 3 4  3 0 4  2 0 5  1 2 5  3 1 5  0 3 5 ]
     )";
-    expectAgreement({"smooth normals, slab", scene, {"path", "light", "bdpt"}, 64});
+    expectAgreement(AgreementCase{"smooth normals, slab", scene, {"path", "light", "bdpt"}, 64});
 }

@@ -69,16 +69,24 @@ namespace ps::test {
 
 // Luminance of B x B blocks of pixels, averaged over K independent renders (seeds seed0..);
 // the spread across renders gives each block's standard error without assuming that
-// pixels within a block share one value.
+// pixels within a block share one value. The whole image's luminance is summarised the same
+// way (its standard error is far smaller than a block's, which makes it the sharper test of
+// a global bias).
 struct BlockMeans {
     std::vector<double> mean, stdErr;
+    double imageMean = 0, imageStdErr = 0;
 };
 
 inline BlockMeans blockMeans(const std::string& scene, const std::string& integrator, int spp, int renders,
                              int blocksPerSide, uint64_t seed0 = 100) {
     std::vector<double> s, s2;
+    double is = 0, is2 = 0;
     for (int k = 0; k < renders; ++k) {
         RenderResult r = renderString(scene, spp, seed0 + uint64_t(k), 0, integrator);
+        RegionStats whole = wholeImage(r.image);
+        double iy = 0.2126 * whole.mean[0] + 0.7152 * whole.mean[1] + 0.0722 * whole.mean[2];
+        is += iy;
+        is2 += iy * iy;
         int bw = r.image.width / blocksPerSide, bh = r.image.height / blocksPerSide;
         s.resize(size_t(blocksPerSide) * blocksPerSide, 0.0);
         s2.resize(s.size(), 0.0);
@@ -97,6 +105,8 @@ inline BlockMeans blockMeans(const std::string& scene, const std::string& integr
         b.mean.push_back(m);
         b.stdErr.push_back(std::sqrt(var / renders));
     }
+    b.imageMean = is / renders;
+    b.imageStdErr = std::sqrt(std::max(0.0, (is2 / renders - b.imageMean * b.imageMean) / (renders - 1)));
     return b;
 }
 
