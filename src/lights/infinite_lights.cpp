@@ -99,12 +99,21 @@ void ImageInfiniteLight::pdfLe(Vec3, Vec3, Vec3 w, float* pdfPos, float* pdfDir)
     *pdfDir = pdfLi(LightSampleContext{}, -w, nullptr);
 }
 
+// The integral of the radiance over the sphere (texel values times their solid angles:
+// 4 pi / N for equal-area texels; latitude-longitude rows shrink towards the poles), times
+// the scene disk's area.
 Spectrum ImageInfiniteLight::phi() const {
     Spectrum sum;
-    for (int y = 0; y < image_.height; ++y)
-        for (int x = 0; x < image_.width; ++x) sum += image_.get(x, y);
-    float n = float(image_.width) * float(image_.height);
-    return sum * (scale_ / n) * (4 * kPi * kPi * sceneRadius_ * sceneRadius_);
+    int w = image_.width, h = image_.height;
+    for (int y = 0; y < h; ++y) {
+        Spectrum row;
+        for (int x = 0; x < w; ++x) row += image_.get(x, y);
+        float omega = layout_ == Layout::EqualArea
+                          ? 4 * kPi / (float(w) * float(h))
+                          : 2 * kPi / float(w) * (std::cos(kPi * y / h) - std::cos(kPi * (y + 1) / h));
+        sum += row * omega;
+    }
+    return sum * (scale_ * kPi * sceneRadius_ * sceneRadius_);
 }
 
 }  // namespace ps
