@@ -88,9 +88,13 @@ std::unique_ptr<Light> createLight(const LightEntity& e, const std::string& base
         light = std::make_unique<DistantLight>(normalize(w), L * scale);
     } else if (e.type == "infinite") {
         light = createInfinite(e, base);
-    } else {
+    } else if (e.type == "goniometric" || e.type == "projection") {
         warning(e.loc, "LightSource \"" + e.type + "\" is not supported; it is ignored");
         return nullptr;
+    } else {
+        // As pbrt-v4: a misspelt type would silently remove the light from the scene.
+        throw InputError(e.loc, "LightSource \"" + e.type +
+                                    "\": unknown light type (point, spot, distant, infinite, goniometric, projection)");
     }
     ps.reportUnused("LightSource \"" + e.type + "\"");
     return light;

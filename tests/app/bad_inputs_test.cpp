@@ -66,6 +66,8 @@ std::vector<Case> cases() {
         {"inf_in_parameter", kHeader + "Shape \"sphere\" \"float radius\" [ 1e39 ]", {}, 2, {":7:", "range"}},
         {"nan_in_light", kHeader + "AreaLightSource \"diffuse\" \"rgb L\" [ -1 nan 1 ]\nShape \"sphere\"", {}, 2,
          {":7:", "finite"}},
+        {"unknown_light_type", kHeader + "LightSource \"spotlight\" \"rgb I\" [ 1 1 1 ]\nShape \"sphere\"", {}, 2,
+         {":7:1:", "unknown light type"}},
         {"singular_transform", kHeader + "Scale 0 0 0\nShape \"sphere\"", {}, 2, {":7:1:", "singular"}},
         {"degenerate_lookat",
          "LookAt 0 0 0  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\nShape \"sphere\"\n", {}, 2, {":1:1:", "LookAt"}},

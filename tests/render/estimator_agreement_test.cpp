@@ -112,12 +112,12 @@ TEST(EstimatorAgreement, EnvironmentLitObject) {
 TEST(EstimatorAgreement, PointAndSpotLights) {
     std::string lights = R"(
         LightSource "point" "rgb I" [ 0.6 0.6 0.6 ] "point3 from" [ -0.2 0.8 0.1 ]
-        LightSource "spotlight" "rgb I" [ 2 2 2 ] "point3 from" [ 0.3 0.9 0.3 ] "point3 to" [ 0 0 0 ]
-            "float coneangle" [ 30 ] "float conedelta" [ 10 ])";
+        LightSource "spot" "rgb I" [ 2 2 2 ] "point3 from" [ 0.3 0.9 0.3 ] "point3 to" [ 0 0 0 ]
+            "float coneangle" [ 30 ] "float conedeltaangle" [ 10 ])";
     expectAgreement(AgreementCase{"point and spot", box(R"(
         Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ]
         Shape "sphere" "float radius" [ 0.2 ]
-    )", "5", lights), {"path", "light", "bdpt"}, 32});
+    )", "5", lights), {"path", "light", "bdpt"}, 48, 16, {{"light", 80}}});
 }
 
 // Non-symmetric scattering (thesis ch. 5): a coarse octahedron with smooth vertex normals
