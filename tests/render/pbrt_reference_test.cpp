@@ -63,7 +63,7 @@ double referenceFireflyError(const Image& ref, const Image& ours, int x0, int x1
 }
 
 struct Reference {
-    const char* scene;
+    const char* scene;  // relative to `root`
     const char* image;
     int spp;              // per independent render
     int renders;          // K
@@ -72,6 +72,9 @@ struct Reference {
     // of the image's mean luminance, ours / pbrt-v4. Grey scenes have none: zero and one.
     double spectralTol[3];
     double luminanceRatio;
+    // Where scene and image live: ../shared (scenes/ and refs/), or this repository's
+    // tests/data/pbrt-v4 (both in one folder).
+    bool inRepository = false;
 };
 
 double luminance(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
@@ -80,8 +83,9 @@ class PbrtReference : public ::testing::TestWithParam<Reference> {};
 
 TEST_P(PbrtReference, BlockMeansAgree) {
     const Reference& ref = GetParam();
-    fs::path shared(PATHSPACE_SHARED_DIR);
-    fs::path scenePath = shared / "scenes" / ref.scene, imagePath = shared / "refs" / ref.image;
+    fs::path shared(PATHSPACE_SHARED_DIR), data = fs::path(PATHSPACE_SOURCE_DIR) / "tests" / "data" / "pbrt-v4";
+    fs::path scenePath = ref.inRepository ? data / ref.scene : shared / "scenes" / ref.scene;
+    fs::path imagePath = ref.inRepository ? data / ref.image : shared / "refs" / ref.image;
     REQUIRE_SHARED_DATA(scenePath, imagePath);
     setWarningsQuiet(true);
     Image pbrt = readImage(imagePath.string());
@@ -183,7 +187,8 @@ INSTANTIATE_TEST_SUITE_P(Shared, PbrtReference,
                          ::testing::Values(Reference{"cornell-box/scene-v4-256.pbrt", "cornell-box-path-4096spp.pfm", 16, 8, {0.06, 0.02, 0.14}, 1.0071},
                                            Reference{"veach-mis/scene-v4-320x180.pbrt", "veach-mis-path-4096spp.pfm", 32, 8, {0.025, 0.01, 0.01}, 1.0},
                                            Reference{"veach-bidir/scene-v4-256.pbrt", "veach-bidir-bdpt-512spp.pfm", 16, 8, {0.03, 0.03, 0.03}, 1.0},
-                                           Reference{"caustic-glass/caustic-glass-v4-210x300.pbrt", "caustic-glass-bdpt-1024spp.pfm", 16, 8, {0.035, 0.035, 0.035}, 0.9810}),
+                                           Reference{"caustic-glass/caustic-glass-v4-210x300.pbrt", "caustic-glass-bdpt-1024spp.pfm", 16, 8, {0.035, 0.035, 0.035}, 0.9810},
+                                           Reference{"grey-box.pbrt", "grey-box-path-16384spp.pfm", 256, 8, {0, 0, 0}, 1.0, true}),
                          [](const ::testing::TestParamInfo<Reference>& i) {
                              std::string s = i.param.image;
                              for (char& ch : s)
