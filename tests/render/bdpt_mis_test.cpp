@@ -63,6 +63,10 @@ SubpathPair tracePair(const Scene& scene, const Subpaths& paths, Sampler& sample
     return p;
 }
 
+// A specular scattering's delta density in the MIS ratios: a unit density per solid angle,
+// converted to area like any other (thesis §10.3.5: forward and reverse deltas cancel).
+constexpr float kDeltaDensity = 1;
+
 // The full path y_0 (on a light) ... y_k (the camera) with densities of both walks.
 struct FullPath {
     std::vector<PathVertex> y;
@@ -81,11 +85,13 @@ FullPath rebuild(const Subpaths& paths, const PathVertex* light, int s, const Pa
     fp.pLight[0] = paths.pdfLightOrigin(y[0], y[1]);
     fp.pLight[1] = paths.pdfLight(y[0], y[1]);
     for (int i = 1; i < k; ++i)
-        fp.pLight[size_t(i + 1)] = y[size_t(i)].delta ? 0.0f : paths.pdf(y[size_t(i)], &y[size_t(i - 1)], y[size_t(i + 1)], false);
+        fp.pLight[size_t(i + 1)] = y[size_t(i)].delta ? kDeltaDensity * areaFactor(y[size_t(i)], y[size_t(i + 1)])
+                                                      : paths.pdf(y[size_t(i)], &y[size_t(i - 1)], y[size_t(i + 1)], false);
     for (PathVertex& v : y) v.mode = TransportMode::Radiance;
     fp.pCamera[size_t(k - 1)] = paths.pdf(y[size_t(k)], nullptr, y[size_t(k - 1)], false);
     for (int i = k - 1; i >= 1; --i)
-        fp.pCamera[size_t(i - 1)] = y[size_t(i)].delta ? 0.0f : paths.pdf(y[size_t(i)], &y[size_t(i + 1)], y[size_t(i - 1)], false);
+        fp.pCamera[size_t(i - 1)] = y[size_t(i)].delta ? kDeltaDensity * areaFactor(y[size_t(i)], y[size_t(i - 1)])
+                                                        : paths.pdf(y[size_t(i)], &y[size_t(i + 1)], y[size_t(i - 1)], false);
     return fp;
 }
 
