@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds everything with clang and AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/
-# and runs the whole test suite under them (about 3.5 min to build and 3 min to test on 2 cores).
+# and runs the whole test suite under them (about 3.5 min to build and 5.5 min to test on 2 cores).
 # Any finding aborts its test, so CTest reports it. Extra arguments go to ctest (e.g. -L scene).
 set -euo pipefail
 cd "$(dirname "$0")/.."
