@@ -1,5 +1,6 @@
 #include "mc/primary_sample_sampler.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "mc/metropolis.h"
@@ -7,8 +8,17 @@
 namespace ps {
 
 PrimarySampleSampler::PrimarySampleSampler(uint64_t chainSeed, const PrimarySampleParams& params)
-    : params_(params), rng_(mix64(chainSeed), chainSeed ^ 0x2545f4914f6cdd1dULL) {
+    : params_(params) {
     if (params_.streamCount < 1) params_.streamCount = 1;
+    streamIndex_.assign(size_t(params_.streamCount), 0);
+    reseed(chainSeed);
+}
+
+void PrimarySampleSampler::reseed(uint64_t chainSeed) { rng_.seed(mix64(chainSeed), chainSeed ^ 0x2545f4914f6cdd1dULL); }
+
+void PrimarySampleSampler::restartStreams() {
+    stream_ = 0;
+    std::fill(streamIndex_.begin(), streamIndex_.end(), 0);
 }
 
 void PrimarySampleSampler::startIteration() {
@@ -18,7 +28,7 @@ void PrimarySampleSampler::startIteration() {
 void PrimarySampleSampler::startIteration(bool largeStep) {
     ++iteration_;
     largeStep_ = largeStep || iteration_ == 1;
-    startStream(0);
+    restartStreams();
 }
 
 void PrimarySampleSampler::accept() {
@@ -32,11 +42,6 @@ void PrimarySampleSampler::reject() {
             v.modified = v.backupModified;
         }
     --iteration_;
-}
-
-void PrimarySampleSampler::startStream(int stream) {
-    stream_ = stream;
-    streamIndex_ = 0;
 }
 
 // A small step of n iterations at once: a normal deviate of sigma * sqrt(n), wrapped.
@@ -70,7 +75,7 @@ double PrimarySampleSampler::read(size_t index) {
 }
 
 float PrimarySampleSampler::get1D() {
-    size_t index = size_t(stream_) + size_t(params_.streamCount) * size_t(streamIndex_++);
+    size_t index = size_t(stream_) + size_t(params_.streamCount) * size_t(streamIndex_[size_t(stream_)]++);
     float u = float(read(index));
     return u < 1.0f ? u : 0x1.fffffep-1f;  // a double just below 1 rounds to 1.0f
 }

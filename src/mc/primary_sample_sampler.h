@@ -48,14 +48,18 @@ public:
     int64_t acceptedIterations() const { return iteration_; }
 
     // Dimension streams: stream k reads the values k, k + K, k + 2K, ... (K = streamCount),
-    // so that what one stream consumes never shifts another's values; each stream restarts
-    // at its first value when selected again.
-    void startStream(int stream);
+    // so that what one stream consumes never shifts another's values. Selected again within
+    // an iteration, a stream continues where it stopped; every iteration starts each stream
+    // at its first value.
+    void startStream(int stream) override { stream_ = stream < params_.streamCount ? stream : 0; }
+    // A new random stream for the mutations from here on; the stored values stay. A chain
+    // started from a replayed bootstrap sample takes its own stream this way.
+    void reseed(uint64_t chainSeed);
 
     float get1D() override;
     Vec2 get2D() override;
-    // Ignored (a chain has no pixels): reading restarts at stream 0.
-    void startPixelSample(int, int, int) override { startStream(0); }
+    // Ignored (a chain has no pixels): every stream restarts at its first value.
+    void startPixelSample(int, int, int) override { restartStreams(); }
     std::unique_ptr<Sampler> clone() const override { return std::make_unique<PrimarySampleSampler>(*this); }
 
     // The state, for tests: the stored values and the iteration at which each was last
@@ -71,6 +75,7 @@ public:
 
 private:
     double read(size_t index);
+    void restartStreams();
     double small(double v, int64_t steps);
 
     PrimarySampleParams params_;
@@ -80,7 +85,7 @@ private:
     int64_t lastLargeStep_ = 0;    // iteration of the last accepted large step
     bool largeStep_ = true;
     int stream_ = 0;
-    int64_t streamIndex_ = 0;      // values read from the current stream
+    std::vector<int64_t> streamIndex_;  // values read from each stream this iteration
 };
 
 // The acceptance probability of a proposal with target value fy from a state with fx, for
