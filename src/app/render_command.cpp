@@ -80,9 +80,10 @@ void RenderCommand::attach(CLI::App& app) {
         ->check(numberCheck(true));
     cmd_->add_option("--integrator", integrator_,
                      "Integrator: path (path tracing with MIS), light (light tracing: particles from the lights "
-                     "splatted through the lens), bdpt (bidirectional path tracing, every strategy with MIS). "
-                     "pbrt names volpath, lightpath map to them")
-        ->check(CLI::IsMember({"path", "volpath", "light", "lightpath", "bdpt"}));
+                     "splatted through the lens), bdpt (bidirectional path tracing, every strategy with MIS), pssmlt "
+                     "(primary-sample-space Metropolis light transport over BDPT; --spp sets the mutations per "
+                     "pixel). pbrt names volpath, lightpath map to them")
+        ->check(CLI::IsMember({"path", "volpath", "light", "lightpath", "bdpt", "pssmlt"}));
     cmd_->add_option("--bdpt-strategies", strategiesDir_,
                      "With --integrator bdpt: also write, into this directory, one EXR per strategy (s light "
                      "vertices, t camera vertices) up to path depth 5, MIS-weighted (s<S>_t<T>.exr) and "
@@ -218,6 +219,20 @@ int RenderCommand::run() {
         {"warnings", warningCount()},
         {"memory_limit_bytes", memoryLimit()},
     };
+    const MetropolisStats& ms = r.metropolis;
+    if (ms.present)
+        stats["metropolis"] = {
+            {"b", ms.b},
+            {"bootstrap_samples", ms.bootstrapSamples},
+            {"chains", ms.chains},
+            {"mutations", ms.mutations},
+            {"acceptance_rate", ms.acceptanceRate()},
+            {"large_steps", ms.proposedLarge},
+            {"large_step_acceptance_rate", MetropolisStats::rate(ms.acceptedLarge, ms.proposedLarge)},
+            {"small_steps", ms.proposedSmall},
+            {"small_step_acceptance_rate", MetropolisStats::rate(ms.acceptedSmall, ms.proposedSmall)},
+            {"invalid_proposals", ms.invalidProposals},
+        };
     if (!statsFile_.empty()) {
         std::ofstream f(statsFile_);
         if (!f) throw InputError("--stats: cannot write \"" + statsFile_ + "\"");
@@ -234,6 +249,12 @@ int RenderCommand::run() {
                     (unsigned long long)r.stats.guarded, r.rejectedSamples);
         std::printf("error: mean relative variance %.3g, efficiency 1/(V T) %.3g\n", r.error.meanRelativeVariance,
                     r.efficiency);
+        if (ms.present)
+            std::printf("metropolis: b %.4g | %d chains | %lld mutations | acceptance %.3f (large steps %.3f, small "
+                        "steps %.3f) | %lld invalid proposals\n",
+                        ms.b, ms.chains, ms.mutations, ms.acceptanceRate(),
+                        MetropolisStats::rate(ms.acceptedLarge, ms.proposedLarge),
+                        MetropolisStats::rate(ms.acceptedSmall, ms.proposedSmall), ms.invalidProposals);
         if (r.stoppedEarly) std::printf("stopped early: %s\n", gInterrupt.load() ? "interrupted" : "time budget reached");
     }
     return gInterrupt.load() ? kExitInterrupted : kExitOk;

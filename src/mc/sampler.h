@@ -23,6 +23,11 @@ public:
     virtual Vec2 get2D() = 0;
     // The film position within the pixel (its own dimension pair).
     virtual Vec2 getPixel2D() { return get2D(); }
+    // Dimension streams (primary-sample-space Metropolis): an estimator that draws for
+    // separate parts of a path selects each part's stream before drawing, so that what one
+    // part consumes never shifts the values another reads. A no-op for samplers with one
+    // stream, whose values then follow in the order drawn.
+    virtual void startStream(int) {}
     virtual std::unique_ptr<Sampler> clone() const = 0;
 };
 

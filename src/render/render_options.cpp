@@ -172,6 +172,18 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
                                                                    "\" is not supported; use --bdpt-strategies");
     } else if (it == "lightpath") {
         s.integrator = "light";
+    } else if (it == "pssmlt") {
+        // Ours (pbrt-v4 has only the multiplexed "mlt"): Kelemen-style MLT over BDPT.
+        s.integrator = "pssmlt";
+        s.spp = ip.getInt("mutationsperpixel", s.spp);
+        s.mltBootstrapSamples = ip.getInt("bootstrapsamples", s.mltBootstrapSamples);
+        s.mltChains = ip.getInt("chains", s.mltChains);
+        s.mltLargeStepProbability = ip.getFloat("largestepprobability", s.mltLargeStepProbability);
+        s.mltSigma = ip.getFloat("sigma", s.mltSigma);
+        if (s.spp < 1 || s.mltBootstrapSamples < 1 || s.mltChains < 1 || !(s.mltSigma > 0) ||
+            !(s.mltLargeStepProbability >= 0 && s.mltLargeStepProbability <= 1))
+            throw InputError(desc.integrator.loc, "Integrator \"pssmlt\": mutationsperpixel, bootstrapsamples and chains "
+                                                  "must be >= 1, sigma > 0 and largestepprobability in [0, 1]");
     } else {
         known = false;
         warning(desc.integrator.loc, "Integrator \"" + it + "\" is not available yet; using \"path\"");

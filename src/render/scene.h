@@ -26,6 +26,11 @@ struct RenderSettings {
     uint64_t seed = 0;
     std::string outputFile = "pbrt.exr";
     float imagingRatio = 1;  // (shutterclose - shutteropen) * iso / 100
+    // Markov-chain integrators (pssmlt), with pbrt-v4's parameter names and defaults.
+    int mltBootstrapSamples = 100000;  // "bootstrapsamples"
+    int mltChains = 1000;              // "chains"
+    float mltLargeStepProbability = 0.3f;  // "largestepprobability"
+    float mltSigma = 0.01f;                // "sigma"
     SourceLoc filmLoc;       // the Film directive, for errors found when the film is made
 };
 

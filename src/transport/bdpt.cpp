@@ -278,9 +278,12 @@ Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
     return withConcreteSampler(ctx.sampler, [&](auto& sampler) { return estimate(ray, sampler, ctx); });
 }
 
-template <typename S>
-Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx) const {
-    ScratchBuffer& scratch = ctx.scratch;
+// Produces every strategy's contribution of one camera and one light subpath: deposit(s, t, c)
+// receives each that is not black (t = 1: landing at c.pRaster; else on the camera ray's
+// film position). The subpaths and the connections draw from their own dimension streams.
+template <typename S, typename Deposit>
+void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats,
+                             const SampleContext* splatTo, Deposit&& deposit) const {
     auto allocPath = [&](int n) {
         // No construction: the walks assign every vertex they report (PathVertex is an
         // aggregate, so the storage holds implicitly created vertices), and nothing reads beyond.
@@ -289,18 +292,15 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
     PathVertex* camera = allocPath(paths_.maxCameraVertices());
     PathVertex* light = allocPath(paths_.maxLightVertices());
     // The light subpath's origin first: its sampling then overlaps the camera walk.
-    const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, ctx.stats, light);
-    int nCamera = paths_.cameraSubpath(ray, sampler, scratch, ctx.stats, camera);
-    int nLight = paths_.continueLightSubpath(origin, sampler, scratch, ctx.stats, light);
+    sampler.startStream(kLightStream);
+    const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, stats, light);
+    sampler.startStream(kCameraStream);
+    int nCamera = paths_.cameraSubpath(ray, sampler, scratch, stats, camera);
+    sampler.startStream(kLightStream);
+    int nLight = paths_.continueLightSubpath(origin, sampler, scratch, stats, light);
+    sampler.startStream(kConnectionStream);
     const MisPrefixes prefixes = misPrefixes(light, nLight, camera, nCamera, scratch);
 
-    Spectrum L;
-    Spectrum* perStrategy = nullptr;
-    if (strategies_) {
-        size_t n = size_t(strategies_->slotCount()) * 2;
-        perStrategy = static_cast<Spectrum*>(scratch.allocBytes(sizeof(Spectrum) * n, alignof(Spectrum)));
-        for (size_t i = 0; i < n; ++i) new (&perStrategy[i]) Spectrum();
-    }
     const int maxDepth = paths_.maxDepth();
     for (int t = 1; t <= nCamera; ++t)
         for (int s = 0; s <= nLight; ++s) {
@@ -310,23 +310,47 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
             if ((s == 1 && t == 1) || depth < 0 || depth > maxDepth) continue;
             // Most camera vertices emit nothing: skip the call for the s = 0 strategy.
             if (s == 0 && !camera[t - 1].isLight()) continue;
-            Connection c = connect(light, camera, s, t, sampler, ctx.stats, true, &prefixes, &ctx);
+            Connection c = connect(light, camera, s, t, sampler, stats, true, &prefixes, splatTo);
             if (c.L.isBlack()) continue;
-            Spectrum contribution = c.L * c.weight;
-            if (strategies_) {
-                if (t == 1) {
-                    strategies_->splat(s, c.pRaster, contribution, c.L, ctx.sampleIndex);
-                } else if (int k = strategies_->slot(s, t); k >= 0) {
-                    perStrategy[2 * k] = contribution;
-                    perStrategy[2 * k + 1] = c.L;
-                }
-            }
-            if (c.weight == 0) continue;
-            if (t == 1) ctx.film.addSplat(c.pRaster, contribution, ctx.sampleIndex);
-            else L += contribution;
+            deposit(s, t, c);
         }
+}
+
+template <typename S>
+Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx) const {
+    ScratchBuffer& scratch = ctx.scratch;
+    Spectrum L;
+    Spectrum* perStrategy = nullptr;
+    if (strategies_) {
+        size_t n = size_t(strategies_->slotCount()) * 2;
+        perStrategy = static_cast<Spectrum*>(scratch.allocBytes(sizeof(Spectrum) * n, alignof(Spectrum)));
+        for (size_t i = 0; i < n; ++i) new (&perStrategy[i]) Spectrum();
+    }
+    produce(ray, sampler, scratch, ctx.stats, &ctx, [&](int s, int t, const Connection& c) {
+        Spectrum contribution = c.L * c.weight;
+        if (strategies_) {
+            if (t == 1) {
+                strategies_->splat(s, c.pRaster, contribution, c.L, ctx.sampleIndex);
+            } else if (int k = strategies_->slot(s, t); k >= 0) {
+                perStrategy[2 * k] = contribution;
+                perStrategy[2 * k + 1] = c.L;
+            }
+        }
+        if (c.weight == 0) return;
+        if (t == 1) ctx.film.addSplat(c.pRaster, contribution, ctx.sampleIndex);
+        else L += contribution;
+    });
     if (strategies_) strategies_->addCameraSample(ctx.px, ctx.py, ctx.filterWeight, perStrategy);
     return L;
+}
+
+void BDPTIntegrator::contributions(const Ray& ray, Vec2 pFilm, PrimarySampleSampler& sampler, ScratchBuffer& scratch,
+                                   PathStats& stats, std::vector<PathContribution>& out) const {
+    out.clear();
+    produce(ray, sampler, scratch, stats, nullptr, [&](int s, int t, const Connection& c) {
+        if (c.weight == 0) return;
+        out.push_back({t == 1 ? c.pRaster : pFilm, c.L * c.weight, s, t});
+    });
 }
 
 template BDPTIntegrator::Connection BDPTIntegrator::connect<Sampler>(PathVertex*, PathVertex*, int, int, Sampler&,

@@ -5,6 +5,8 @@
 #pragma once
 #include <memory>
 #include <optional>
+#include <vector>
+#include "mc/primary_sample_sampler.h"
 #include "transport/integrator.h"
 #include "transport/strategy_images.h"
 #include "transport/subpaths.h"
@@ -63,6 +65,21 @@ public:
     float misWeight(const PathVertex* light, const PathVertex* camera, const PathVertex* sampled, int s, int t,
                     const EndpointDensities* known = nullptr, const MisPrefixes* prefixes = nullptr) const;
     const Subpaths& subpaths() const { return paths_; }
+
+    // The dimension streams of one sample (see Sampler::startStream): the camera subpath
+    // (after the film and lens position), the light subpath, and the connections.
+    static constexpr int kCameraStream = 0, kLightStream = 1, kConnectionStream = 2, kStreamCount = 3;
+    // One strategy's MIS-weighted contribution and where it lands on the film.
+    struct PathContribution {
+        Vec2 pRaster;
+        Spectrum L;
+        int s = 0, t = 0;
+    };
+    // Every strategy's weighted contribution of the camera subpath along `ray` (generated
+    // at film position pFilm) and one light subpath, without depositing them: what a Markov
+    // chain over primary samples (transport/mlt/) needs to know before it accepts a sample.
+    void contributions(const Ray& ray, Vec2 pFilm, PrimarySampleSampler& sampler, ScratchBuffer& scratch,
+                       PathStats& stats, std::vector<PathContribution>& out) const;
     // For tests: connect() also computes each weight from densities evaluated afresh at the
     // join, not those its BSDF evaluations produced, into Connection::recomputedWeight.
     void recomputeWeights(bool on) { recomputeWeights_ = on; }
@@ -72,6 +89,9 @@ public:
     const StrategyImages* strategyImages() const { return strategies_.get(); }
 
 private:
+    template <typename S, typename Deposit>
+    void produce(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats, const SampleContext* splatTo,
+                 Deposit&& deposit) const;
     template <typename S>
     Spectrum estimate(const Ray& ray, S& sampler, SampleContext& ctx) const;
 

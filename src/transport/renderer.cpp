@@ -10,6 +10,7 @@
 #include "util/error.h"
 #include "util/memory_limit.h"
 
+#include "transport/mlt/pssmlt.h"
 #include "transport/render_monitor.h"
 #include "transport/sample_passes.h"
 
@@ -52,6 +53,13 @@ void requireFilmMemory(const Scene& scene, const Integrator& integrator, const R
 }  // namespace
 
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options) {
+    // Markov chains have their own driver: a chain is not a per-camera-ray estimate.
+    if (auto* mlt = dynamic_cast<const PSSMLTIntegrator*>(&integrator)) {
+        if (options.adaptive != AdaptiveMode::None)
+            throw InputError("adaptive sampling needs an integrator whose pixels come from their own samples (path)");
+        requireFilmMemory(scene, integrator, options);
+        return renderMetropolis(scene, *mlt, options);
+    }
     const PixelBounds& bounds = scene.pixelBounds();
     if (options.adaptive != AdaptiveMode::None && integrator.splats())
         throw InputError("adaptive sampling needs an integrator whose pixels come from their own samples "

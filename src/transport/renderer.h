@@ -25,6 +25,18 @@ struct RenderOptions {
     AdaptiveMode adaptive = AdaptiveMode::None;
 };
 
+// What a Markov-chain render (transport/mlt/) adds to the statistics.
+struct MetropolisStats {
+    bool present = false;
+    double b = 0;  // the integral of the target function over primary sample space
+    int chains = 0;
+    long long bootstrapSamples = 0, mutations = 0;
+    long long proposedLarge = 0, acceptedLarge = 0, proposedSmall = 0, acceptedSmall = 0;
+    long long invalidProposals = 0;  // zero, negative or non-finite target: rejected, never splatted
+    static double rate(long long accepted, long long proposed) { return proposed ? double(accepted) / double(proposed) : 0.0; }
+    double acceptanceRate() const { return rate(acceptedLarge + acceptedSmall, proposedLarge + proposedSmall); }
+};
+
 struct RenderResult {
     Image image;                 // the crop region, weighted mean per pixel
     Image variance;              // per pixel, the estimated variance of its mean luminance (Film::varianceImage)
@@ -39,6 +51,7 @@ struct RenderResult {
     Film::ErrorEstimate error;  // per-pixel variance of the estimate, averaged over the image
     // Efficiency 1/(V T) with V the mean relative variance and T the render time (thesis eq. 2.26).
     double efficiency = 0;
+    MetropolisStats metropolis;
 };
 
 // Throws InputError before anything is allocated if the film would exceed the memory limit

@@ -3,6 +3,7 @@
 #include <new>
 
 #include "lights/infinity_disk.h"
+#include "mc/primary_sample_sampler.h"
 
 namespace ps {
 
@@ -209,6 +210,7 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
 PS_SUBPATH_WALKS(Sampler)
 PS_SUBPATH_WALKS(PaddedSobolSampler)
 PS_SUBPATH_WALKS(IndependentSampler)
+PS_SUBPATH_WALKS(PrimarySampleSampler)
 #undef PS_SUBPATH_WALKS
 
 Spectrum Subpaths::f(const PathVertex& v, const PathVertex& next, TransportMode mode) const {

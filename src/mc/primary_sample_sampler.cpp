@@ -1,0 +1,96 @@
+#include "mc/primary_sample_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mc/metropolis.h"
+
+namespace ps {
+
+PrimarySampleSampler::PrimarySampleSampler(uint64_t chainSeed, const PrimarySampleParams& params)
+    : params_(params) {
+    if (params_.streamCount < 1) params_.streamCount = 1;
+    streamIndex_.assign(size_t(params_.streamCount), 0);
+    reseed(chainSeed);
+}
+
+void PrimarySampleSampler::reseed(uint64_t chainSeed) { rng_.seed(mix64(chainSeed), chainSeed ^ 0x2545f4914f6cdd1dULL); }
+
+void PrimarySampleSampler::restartStreams() {
+    stream_ = 0;
+    std::fill(streamIndex_.begin(), streamIndex_.end(), 0);
+}
+
+void PrimarySampleSampler::startIteration() {
+    startIteration(iteration_ == 0 || rng_.uniformDouble() < params_.largeStepProbability);
+}
+
+void PrimarySampleSampler::startIteration(bool largeStep) {
+    ++iteration_;
+    largeStep_ = largeStep || iteration_ == 1;
+    restartStreams();
+}
+
+void PrimarySampleSampler::accept() {
+    if (largeStep_) lastLargeStep_ = iteration_;
+}
+
+void PrimarySampleSampler::reject() {
+    for (Value& v : values_)
+        if (v.modified == iteration_) {
+            v.value = v.backupValue;
+            v.modified = v.backupModified;
+        }
+    --iteration_;
+}
+
+// A small step of n iterations at once: a normal deviate of sigma * sqrt(n), wrapped.
+double PrimarySampleSampler::small(double v, int64_t steps) {
+    v += params_.sigma * std::sqrt(double(steps)) * standardNormal(rng_);
+    v -= std::floor(v);
+    return v < 1.0 ? v : 0.0;  // v just below 0 can round up to 1
+}
+
+double PrimarySampleSampler::read(size_t index) {
+    if (index >= values_.size()) values_.resize(index + 1);
+    Value& x = values_[index];
+    if (x.modified == iteration_) return x.value;  // read twice by one proposal
+    // Bring the value to the chain's current state (the last accepted iteration): a value
+    // never read, or not read since an accepted large step, is uniform there; one read at
+    // iteration m < k - 1 has missed k - 1 - m small steps.
+    const int64_t current = iteration_ - 1;
+    if (x.modified < 0 || x.modified < lastLargeStep_) {
+        x.value = rng_.uniformDouble();
+        x.modified = current;
+    } else if (x.modified < current) {
+        x.value = small(x.value, current - x.modified);
+        x.modified = current;
+    }
+    // That state is what a rejection restores; then this iteration's own step.
+    x.backupValue = x.value;
+    x.backupModified = x.modified;
+    x.value = largeStep_ ? rng_.uniformDouble() : small(x.value, 1);
+    x.modified = iteration_;
+    return x.value;
+}
+
+float PrimarySampleSampler::get1D() {
+    size_t index = size_t(stream_) + size_t(params_.streamCount) * size_t(streamIndex_[size_t(stream_)]++);
+    float u = float(read(index));
+    return u < 1.0f ? u : 0x1.fffffep-1f;  // a double just below 1 rounds to 1.0f
+}
+
+Vec2 PrimarySampleSampler::get2D() {
+    float a = get1D();
+    return {a, get1D()};
+}
+
+bool PrimarySampleSampler::sameState(const PrimarySampleSampler& o) const {
+    if (iteration_ != o.iteration_ || lastLargeStep_ != o.lastLargeStep_ || values_.size() != o.values_.size())
+        return false;
+    for (size_t i = 0; i < values_.size(); ++i)
+        if (values_[i].value != o.values_[i].value || values_[i].modified != o.values_[i].modified) return false;
+    return true;
+}
+
+}  // namespace ps

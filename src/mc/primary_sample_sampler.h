@@ -1,0 +1,100 @@
+// Primary-sample-space Metropolis sampling (Kelemen et al. 2002; thesis ch. 11 builds
+// Metropolis light transport on the same Metropolis-Hastings step): a Markov chain over the
+// unit hypercube of random numbers that a Monte Carlo estimator consumes. The chain's state
+// is the vector of every value read so far; each iteration proposes a new vector, the
+// estimator runs on it unchanged (it only calls get1D / get2D), and the chain accepts or
+// rejects. Both mutations are symmetric (T(x -> y) = T(y -> x)), so the acceptance
+// probability is min(1, f(y) / f(x)).
+//
+// Values are mutated lazily, when they are read: a large step draws a value afresh, a small
+// step moves it by a normal deviate of standard deviation sigma on the torus [0,1). A value
+// not read for n accepted iterations catches up on the n small steps it missed in one normal
+// step of sigma * sqrt(n) (the sum of independent normals; wrapping commutes with the sum),
+// or is drawn afresh if a large step was accepted in between. Rejection restores every value
+// the proposal touched, bit for bit.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "mc/rng.h"
+#include "mc/sampler.h"
+
+namespace ps {
+
+struct PrimarySampleParams {
+    double sigma = 0.01;                // small-step standard deviation (pbrt-v4's default)
+    double largeStepProbability = 0.3;  // chance that an iteration is a large step
+    int streamCount = 1;                // interleaved dimension streams (see startStream)
+};
+
+class PrimarySampleSampler final : public Sampler {
+public:
+    // chainSeed keys the chain's own random stream: the mutations and the values drawn afresh.
+    // The same seed and the same sequence of calls give the same values (replay).
+    PrimarySampleSampler(uint64_t chainSeed, const PrimarySampleParams& params);
+
+    // Starts the next proposal. The first iteration of a chain is always a large step (every
+    // value fresh); afterwards a large step with probability largeStepProbability.
+    void startIteration();
+    void startIteration(bool largeStep);  // the step kind chosen by the caller
+    // Keeps the proposal as the chain's state, or restores the state before it.
+    void accept();
+    void reject();
+    bool largeStep() const { return largeStep_; }
+    // Accepted iterations so far (between iterations; a proposal under way is the next one).
+    int64_t acceptedIterations() const { return iteration_; }
+
+    // Dimension streams: stream k reads the values k, k + K, k + 2K, ... (K = streamCount),
+    // so that what one stream consumes never shifts another's values. Selected again within
+    // an iteration, a stream continues where it stopped; every iteration starts each stream
+    // at its first value.
+    void startStream(int stream) override { stream_ = stream < params_.streamCount ? stream : 0; }
+    // A new random stream for the mutations from here on; the stored values stay. A chain
+    // started from a replayed bootstrap sample takes its own stream this way.
+    void reseed(uint64_t chainSeed);
+
+    float get1D() override;
+    Vec2 get2D() override;
+    // Ignored (a chain has no pixels): every stream restarts at its first value.
+    void startPixelSample(int, int, int) override { restartStreams(); }
+    std::unique_ptr<Sampler> clone() const override { return std::make_unique<PrimarySampleSampler>(*this); }
+
+    // The state, for tests: the stored values and the iteration at which each was last
+    // modified (-1: never read, or only by rejected proposals).
+    struct Value {
+        double value = 0;
+        int64_t modified = -1;
+        double backupValue = 0;
+        int64_t backupModified = -1;
+    };
+    const std::vector<Value>& values() const { return values_; }
+    bool sameState(const PrimarySampleSampler& o) const;
+
+private:
+    double read(size_t index);
+    void restartStreams();
+    double small(double v, int64_t steps);
+
+    PrimarySampleParams params_;
+    Rng rng_;
+    std::vector<Value> values_;
+    int64_t iteration_ = 0;        // the proposal's iteration number (accepted ones + 1)
+    int64_t lastLargeStep_ = 0;    // iteration of the last accepted large step
+    bool largeStep_ = true;
+    int stream_ = 0;
+    std::vector<int64_t> streamIndex_;  // values read from each stream this iteration
+};
+
+// The acceptance probability of a proposal with target value fy from a state with fx, for
+// symmetric mutations: min(1, fy / fx). A proposal whose value is zero, negative or not
+// finite is never accepted (and, weighted by this probability, never recorded).
+inline double acceptanceProbability(double fx, double fy) {
+    if (!(fy > 0) || !std::isfinite(fy)) return 0;
+    if (!(fx > 0) || !std::isfinite(fx)) return 1;
+    return std::min(1.0, fy / fx);
+}
+
+}  // namespace ps
