@@ -101,7 +101,7 @@ std::unique_ptr<Shape> createPlyMesh(const ShapeEntity& e, const Transform& toSc
         warning(e.loc, "plymesh: \"displacement\" is not supported yet; the mesh is rendered undisplaced");
     e.params.getTexture("displacement");
     e.params.getFloat("edgelength", 1);
-    PlyMesh ply = readPly(resolvePath(base, file));
+    PlyMesh ply = readNamedBy(e.loc, [&] { return readPly(resolvePath(base, file)); });
     TriangleMeshData d;
     d.P = std::move(ply.P);
     d.N = std::move(ply.N);
