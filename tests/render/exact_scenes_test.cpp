@@ -78,12 +78,34 @@ const char* kSphereUnderSky = R"(
         Shape "sphere" "float radius" [ 1 ]
     )";
 
+// A Loop-subdivided cube (convex limit surface) filling the view under a uniform sky.
+const char* kSubdividedCubeUnderSky = R"(
+        LookAt 0.3 0.4 5  0 0 0  0 1 0
+        Camera "perspective" "float fov" [ 5 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 5 ]
+        WorldBegin
+        LightSource "infinite" "rgb L" [ 0.8 0.9 1.0 ]
+        Material "diffuse" "rgb reflectance" [ 0.5 0.3 0.7 ]
+        Shape "loopsubdiv" "integer levels" [ 4 ]
+            "point3 P" [ -1 -1 -1  1 -1 -1  -1 1 -1  1 1 -1  -1 -1 1  1 -1 1  -1 1 1  1 1 1 ]
+            "integer indices" [ 0 2 3  0 3 1  4 5 7  4 7 6  0 1 5  0 5 4  2 6 7  2 7 3  0 4 6  0 6 2  1 3 7  1 7 5 ]
+    )";
+
 }  // namespace
 
 // A convex diffuse object under a uniform sky reflects a * L exactly (it never sees itself).
 TEST(ExactScenes, DiffuseSphereUnderUniformSky) {
     const char* scene = kSphereUnderSky;
     RenderResult r = renderString(scene, 64);
+    const double exact[3] = {0.5 * 0.8, 0.3 * 0.9, 0.7 * 1.0};
+    expectWithin4Sigma(wholeImage(r.image), exact);
+}
+
+// The same for the limit surface of a subdivided cube, shaded with its limit normals.
+TEST(ExactScenes, SubdividedCubeUnderUniformSky) {
+    RenderResult r = renderString(kSubdividedCubeUnderSky, 64);
     const double exact[3] = {0.5 * 0.8, 0.3 * 0.9, 0.7 * 1.0};
     expectWithin4Sigma(wholeImage(r.image), exact);
 }
