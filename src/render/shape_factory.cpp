@@ -172,6 +172,11 @@ std::unique_ptr<Shape> createShape(const ShapeEntity& e, const Transform& toScen
         if (!(r > 0)) throw InputError(e.loc, "disk: \"radius\" must be positive");
         shape = std::make_unique<Disk>(toScene, e.reverseOrientation, ps.getFloat("height", 0), r,
                                        ps.getFloat("innerradius", 0), ps.getFloat("phimax", 360));
+    } else if (e.type == "cylinder") {
+        float r = ps.getFloat("radius", 1);
+        if (!(r > 0)) throw InputError(e.loc, "cylinder: \"radius\" must be positive");
+        shape = std::make_unique<Cylinder>(toScene, e.reverseOrientation, r, ps.getFloat("zmin", -1), ps.getFloat("zmax", 1),
+                                           ps.getFloat("phimax", 360));
     } else {
         warning(e.loc, "Shape \"" + e.type + "\" is not supported; it is ignored");
         return nullptr;
