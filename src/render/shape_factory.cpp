@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
@@ -135,8 +136,9 @@ std::unique_ptr<Shape> createLoopSubdiv(const ShapeEntity& e, const Transform& t
     // Each level quadruples the triangles; ~200 bytes per final triangle while subdividing,
     // in the mesh and in Embree's BVH.
     const double triangles = double(indices.size() / 3) * std::pow(4.0, levels);
-    requireMemory(e.loc, "loopsubdiv: " + std::to_string(levels) + " levels of " + std::to_string(indices.size() / 3) + " triangles",
-                  triangles * 200);
+    char what[96];
+    std::snprintf(what, sizeof what, "loopsubdiv: %d levels (%.3g triangles)", levels, triangles);
+    requireMemory(e.loc, what, triangles * 200);
     try {
         return std::make_unique<TriangleMesh>(loopSubdivide(levels, indices, P), toScene, e.reverseOrientation);
     } catch (const std::invalid_argument& err) {
