@@ -257,4 +257,73 @@ ShapeSample Disk::sampleArea(int, Vec2 u) const {
     return s;
 }
 
+// ---- Cylinder ----
+
+Cylinder::Cylinder(const Transform& toScene, bool reverseOrientation, float radius, float zMin, float zMax, float phiMaxDeg)
+    : Quadric(toScene, reverseOrientation), radius_(radius), zMin_(std::min(zMin, zMax)), zMax_(std::max(zMin, zMax)),
+      phiMax_(radians(clampf(phiMaxDeg, 0, 360))) {}
+
+void Cylinder::objectBounds(Vec3& lo, Vec3& hi) const {
+    lo = {-radius_, -radius_, zMin_};
+    hi = {radius_, radius_, zMax_};
+}
+
+float Cylinder::intersectObject(Vec3 o, Vec3 d, float tMax) const {
+    // Quadratic in double precision: (o + t d).xy^2 = r^2.
+    double a = double(d.x) * d.x + double(d.y) * d.y;
+    double b = 2 * (double(d.x) * o.x + double(d.y) * o.y);
+    double c = double(o.x) * o.x + double(o.y) * o.y - double(radius_) * radius_;
+    double disc = b * b - 4 * a * c;
+    if (disc < 0 || a == 0) return -1;  // a == 0: parallel to the axis, never on the wall
+    double root = std::sqrt(disc);
+    double q = b < 0 ? -0.5 * (b - root) : -0.5 * (b + root);
+    double t0 = q / a, t1 = c / q;
+    if (t0 > t1) std::swap(t0, t1);
+    for (double t : {t0, t1}) {
+        if (!(t > 0) || t >= tMax) continue;
+        Vec3 p = o + d * float(t);
+        if (p.z < zMin_ || p.z > zMax_) continue;
+        if (phiMax_ < 2 * kPi && phiOf(p) > phiMax_) continue;
+        return float(t);
+    }
+    return -1;
+}
+
+Vec3 Cylinder::normalAt(Vec3 pObj) const {
+    Vec3 n = normalize(toScene_.normal({pObj.x, pObj.y, 0}));
+    return flip_ ? -n : n;
+}
+
+int Cylinder::interaction(const Ray& r, float t, int, float, float, SurfaceInteraction& si) const {
+    Vec3 pObj = toScene_.inverse().point(r.o + r.d * t);
+    float rho = std::sqrt(pObj.x * pObj.x + pObj.y * pObj.y);
+    if (rho > 0) {  // reproject onto the wall
+        pObj.x *= radius_ / rho;
+        pObj.y *= radius_ / rho;
+    }
+    si.uv = {phiOf(pObj) / phiMax_, zMax_ > zMin_ ? (pObj.z - zMin_) / (zMax_ - zMin_) : 0.0f};
+    si.p = toScene_.point(pObj);
+    si.t = t;
+    si.ng = si.ns = normalAt(pObj);
+    si.dpdu = toScene_.vector({-phiMax_ * pObj.y, phiMax_ * pObj.x, 0});
+    return 0;
+}
+
+float Cylinder::area(int) const {
+    float sxy = length(toScene_.vector({1, 0, 0})), sz = length(toScene_.vector({0, 0, 1}));
+    return phiMax_ * radius_ * sxy * (zMax_ - zMin_) * sz;
+}
+
+ShapeSample Cylinder::sampleArea(int, Vec2 u) const {
+    float z = lerp(u.x, zMin_, zMax_), phi = u.y * phiMax_;
+    Vec3 pObj(radius_ * std::cos(phi), radius_ * std::sin(phi), z);
+    ShapeSample s;
+    s.p = toScene_.point(pObj);
+    s.n = normalAt(pObj);
+    s.uv = {u.y, u.x};
+    float a = area(0);
+    s.pdf = a > 0 ? 1 / a : 0;
+    return s;
+}
+
 }  // namespace ps

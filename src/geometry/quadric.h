@@ -1,4 +1,4 @@
-// Spheres and disks as exact implicit surfaces, intersected in object space through
+// Spheres, disks and cylinders as exact implicit surfaces, intersected in object space through
 // Embree's user-geometry callbacks.
 #pragma once
 #include "geometry/shape.h"
@@ -55,6 +55,23 @@ public:
 
 private:
     float height_, radius_, innerRadius_, phiMax_;
+};
+
+// pbrt-v4's "cylinder": x^2 + y^2 = r^2 for zMin <= z <= zMax and phi <= phiMax, no caps;
+// the normal points away from the axis; u = phi / phiMax, v = (z - zMin) / (zMax - zMin).
+class Cylinder final : public Quadric {
+public:
+    Cylinder(const Transform& toScene, bool reverseOrientation, float radius, float zMin, float zMax, float phiMaxDeg);
+    float intersectObject(Vec3 o, Vec3 d, float tMax) const override;
+    void objectBounds(Vec3& lo, Vec3& hi) const override;
+    int interaction(const Ray& r, float t, int embreePrim, float u, float v, SurfaceInteraction& si) const override;
+    float area(int prim) const override;
+    // Uniform in (phi, z): uniform in area when the transform scales x and y alike.
+    ShapeSample sampleArea(int prim, Vec2 u) const override;
+
+private:
+    Vec3 normalAt(Vec3 pObj) const;
+    float radius_, zMin_, zMax_, phiMax_;
 };
 
 }  // namespace ps

@@ -70,7 +70,7 @@ float etaParam(const ParamSet& ps, const std::string& name) {
         eta = v[0];
     } else if (auto s = ps.getSpectrum(name, SpectrumKind::Unbounded)) {
         static std::atomic<bool> warned{false};
-        if (!warned.exchange(true))
+        if (ps.spectrallyVarying(name) && !warned.exchange(true))
             warning(p->loc, "spectrally varying \"" + name + "\": dispersion is not modelled; using the green channel's value " +
                                 std::to_string(s->g) + " (warned once)");
         eta = s->g;
@@ -138,7 +138,7 @@ ImageLookup imageLookup(const TextureEntity& e, const std::string& base, bool is
     if (filter != "bilinear" && filter != "point" && filter != "trilinear" && filter != "ewa" && filter != "EWA")
         warning(locOf(ps, "filter"), "imagemap: unknown filter \"" + filter + "\"; using bilinear");
     ps.getFloat("maxanisotropy", 8);
-    auto img = loadTextureImage(path, ce);
+    auto img = readNamedBy(e.loc, [&] { return loadTextureImage(path, ce); });
     ImageChannels ch = !isFloat ? ImageChannels::RGB : hasNonOpaqueAlpha(*img) ? ImageChannels::Alpha : ImageChannels::Average;
     return ImageLookup(img, uvMapping(ps, e.loc), wm, ps.getFloat("scale", 1), ps.getBool("invert", false), ch);
 }

@@ -1,6 +1,7 @@
 #include "math/transform.h"
 
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace ps {
@@ -82,6 +83,14 @@ std::optional<Transform> Transform::fromMatrix(const Matrix4& m) {
     auto inv = m.inverse();
     if (!inv) return std::nullopt;
     return Transform(m, *inv);
+}
+
+Transform Transform::fromMatrixOrSingular(const Matrix4& m) {
+    if (auto inv = m.inverse()) return Transform(m, *inv);
+    Matrix4 nan;
+    for (auto& row : nan.m)
+        for (float& v : row) v = std::numeric_limits<float>::quiet_NaN();
+    return Transform(m, nan);
 }
 
 Transform Transform::translate(Vec3 d) {

@@ -24,6 +24,9 @@ public:
     Transform(const Matrix4& m, const Matrix4& inv) : m_(m), inv_(inv) {}
     // nullopt when m is not invertible.
     static std::optional<Transform> fromMatrix(const Matrix4& m);
+    // As pbrt-v4 builds a Transform: a singular or non-finite m gets a NaN inverse, so the
+    // result is not invertible (isInvertible) and products with it stay so.
+    static Transform fromMatrixOrSingular(const Matrix4& m);
 
     static Transform translate(Vec3 d);
     static Transform scale(Vec3 s);
@@ -35,6 +38,8 @@ public:
     const Matrix4& inverseMatrix() const { return inv_; }
     Transform inverse() const { return Transform(inv_, m_); }
     bool isIdentity() const { return m_.isIdentity(); }
+    // Both the matrix and its inverse are finite: false after a singular or non-finite step.
+    bool isInvertible() const { return m_.isFinite() && inv_.isFinite(); }
     // True when the transform flips handedness (negative determinant of the 3x3 part).
     bool swapsHandedness() const;
 

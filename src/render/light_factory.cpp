@@ -27,7 +27,7 @@ std::unique_ptr<Light> createInfinite(const LightEntity& e, const std::string& b
         return std::make_unique<UniformInfiniteLight>(L * scale);
     }
     if (ps.has("L")) throw InputError(e.loc, "infinite light: cannot have both \"L\" and \"filename\"");
-    Image img = readImage(resolvePath(base, file));
+    Image img = readNamedBy(e.loc, [&] { return readImage(resolvePath(base, file)); });
     ImageInfiniteLight::Layout layout;
     if (img.width == img.height) {
         layout = ImageInfiniteLight::Layout::EqualArea;

@@ -1,9 +1,15 @@
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 
+#include "geometry/loop_subdivision.h"
 #include "geometry/quadric.h"
 #include "geometry/triangle_mesh.h"
 #include "render/scene_builder.h"
 #include "scene/ply.h"
+#include "util/memory_limit.h"
 
 namespace ps {
 
@@ -101,7 +107,7 @@ std::unique_ptr<Shape> createPlyMesh(const ShapeEntity& e, const Transform& toSc
         warning(e.loc, "plymesh: \"displacement\" is not supported yet; the mesh is rendered undisplaced");
     e.params.getTexture("displacement");
     e.params.getFloat("edgelength", 1);
-    PlyMesh ply = readPly(resolvePath(base, file));
+    PlyMesh ply = readNamedBy(e.loc, [&] { return readPly(resolvePath(base, file)); });
     TriangleMeshData d;
     d.P = std::move(ply.P);
     d.N = std::move(ply.N);
@@ -114,6 +120,30 @@ std::unique_ptr<Shape> createPlyMesh(const ShapeEntity& e, const Transform& toSc
     }
     if (d.indices.empty()) throw InputError(e.loc, "plymesh: \"" + file + "\" has no triangles or quads");
     return std::make_unique<TriangleMesh>(std::move(d), toScene, e.reverseOrientation);
+}
+
+// pbrt-v4's "loopsubdiv": subdivided to `levels` (default 3) and pushed to the limit
+// surface, with limit normals; then an ordinary triangle mesh.
+std::unique_ptr<Shape> createLoopSubdiv(const ShapeEntity& e, const Transform& toScene) {
+    const ParamSet& ps = e.params;
+    const int levels = std::max(0, ps.getInt("levels", 3));  // pbrt-v4: fewer than 0 levels is 0
+    std::vector<int> indices = ps.getInts("indices");
+    std::vector<Vec3> P = ps.getPoint3s("P");
+    ps.getString("scheme", "loop");  // read and ignored by pbrt-v4 too: the scheme is always Loop's
+    if (indices.empty()) throw InputError(e.loc, "loopsubdiv: \"integer indices\" is required");
+    if (P.empty()) throw InputError(e.loc, "loopsubdiv: \"point3 P\" is required");
+    validateIndices(indices, P.size(), e.loc, "loopsubdiv");
+    // Each level quadruples the triangles; ~200 bytes per final triangle while subdividing,
+    // in the mesh and in Embree's BVH.
+    const double triangles = double(indices.size() / 3) * std::pow(4.0, levels);
+    char what[96];
+    std::snprintf(what, sizeof what, "loopsubdiv: %d levels (%.3g triangles)", levels, triangles);
+    requireMemory(e.loc, what, triangles * 200);
+    try {
+        return std::make_unique<TriangleMesh>(loopSubdivide(levels, indices, P), toScene, e.reverseOrientation);
+    } catch (const std::invalid_argument& err) {
+        throw InputError(e.loc, std::string("loopsubdiv: ") + err.what());
+    }
 }
 
 }  // namespace
@@ -132,6 +162,8 @@ std::unique_ptr<Shape> createShape(const ShapeEntity& e, const Transform& toScen
         shape = createPlyMesh(e, toScene, base);
     } else if (e.type == "bilinearmesh") {
         shape = createBilinearMesh(e, toScene);
+    } else if (e.type == "loopsubdiv") {
+        shape = createLoopSubdiv(e, toScene);
     } else if (e.type == "sphere") {
         float r = ps.getFloat("radius", 1);
         if (!(r > 0)) throw InputError(e.loc, "sphere: \"radius\" must be positive");
@@ -142,6 +174,11 @@ std::unique_ptr<Shape> createShape(const ShapeEntity& e, const Transform& toScen
         if (!(r > 0)) throw InputError(e.loc, "disk: \"radius\" must be positive");
         shape = std::make_unique<Disk>(toScene, e.reverseOrientation, ps.getFloat("height", 0), r,
                                        ps.getFloat("innerradius", 0), ps.getFloat("phimax", 360));
+    } else if (e.type == "cylinder") {
+        float r = ps.getFloat("radius", 1);
+        if (!(r > 0)) throw InputError(e.loc, "cylinder: \"radius\" must be positive");
+        shape = std::make_unique<Cylinder>(toScene, e.reverseOrientation, r, ps.getFloat("zmin", -1), ps.getFloat("zmax", 1),
+                                           ps.getFloat("phimax", 360));
     } else {
         warning(e.loc, "Shape \"" + e.type + "\" is not supported; it is ignored");
         return nullptr;

@@ -62,28 +62,30 @@ void DescriptionBuilder::requireWorld(const Token& d) const {
 
 // ---- transforms: the CTM is post-multiplied (§1) ----
 
-void DescriptionBuilder::concat(const Token& d, const Transform& t) {
+void DescriptionBuilder::concat(const Token& d, const Transform& t) { setCtm(d, gs_.ctm * t, false); }
+
+// pbrt-v4 accepts a singular or non-finite transform (its inverse becomes NaN); only
+// placing a shape, light, camera or instance under it is an error (requireInvertibleCtm),
+// which then names the directive that made it so.
+void DescriptionBuilder::setCtm(const Token& d, const Transform& t, bool replaces) {
     if (!gs_.startTransformActive) return;
-    Transform r = gs_.ctm * t;
-    if (!r.matrix().isFinite() || !r.inverseMatrix().isFinite())
-        fail(d, "makes the current transform singular or non-finite");
-    gs_.ctm = r;
+    if (!t.isInvertible() && (replaces || gs_.ctm.isInvertible())) gs_.singularSince = std::string(d.text) + " at " + d.loc().str();
+    gs_.ctm = t;
 }
 
-void DescriptionBuilder::identity(const Token&) {
-    if (gs_.startTransformActive) gs_.ctm = Transform();
+void DescriptionBuilder::requireInvertibleCtm(const Token& d) const {
+    if (!gs_.ctm.isInvertible())
+        fail(d, "the current transform is singular or not finite (since " + gs_.singularSince + "), so nothing can be placed under it");
 }
+
+void DescriptionBuilder::identity(const Token& d) { setCtm(d, Transform(), true); }
 
 void DescriptionBuilder::translate(const Token& d, Vec3 delta) { concat(d, Transform::translate(delta)); }
 
-void DescriptionBuilder::scale(const Token& d, Vec3 s) {
-    if (s.x == 0 || s.y == 0 || s.z == 0) fail(d, "a zero scale factor makes the transform singular");
-    concat(d, Transform::scale(s));
-}
+void DescriptionBuilder::scale(const Token& d, Vec3 s) { concat(d, Transform::scale(s)); }  // 0: singular
 
 void DescriptionBuilder::rotate(const Token& d, float degrees, Vec3 axis) {
-    if (!(lengthSquared(axis) > 0)) fail(d, "the rotation axis is zero");
-    concat(d, Transform::rotate(degrees, axis));
+    concat(d, Transform::rotate(degrees, axis));  // a zero axis gives NaN, as pbrt-v4's Normalize
 }
 
 void DescriptionBuilder::lookAt(const Token& d, Vec3 eye, Vec3 target, Vec3 up) {
@@ -94,31 +96,23 @@ void DescriptionBuilder::lookAt(const Token& d, Vec3 eye, Vec3 target, Vec3 up) 
 
 // The file lists the matrix column by column (numbers 13-15 are the translation), so the
 // 16 numbers are transposed into our row-major Matrix4.
-static std::optional<Transform> fromFileOrder(const double v[16]) {
+static Transform fromFileOrder(const double v[16]) {
     Matrix4 m;
     for (int col = 0; col < 4; ++col)
         for (int row = 0; row < 4; ++row) m.m[row][col] = float(v[col * 4 + row]);
-    return Transform::fromMatrix(m);
+    return Transform::fromMatrixOrSingular(m);
 }
 
-void DescriptionBuilder::transform(const Token& d, const double m[16]) {
-    auto t = fromFileOrder(m);
-    if (!t) fail(d, "the matrix is singular or not finite");
-    if (gs_.startTransformActive) gs_.ctm = *t;
-}
+void DescriptionBuilder::transform(const Token& d, const double m[16]) { setCtm(d, fromFileOrder(m), true); }
 
-void DescriptionBuilder::concatTransform(const Token& d, const double m[16]) {
-    auto t = fromFileOrder(m);
-    if (!t) fail(d, "the matrix is singular or not finite");
-    concat(d, *t);
-}
+void DescriptionBuilder::concatTransform(const Token& d, const double m[16]) { concat(d, fromFileOrder(m)); }
 
 void DescriptionBuilder::coordinateSystem(const Token&, const std::string& name) { namedCoordSys_[name] = gs_.ctm; }
 
 void DescriptionBuilder::coordSysTransform(const Token& d, const std::string& name) {
     auto it = namedCoordSys_.find(name);
     if (it == namedCoordSys_.end()) warning(d.loc(), "CoordSysTransform: unknown coordinate system " + quote(name) + "; ignored");
-    else gs_.ctm = it->second;
+    else setCtm(d, it->second, true);
 }
 
 void DescriptionBuilder::activeTransform(const Token& d, const std::string& which) {
@@ -147,6 +141,7 @@ void DescriptionBuilder::setOptionEntity(SceneEntity& e, const Token& d, const s
 }
 
 void DescriptionBuilder::camera(const Token& d, const std::string& type, ParamSet ps) {
+    requireInvertibleCtm(d);
     setOptionEntity(desc_.camera, d, type, std::move(ps));
     // The CTM here is camera-from-world (§1).
     desc_.camera.worldFromCamera = gs_.ctm.inverse();
@@ -328,6 +323,7 @@ void DescriptionBuilder::texture(const Token& d, const std::string& name, const 
 
 void DescriptionBuilder::lightSource(const Token& d, const std::string& type, ParamSet ps) {
     requireWorld(d);
+    requireInvertibleCtm(d);
     applyAttributes(AttributeTarget::Light, ps, d);
     LightEntity e;
     e.type = type;
@@ -350,6 +346,7 @@ void DescriptionBuilder::areaLightSource(const Token& d, const std::string& type
 
 void DescriptionBuilder::shape(const Token& d, const std::string& type, ParamSet ps) {
     requireWorld(d);
+    requireInvertibleCtm(d);
     applyAttributes(AttributeTarget::Shape, ps, d);
     ShapeEntity e;
     e.type = type;
@@ -397,6 +394,7 @@ void DescriptionBuilder::objectEnd(const Token& d) {
 void DescriptionBuilder::objectInstance(const Token& d, const std::string& name) {
     requireWorld(d);
     if (instance_) fail(d, "not allowed inside ObjectBegin " + quote(instance_->name));
+    requireInvertibleCtm(d);
     desc_.instanceUses.push_back(InstanceUse{name, gs_.ctm, d.loc()});
 }
 

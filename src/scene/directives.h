@@ -84,6 +84,8 @@ private:
     void requireOptions(const Token& d) const;
     void requireWorld(const Token& d) const;
     void concat(const Token& d, const Transform& t);
+    void setCtm(const Token& d, const Transform& t, bool replaces);
+    void requireInvertibleCtm(const Token& d) const;
     void setOptionEntity(SceneEntity& e, const Token& d, const std::string& type, ParamSet ps);
     void applyAttributes(AttributeTarget target, ParamSet& ps, const Token& d);
     void checkV3Material(const Token& d, const std::string& type, const ParamSet& ps) const;

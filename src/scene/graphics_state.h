@@ -22,6 +22,9 @@ struct GraphicsState {
     // pbrt keeps start and end transforms for motion blur; we keep the start one only, so
     // transform directives after `ActiveTransform EndTime` are ignored.
     bool startTransformActive = true;
+    // The directive (and where) that made the CTM singular or non-finite, for the error if
+    // a shape is then placed under it.
+    std::string singularSince;
 
     // Attribute defaults per target, shared between copies so that AttributeBegin is O(1)
     // however long the lists are; copied on write.

@@ -58,12 +58,14 @@ Spectrum blackbodyValue(const Param& p, SpectrumKind kind) {
     return blackbodyToRGB(float(p.numbers[0]), kind);
 }
 
-Spectrum spectrumValue(const Param& p, SpectrumKind kind, const std::string& baseDirectory) {
-    std::vector<float> lambda, value;
+// The (wavelength, value) pairs of an inline or file spectrum; false for a named one.
+bool spectrumSamples(const Param& p, const std::string& baseDirectory, std::vector<float>& lambda, std::vector<float>& value) {
+    lambda.clear();
+    value.clear();
     if (!p.strings.empty()) {
         expectCount(p, 1, p.strings.size());
         const std::string& name = p.strings[0];
-        if (auto s = namedSpectrumToRGB(name, kind)) return *s;
+        if (namedSpectrumToRGB(name, SpectrumKind::Unbounded)) return false;
         std::string err = readSpectrumFile(resolvePath(baseDirectory, name), lambda, value);
         if (!err.empty())
             throw InputError(p.loc, "parameter " + describe(p) + ": \"" + name +
@@ -79,8 +81,14 @@ Spectrum spectrumValue(const Param& p, SpectrumKind kind, const std::string& bas
             lambda.push_back(float(p.numbers[i]));
             value.push_back(float(p.numbers[i + 1]));
         }
-        if (lambda.size() == 1) warning(p.loc, "spectrum " + describe(p) + " is non-zero at a single wavelength only");
     }
+    return true;
+}
+
+Spectrum spectrumValue(const Param& p, SpectrumKind kind, const std::string& baseDirectory) {
+    std::vector<float> lambda, value;
+    if (!spectrumSamples(p, baseDirectory, lambda, value)) return *namedSpectrumToRGB(p.strings[0], kind);
+    if (p.strings.empty() && lambda.size() == 1) warning(p.loc, "spectrum " + describe(p) + " is non-zero at a single wavelength only");
     return sampledSpectrumToRGB(lambda, value, kind);
 }
 
@@ -196,6 +204,21 @@ std::optional<Spectrum> ParamSet::getSpectrum(const std::string& name, SpectrumK
         case ParamType::Blackbody: p->used = true; return blackbodyValue(*p, kind);
         case ParamType::Spectrum: p->used = true; return spectrumValue(*p, kind, baseDirectory);
         default: return std::nullopt;  // another type: unused, reported later
+    }
+}
+
+bool ParamSet::spectrallyVarying(const std::string& name) const {
+    const Param* p = find(name);
+    if (!p) return false;
+    switch (p->type) {
+        case ParamType::RGB: return p->numbers.size() == 3 && (p->numbers[0] != p->numbers[1] || p->numbers[1] != p->numbers[2]);
+        case ParamType::Blackbody: return true;
+        case ParamType::Spectrum: {
+            std::vector<float> lambda, value;
+            // pbrt-v4's named spectra (glasses, metals, illuminants) all vary with wavelength.
+            return !spectrumSamples(*p, baseDirectory, lambda, value) || !sampledSpectrumIsConstant(lambda, value);
+        }
+        default: return false;
     }
 }
 

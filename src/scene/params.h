@@ -58,6 +58,9 @@ public:
 
     // rgb / spectrum (inline pairs, named, or file) / blackbody, converted to RGB.
     std::optional<Spectrum> getSpectrum(const std::string& name, SpectrumKind kind) const;
+    // Whether that rgb / spectrum / blackbody value changes with wavelength (rgb: unequal
+    // components; spectrum: not one value over the visible range). False when absent.
+    bool spectrallyVarying(const std::string& name) const;
     // Name of the texture bound by `"texture name" "texname"`, or "" when absent.
     std::string getTexture(const std::string& name) const;
 

@@ -143,6 +143,11 @@ Spectrum chromaticityToRGB(double x, double y) {
     return {float(std::max(0.0, c[0] / w[0])), float(std::max(0.0, c[1] / w[1])), float(std::max(0.0, c[2] / w[2]))};
 }
 
+bool sampledSpectrumIsConstant(const std::vector<float>& lambda, const std::vector<float>& value) {
+    if (lambda.empty() || lambda.size() != value.size() || lambda.front() > kLambdaMin || lambda.back() < kLambdaMax) return false;
+    return std::all_of(value.begin(), value.end(), [&](float v) { return v == value[0]; });
+}
+
 Spectrum sampledSpectrumToRGB(const std::vector<float>& lambda, const std::vector<float>& value, SpectrumKind kind) {
     double s[kSamples] = {};
     const size_t n = std::min(lambda.size(), value.size());

@@ -21,6 +21,10 @@ namespace ps {
 //              stay non-negative (conductor eta/k, spectral IOR).
 Spectrum sampledSpectrumToRGB(const std::vector<float>& lambda, const std::vector<float>& value, SpectrumKind kind);
 
+// True when the piecewise-linear spectrum has one value over the whole visible range
+// [360, 830] nm (it is zero outside its samples, so it must cover that range).
+bool sampledSpectrumIsConstant(const std::vector<float>& lambda, const std::vector<float>& value);
+
 // Planck's law at T kelvin. As an illuminant: luminance 1 (§3). Otherwise pbrt's blackbody
 // spectrum normalised to a peak of 1, converted as above.
 Spectrum blackbodyToRGB(float kelvin);

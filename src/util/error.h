@@ -25,6 +25,18 @@ public:
     InputError(const SourceLoc& loc, const std::string& msg) : std::runtime_error(loc.str() + ": error: " + msg) {}
 };
 
+// Runs read(), which reads a file that a scene directive names (an image, a PLY mesh): an
+// InputError it throws ("mesh.ply: cannot open ...") gains the directive's place and the
+// "error:" prefix, like every other input error.
+template <typename Read>
+auto readNamedBy(const SourceLoc& directive, Read&& read) -> decltype(read()) {
+    try {
+        return read();
+    } catch (const InputError& e) {
+        throw InputError(directive, e.what());
+    }
+}
+
 // Text from an input file, double-quoted for a message: control bytes and bytes outside
 // ASCII as \xNN and a backslash as \\ (a binary file must not put raw bytes on the user's
 // terminal), cut after maxChars characters with "...".

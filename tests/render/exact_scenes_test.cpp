@@ -78,6 +78,60 @@ const char* kSphereUnderSky = R"(
         Shape "sphere" "float radius" [ 1 ]
     )";
 
+// A Loop-subdivided cube (convex limit surface) filling the view under a uniform sky.
+const char* kSubdividedCubeUnderSky = R"(
+        LookAt 0.3 0.4 5  0 0 0  0 1 0
+        Camera "perspective" "float fov" [ 5 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 5 ]
+        WorldBegin
+        LightSource "infinite" "rgb L" [ 0.8 0.9 1.0 ]
+        Material "diffuse" "rgb reflectance" [ 0.5 0.3 0.7 ]
+        Shape "loopsubdiv" "integer levels" [ 4 ]
+            "point3 P" [ -1 -1 -1  1 -1 -1  -1 1 -1  1 1 -1  -1 -1 1  1 -1 1  -1 1 1  1 1 1 ]
+            "integer indices" [ 0 2 3  0 3 1  4 5 7  4 7 6  0 1 5  0 5 4  2 6 7  2 7 3  0 4 6  0 6 2  1 3 7  1 7 5 ]
+    )";
+
+// A small diffuse disk on the axis of a cylinder of radius R that emits L inwards
+// (ReverseOrientation), at the height of its middle; the wall reaches h above it (here R = h
+// = 1, made of a cylinder of radius 1 and height 1 scaled by 2 along z). Only the wall above
+// lights the disk's upper face: E = 2 pi L int_{atan(R/h)}^{pi/2} cos sin = pi L h^2 / (R^2 +
+// h^2), so a camera looking down at the disk sees rho L h^2 / (R^2 + h^2) = rho L / 2.
+const char* kDiskInsideCylinder = R"(
+        LookAt 0 0 0.5  0 0 0  0 1 0
+        Camera "perspective" "float fov" [ 0.5 ]
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 1 ]
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 2 3 4 ]
+          ReverseOrientation
+          Scale 1 1 2
+          Shape "cylinder" "float radius" [ 1 ] "float zmin" [ -0.5 ] "float zmax" [ 0.5 ]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+        Shape "disk" "float radius" [ 0.05 ]
+    )";
+
+// The same cylinder (black, so it emits but does not reflect) seen from its axis: every
+// pixel sees the wall's radiance.
+const char* kInsideCylinder = R"(
+        LookAt 0 0 0  1 0 0.1  0 0 1
+        Camera "perspective" "float fov" [ 30 ]
+        Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
+        PixelFilter "box"
+        WorldBegin
+        AttributeBegin
+          Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+          AreaLightSource "diffuse" "rgb L" [ 1 2 3 ]
+          ReverseOrientation
+          Scale 1 1 2
+          Shape "cylinder" "float radius" [ 1 ] "float zmin" [ -0.5 ] "float zmax" [ 0.5 ]
+        AttributeEnd
+    )";
+
 }  // namespace
 
 // A convex diffuse object under a uniform sky reflects a * L exactly (it never sees itself).
@@ -86,6 +140,30 @@ TEST(ExactScenes, DiffuseSphereUnderUniformSky) {
     RenderResult r = renderString(scene, 64);
     const double exact[3] = {0.5 * 0.8, 0.3 * 0.9, 0.7 * 1.0};
     expectWithin4Sigma(wholeImage(r.image), exact);
+}
+
+// The same for the limit surface of a subdivided cube, shaded with its limit normals.
+TEST(ExactScenes, SubdividedCubeUnderUniformSky) {
+    RenderResult r = renderString(kSubdividedCubeUnderSky, 64);
+    const double exact[3] = {0.5 * 0.8, 0.3 * 0.9, 0.7 * 1.0};
+    expectWithin4Sigma(wholeImage(r.image), exact);
+}
+
+// Direct lighting from a cylinder: light sampling by area (its pdf is 1/area under the
+// Scale) and BSDF sampling, combined by MIS, give the closed-form irradiance.
+TEST(ExactScenes, DiskLitByTheInsideOfACylinder) {
+    RenderResult r = renderString(kDiskInsideCylinder, 256);
+    const double exact[3] = {0.5 * 2 / 2, 0.5 * 3 / 2, 0.5 * 4 / 2};
+    expectWithin4Sigma(wholeImage(r.image), exact);
+}
+
+// Light tracing starts its paths on the cylinder (sampleArea with density 1/area) and must
+// reproduce the wall's radiance that camera rays see directly.
+TEST(ExactScenes, CylinderEmitterSeenByLightTracing) {
+    const double exact[3] = {1, 2, 3};
+    RegionStats b = wholeImage(renderString(kInsideCylinder, 4, 7, 0, "path").image);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(b.mean[c], c + 1.0, 1e-5);
+    expectWithin4Sigma(wholeImage(renderString(kInsideCylinder, 16384, 7, 0, "light").image), exact);
 }
 
 // Inside a closed sphere emitting Le with albedo r: pixel = Le * sum_{k=0..d} r^k.

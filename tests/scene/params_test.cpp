@@ -174,6 +174,24 @@ TEST(ParamSet, SpectrumFilesResolveAgainstTheBaseDirectory) {
     fs::remove_all(dir);
 }
 
+// Only an index that changes with wavelength would make pbrt-v4 disperse light, so only
+// that earns the "dispersion is not modelled" warning (materials/create.cpp).
+TEST(ParamSet, SpectrallyVaryingValues) {
+    fs::path dir = fs::temp_directory_path() / ("pathspace-params-var-" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "flat.spd") << "300 1.5\n900 1.5\n";
+    std::ofstream(dir / "ramp.spd") << "300 1.5\n900 1.6\n";
+    ParamSet ps = shapeParams(R"("rgb grey" [ 1.5 1.5 1.5 ] "rgb tinted" [ 1.5 1.5 1.6 ] "float f" 1.5
+                                 "spectrum flat" [ 300 1.5 900 1.5 ] "spectrum ramp" [ 300 1.5 900 1.6 ]
+                                 "spectrum narrow" [ 500 1.5 600 1.5 ] "spectrum glass" "glass-BK7"
+                                 "spectrum flatfile" "flat.spd" "spectrum rampfile" "ramp.spd" "blackbody bb" 5000)",
+                              dir.string());
+    for (const char* constant : {"grey", "f", "flat", "flatfile", "absent"}) EXPECT_FALSE(ps.spectrallyVarying(constant)) << constant;
+    // "narrow" is zero outside [500, 600] nm; BK7 follows its Sellmeier curve in pbrt-v4.
+    for (const char* varying : {"tinted", "ramp", "narrow", "glass", "rampfile", "bb"}) EXPECT_TRUE(ps.spectrallyVarying(varying)) << varying;
+    fs::remove_all(dir);
+}
+
 TEST(ParamSet, TexturesAreTheirOwnType) {
     ParamSet ps = shapeParams(R"("texture reflectance" "checks" "string name" "x")");
     EXPECT_EQ(ps.getTexture("reflectance"), "checks");
