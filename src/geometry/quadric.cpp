@@ -53,6 +53,19 @@ void occludedCallback(const RTCOccludedFunctionNArguments* args) {
     if (t > ray->tnear && t < ray->tfar) ray->tfar = -std::numeric_limits<float>::infinity();
 }
 
+// The roots t0 <= t1 of a t^2 + b t + c = 0 (double precision, the cancellation-free form);
+// false when there are none (or a = 0).
+bool solveQuadratic(double a, double b, double c, double& t0, double& t1) {
+    double disc = b * b - 4 * a * c;
+    if (disc < 0 || a == 0) return false;
+    double root = std::sqrt(disc);
+    double q = b < 0 ? -0.5 * (b - root) : -0.5 * (b + root);
+    t0 = q / a;
+    t1 = c / q;
+    if (t0 > t1) std::swap(t0, t1);
+    return true;
+}
+
 float phiOf(Vec3 p) {
     float phi = std::atan2(p.y, p.x);
     return phi < 0 ? phi + 2 * kPi : phi;
@@ -101,12 +114,8 @@ float Sphere::intersectObject(Vec3 o, Vec3 d, float tMax) const {
     double a = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
     double b = 2 * (double(d.x) * o.x + double(d.y) * o.y + double(d.z) * o.z);
     double c = double(o.x) * o.x + double(o.y) * o.y + double(o.z) * o.z - double(radius_) * radius_;
-    double disc = b * b - 4 * a * c;
-    if (disc < 0 || a == 0) return -1;
-    double root = std::sqrt(disc);
-    double q = b < 0 ? -0.5 * (b - root) : -0.5 * (b + root);
-    double t0 = q / a, t1 = c / q;
-    if (t0 > t1) std::swap(t0, t1);
+    double t0, t1;
+    if (!solveQuadratic(a, b, c, t0, t1)) return -1;
     for (double t : {t0, t1}) {
         if (!(t > 0) || t >= tMax) continue;
         Vec3 p = o + d * float(t);
@@ -273,12 +282,8 @@ float Cylinder::intersectObject(Vec3 o, Vec3 d, float tMax) const {
     double a = double(d.x) * d.x + double(d.y) * d.y;
     double b = 2 * (double(d.x) * o.x + double(d.y) * o.y);
     double c = double(o.x) * o.x + double(o.y) * o.y - double(radius_) * radius_;
-    double disc = b * b - 4 * a * c;
-    if (disc < 0 || a == 0) return -1;  // a == 0: parallel to the axis, never on the wall
-    double root = std::sqrt(disc);
-    double q = b < 0 ? -0.5 * (b - root) : -0.5 * (b + root);
-    double t0 = q / a, t1 = c / q;
-    if (t0 > t1) std::swap(t0, t1);
+    double t0, t1;
+    if (!solveQuadratic(a, b, c, t0, t1)) return -1;  // a == 0: parallel to the axis, never on the wall
     for (double t : {t0, t1}) {
         if (!(t > 0) || t >= tMax) continue;
         Vec3 p = o + d * float(t);
