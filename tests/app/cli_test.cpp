@@ -345,3 +345,29 @@ TEST_F(Cli, MetropolisOptions) {
     EXPECT_EQ(wrong.status, 2);
     EXPECT_NE(wrong.out.find("--integrator pssmlt"), std::string::npos) << wrong.out;
 }
+
+// A pbrt-v4 scene asking for Integrator "mlt" renders (with pssmlt, until multiplexed MLT
+// exists) and says so; "regularize" true is named as biased and ignored.
+TEST_F(Cli, PbrtMltIntegratorIsAStandIn) {
+    std::string text = kSmallScene;
+    text.insert(text.find("WorldBegin"), R"(Integrator "mlt" "integer bootstrapsamples" [ 300 ] "integer chains" [ 7 ]
+    "integer mutationsperpixel" [ 2 ] "bool regularize" true
+)");
+    const std::string scene = write("mlt.pbrt", text);
+    fs::path json = dir / "stats.json";
+    Result r = run("render --quiet " + scene + " -o " + (dir / "m.pfm").string() + " --stats " + json.string());
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("\"mlt\" (multiplexed MLT) is not available yet; using \"pssmlt\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"regularize\" true makes the image biased"), std::string::npos) << r.out;
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
+    EXPECT_EQ(j["integrator"], "pssmlt");
+    EXPECT_EQ(j["spp_target"], 2);
+    EXPECT_EQ(j["metropolis"]["chains"], 7);
+    // The command line overrides the scene's parameters.
+    Result o = run("render --quiet --chains 5 --spp 1 " + scene + " -o " + (dir / "m.pfm").string() + " --stats " +
+                   json.string());
+    ASSERT_EQ(o.status, 0) << o.out;
+    j = nlohmann::json::parse(std::ifstream(json));
+    EXPECT_EQ(j["metropolis"]["chains"], 5);
+    EXPECT_EQ(j["spp_target"], 1);
+}

@@ -159,3 +159,48 @@ TEST(PSSMLT, NoLightCarryingPathGivesABlackImage) {
     RegionStats s = wholeImage(r.image);
     EXPECT_EQ(s.mean[0] + s.mean[1] + s.mean[2], 0.0);
 }
+
+// pbrt-v4's Integrator "mlt" (multiplexed MLT) renders with pssmlt until mmlt exists, with
+// pbrt-v4's parameters and defaults: maxdepth 5, bootstrapsamples 100000, chains 1000,
+// mutationsperpixel 100 (not the Sampler's pixelsamples), largestepprobability 0.3, sigma
+// 0.01. One warning says it is a stand-in; "regularize" true (biased) warns and is ignored.
+TEST(PSSMLT, PbrtMltIntegratorReadsPbrtParametersAndDefaults) {
+    setWarningsQuiet(true);
+    auto settings = [](const std::string& integrator) {
+        return buildScene(parseSceneString(R"(
+            LookAt 0 0 5  0 0 0  0 1 0
+            Camera "perspective"
+            Sampler "independent" "integer pixelsamples" [ 4 ]
+            )" + integrator + "\nWorldBegin\n",
+                                           ".", "<test>"))
+            ->settings();
+    };
+    int before = warningCount();
+    RenderSettings d = settings(R"(Integrator "mlt")");
+    EXPECT_EQ(warningCount(), before + 1);  // the stand-in
+    EXPECT_EQ(d.integrator, "pssmlt");
+    EXPECT_EQ(d.maxDepth, 5);
+    EXPECT_EQ(d.mltBootstrapSamples, 100000);
+    EXPECT_EQ(d.mltChains, 1000);
+    EXPECT_EQ(d.spp, 100);
+    EXPECT_FLOAT_EQ(d.mltLargeStepProbability, 0.3f);
+    EXPECT_FLOAT_EQ(d.mltSigma, 0.01f);
+
+    before = warningCount();
+    RenderSettings p = settings(R"(Integrator "mlt" "integer maxdepth" [ 3 ] "integer bootstrapsamples" [ 500 ]
+        "integer chains" [ 7 ] "integer mutationsperpixel" [ 9 ] "float largestepprobability" [ 0.5 ]
+        "float sigma" [ 0.02 ] "bool regularize" true)");
+    // regularize (the stand-in's warning, at the same place, is printed once); no unused parameter.
+    EXPECT_EQ(warningCount(), before + 1);
+    EXPECT_EQ(p.integrator, "pssmlt");
+    EXPECT_EQ(p.maxDepth, 3);
+    EXPECT_EQ(p.mltBootstrapSamples, 500);
+    EXPECT_EQ(p.mltChains, 7);
+    EXPECT_EQ(p.spp, 9);
+    EXPECT_FLOAT_EQ(p.mltLargeStepProbability, 0.5f);
+    EXPECT_FLOAT_EQ(p.mltSigma, 0.02f);
+    EXPECT_FALSE(p.regularize);
+
+    EXPECT_THROW(settings(R"(Integrator "mlt" "float sigma" [ 0 ])"), InputError);
+    EXPECT_THROW(settings(R"(Integrator "mlt" "integer chains" [ 0 ])"), InputError);
+}
