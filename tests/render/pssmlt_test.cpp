@@ -20,8 +20,10 @@ namespace {
 // The chain parameters of the tests: a bootstrap and chain count sized for small films. The
 // image mean of an MLT render is b times a fixed total of splatted luminance, so its spread
 // across seeds is mostly the bootstrap's estimate of b.
-const char* kMltIntegrator =
-    R"(Integrator "pssmlt" "integer maxdepth" [ 5 ] "integer bootstrapsamples" [ 50000 ] "integer chains" [ 64 ])";
+std::string mltIntegrator(int bootstrapSamples = 50000) {
+    return R"(Integrator "pssmlt" "integer maxdepth" [ 5 ] "integer chains" [ 64 ] "integer bootstrapsamples" [ )" +
+           std::to_string(bootstrapSamples) + " ]";
+}
 
 // A sphere lit from inside by its own emission, albedo 0.6: every pixel sees Le sum_k 0.6^k.
 std::string furnace() {
@@ -30,7 +32,7 @@ std::string furnace() {
         Camera "perspective" "float fov" [ 60 ]
         Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
         PixelFilter "box"
-        )") + kMltIntegrator + R"(
+        )") + mltIntegrator() + R"(
         WorldBegin
         AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
         Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]
@@ -48,7 +50,7 @@ std::string box(const std::string& light, const std::string& left, const std::st
         Camera "perspective" "float fov" [ 30 ]
         Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
         PixelFilter "box"
-        )") + kMltIntegrator + R"(
+        )") + mltIntegrator() + R"(
         WorldBegin
         AttributeBegin
           AreaLightSource "diffuse" "rgb L" [ )" + light + R"( ]
@@ -144,7 +146,7 @@ TEST(PSSMLT, NoLightCarryingPathGivesABlackImage) {
         LookAt 0 0.5 2  0 0.5 0  0 1 0
         Camera "perspective" "float fov" [ 30 ]
         Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
-        )") + kMltIntegrator + R"(
+        )") + mltIntegrator() + R"(
         WorldBegin
         Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
         Shape "bilinearmesh" "point3 P" [ -5 0 5   5 0 5   -5 0 -5   5 0 -5 ]
@@ -203,4 +205,55 @@ TEST(PSSMLT, PbrtMltIntegratorReadsPbrtParametersAndDefaults) {
 
     EXPECT_THROW(settings(R"(Integrator "mlt" "float sigma" [ 0 ])"), InputError);
     EXPECT_THROW(settings(R"(Integrator "mlt" "integer chains" [ 0 ])"), InputError);
+}
+
+// A caustic: a small area light above a glass sphere focuses on a diffuse floor. Its paths
+// (L S S D E) reach the lens only through BDPT's light-subpath strategies, so the chain's
+// target comes from the splats of t = 1 connections. Block and image means against BDPT.
+TEST(PSSMLT, AgreesWithBDPTOnAGlassCaustic) {
+    const std::string scene = std::string(R"(
+        LookAt 0 2.2 2.6  0 0.3 0  0 1 0
+        Camera "perspective" "float fov" [ 30 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        )") + mltIntegrator(150000) + R"(
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 27 27 27 ]
+          Shape "bilinearmesh" "point3 P" [ -0.15 2.5 -0.15   0.15 2.5 -0.15   -0.15 2.5 0.15   0.15 2.5 0.15 ]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [ 0.8 0.8 0.8 ]
+        Shape "bilinearmesh" "point3 P" [ -3 0 3   3 0 3   -3 0 -3   3 0 -3 ]
+        AttributeBegin
+          Material "dielectric" "float eta" [ 1.5 ]
+          Translate 0 0.9 0
+          Shape "sphere" "float radius" [ 0.5 ]
+        AttributeEnd
+    )";
+    expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", "pssmlt"}, 128, 16, {{"pssmlt", 64}}, 0.02});
+}
+
+// An area light the camera sees only in a smooth mirror (behind the camera, facing the
+// mirror), and a point light over the floor. The light's mirror image is reachable only by
+// camera subpaths that hit it (s = 0), the point light only by connections: both kinds of
+// strategy carry the chain. Block and image means against BDPT.
+TEST(PSSMLT, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
+    const std::string scene = std::string(R"(
+        LookAt 0 1 3  0 0.7 0  0 1 0
+        Camera "perspective" "float fov" [ 35 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        )") + mltIntegrator(200000) + R"(
+        WorldBegin
+        LightSource "point" "rgb I" [ 2 2 2 ] "point3 from" [ 0.6 1.5 1 ]
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 6 6 6 ] "bool twosided" true
+          Shape "bilinearmesh" "point3 P" [ -0.4 0.6 3.5   0.4 0.6 3.5   -0.4 1.4 3.5   0.4 1.4 3.5 ]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]
+        Shape "bilinearmesh" "point3 P" [ -2 0 4   2 0 4   -2 0 -1   2 0 -1 ]
+        Material "conductor" "rgb reflectance" [ 0.9 0.9 0.9 ] "float roughness" [ 0 ]
+        Shape "bilinearmesh" "point3 P" [ -1 0 -1   1 0 -1   -1 2 -1   1 2 -1 ]
+    )";
+    expectAgreement(AgreementCase{"light seen in a mirror", scene, {"bdpt", "pssmlt"}, 32, 16, {{"pssmlt", 32}}, 0.02});
 }
