@@ -89,6 +89,36 @@ TEST(PSSMLT, ClosedFurnaceIsExact) {
     EXPECT_LT(4 * means.standardError(), 0.01 * kFurnaceExact) << "too noisy to detect a 1% bias";
 }
 
+// A point light of intensity I at the centre of a closed diffuse sphere of radius R and
+// albedo rho: the direct irradiance I / R^2 is uniform, so is every bounce's radiance, and
+// each bounce multiplies it by rho: L = I / (pi R^2) sum_{k=1..maxdepth} rho^k. Here I = pi,
+// R = 1, rho = 0.5, maxdepth 5. Every path ends on a delta light, reachable only through
+// connections (no camera subpath hits it): the chain's target is all connection strategies.
+TEST(PSSMLT, PointLightInADiffuseSphereIsExact) {
+    const std::string scene = std::string(R"(
+        LookAt 0 0 -0.2  0 0 1  0 1 0
+        Camera "perspective" "float fov" [ 60 ]
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        PixelFilter "box"
+        )") + mltIntegrator() + R"(
+        WorldBegin
+        LightSource "point" "rgb I" [ 3.14159265358979 3.14159265358979 3.14159265358979 ]
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+        Shape "sphere" "float radius" [ 1 ]
+    )";
+    const double exact = 0.5 + 0.25 + 0.125 + 0.0625 + 0.03125;
+    RunningStats means;
+    for (int k = 0; k < 16; ++k) {
+        RegionStats s = wholeImage(renderString(scene, 64, 400 + uint64_t(k), 0, "pssmlt").image);
+        means.add((s.mean[0] + s.mean[1] + s.mean[2]) / 3);
+    }
+    double z = (means.mean() - exact) / means.standardError();
+    std::printf("[ pssmlt   ] point light in a sphere: %.5f +- %.5f, exact %.5f (%.2f sigma; 4 sigma = %.2f%%)\n",
+                means.mean(), means.standardError(), exact, z, 400 * means.standardError() / exact);
+    EXPECT_LT(std::fabs(z), 4.0);
+    EXPECT_LT(4 * means.standardError(), 0.01 * exact) << "too noisy to detect a 1% bias";
+}
+
 // A diffuse box: block means and the image mean against BDPT's (the image mean to within a
 // detectable 2%: each render's bootstrap costs as much as its chains).
 TEST(PSSMLT, AgreesWithBDPTOnADiffuseBox) {
