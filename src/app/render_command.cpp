@@ -59,6 +59,30 @@ CLI::Validator numberCheck(bool allowZero) {
         allowZero ? "NUMBER>=0" : "NUMBER>0");
 }
 
+// A whole number >= 1 (CLI11 would accept "2.5" for an int by truncating it, or print its limits).
+CLI::Validator countCheck() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            char* end = nullptr;
+            long long v = std::strtoll(text.c_str(), &end, 10);
+            bool ok = end != text.c_str() && *end == '\0' && v >= 1 && v <= 2147483647LL;
+            return ok ? std::string() : "expected a whole number >= 1, got " + quoteForMessage(text);
+        },
+        "INT>=1");
+}
+
+// A probability in [0, 1].
+CLI::Validator probabilityCheck() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            char* end = nullptr;
+            double v = std::strtod(text.c_str(), &end);
+            bool ok = end != text.c_str() && *end == '\0' && v >= 0 && v <= 1;
+            return ok ? std::string() : "expected a probability in [0, 1], got " + quoteForMessage(text);
+        },
+        "P in [0,1]");
+}
+
 // out.exr -> out.variance.exr, next to the output and in its format.
 std::string variancePath(const std::string& output) {
     std::filesystem::path p(output);
@@ -123,6 +147,22 @@ void RenderCommand::attach(CLI::App& app) {
                 return parseByteSize(s) ? std::string() : "expected a size such as 512M, 8G or 1.5GiB, got " + quoteForMessage(s);
             },
             ""));
+    // Metropolis (pssmlt): each overrides the scene's Integrator parameter of the same meaning.
+    cmd_->add_option("--chains", chains_,
+                     "Metropolis (pssmlt) only: number of Markov chains (overrides the scene's \"chains\"; default 1000)")
+        ->check(countCheck());
+    cmd_->add_option("--bootstrap", bootstrap_,
+                     "Metropolis (pssmlt) only: number of independent BDPT samples that estimate the normalisation b "
+                     "and seed the chains (overrides \"bootstrapsamples\"; default 100000)")
+        ->check(countCheck());
+    cmd_->add_option("--large-step-probability", largeStepProbability_,
+                     "Metropolis (pssmlt) only: probability in [0, 1] that a mutation draws every random number afresh "
+                     "(overrides \"largestepprobability\"; default 0.3)")
+        ->check(probabilityCheck());
+    cmd_->add_option("--sigma", sigma_,
+                     "Metropolis (pssmlt) only: standard deviation (> 0) of a small step's perturbation of each random "
+                     "number (overrides \"sigma\"; default 0.01)")
+        ->check(numberCheck(false));
     cmd_->add_flag("--quiet", quiet_, "No progress bar or statistics on the terminal");
 }
 
@@ -137,6 +177,15 @@ int RenderCommand::run() {
     if (!integrator_.empty())
         settings.integrator = integrator_ == "volpath" ? "path" : integrator_ == "lightpath" ? "light" : integrator_;
     if (!sampler_.empty()) settings.sampler = sampler_;
+    if (chains_ > 0 || bootstrap_ > 0 || largeStepProbability_ >= 0 || sigma_ > 0) {
+        if (settings.integrator != "pssmlt")
+            throw InputError("--chains, --bootstrap, --large-step-probability and --sigma are Metropolis parameters: "
+                             "they need --integrator pssmlt (the integrator here is \"" + settings.integrator + "\")");
+        if (chains_ > 0) settings.mltChains = chains_;
+        if (bootstrap_ > 0) settings.mltBootstrapSamples = bootstrap_;
+        if (largeStepProbability_ >= 0) settings.mltLargeStepProbability = float(largeStepProbability_);
+        if (sigma_ > 0) settings.mltSigma = float(sigma_);
+    }
     if (!crop_.empty()) {
         int W = scene->camera().params().xRes, H = scene->camera().params().yRes;
         PixelBounds b = cropWindowToPixels(W, H, crop_.data());
@@ -225,6 +274,8 @@ int RenderCommand::run() {
             {"b", ms.b},
             {"bootstrap_samples", ms.bootstrapSamples},
             {"chains", ms.chains},
+            {"large_step_probability", settings.mltLargeStepProbability},
+            {"sigma", settings.mltSigma},
             {"mutations", ms.mutations},
             {"acceptance_rate", ms.acceptanceRate()},
             {"large_steps", ms.proposedLarge},

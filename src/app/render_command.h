@@ -28,7 +28,12 @@ private:
     std::vector<std::string> outputs_;
     std::vector<float> crop_;
     std::string statsFile_;
-    std::string maxMemory_;  // --max-memory SIZE, checked by parseByteSize
+    std::string maxMemory_;
+    // Metropolis parameters (override the scene's Integrator "pssmlt"/"mlt" ones); unset when < 0.
+    int chains_ = -1;
+    int bootstrap_ = -1;
+    double largeStepProbability_ = -1;
+    double sigma_ = -1;  // --max-memory SIZE, checked by parseByteSize
     bool quiet_ = false;
 };
 

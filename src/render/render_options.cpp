@@ -172,18 +172,29 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
                                                                    "\" is not supported; use --bdpt-strategies");
     } else if (it == "lightpath") {
         s.integrator = "light";
-    } else if (it == "pssmlt") {
-        // Ours (pbrt-v4 has only the multiplexed "mlt"): Kelemen-style MLT over BDPT.
+    } else if (it == "pssmlt" || it == "mlt") {
+        // "pssmlt" is ours: Kelemen-style MLT over BDPT, with pbrt-v4's "mlt" parameters.
+        // pbrt-v4's "mlt" is multiplexed MLT, which we do not have yet: its scenes render with
+        // pssmlt, which converges to the same image (both are unbiased) at another speed.
+        if (it == "mlt")
+            warning(desc.integrator.loc, "Integrator \"mlt\" (multiplexed MLT) is not available yet; using \"pssmlt\" "
+                                         "(primary-sample-space MLT over BDPT, same parameters, same expected image)");
         s.integrator = "pssmlt";
-        s.spp = ip.getInt("mutationsperpixel", s.spp);
+        // pbrt-v4's default for "mlt" is 100 mutations per pixel whatever the Sampler says.
+        s.spp = ip.getInt("mutationsperpixel", it == "mlt" ? 100 : s.spp);
         s.mltBootstrapSamples = ip.getInt("bootstrapsamples", s.mltBootstrapSamples);
         s.mltChains = ip.getInt("chains", s.mltChains);
         s.mltLargeStepProbability = ip.getFloat("largestepprobability", s.mltLargeStepProbability);
         s.mltSigma = ip.getFloat("sigma", s.mltSigma);
+        if (s.regularize) {
+            warning(desc.integrator.loc, "Integrator \"" + it + "\": \"regularize\" true makes the image biased "
+                                         "(it blurs near-specular paths); ignored");
+            s.regularize = false;
+        }
         if (s.spp < 1 || s.mltBootstrapSamples < 1 || s.mltChains < 1 || !(s.mltSigma > 0) ||
             !(s.mltLargeStepProbability >= 0 && s.mltLargeStepProbability <= 1))
-            throw InputError(desc.integrator.loc, "Integrator \"pssmlt\": mutationsperpixel, bootstrapsamples and chains "
-                                                  "must be >= 1, sigma > 0 and largestepprobability in [0, 1]");
+            throw InputError(desc.integrator.loc, "Integrator \"" + it + "\": mutationsperpixel, bootstrapsamples and "
+                                                  "chains must be >= 1, sigma > 0 and largestepprobability in [0, 1]");
     } else {
         known = false;
         warning(desc.integrator.loc, "Integrator \"" + it + "\" is not available yet; using \"path\"");

@@ -43,7 +43,8 @@ TEST_F(Cli, HelpDocumentsEveryOption) {
     EXPECT_NE(r.out.find("render"), std::string::npos);
     Result rr = run("render --help");
     EXPECT_EQ(rr.status, 0);
-    for (const char* opt : {"--spp", "--time", "--threads", "--seed", "--integrator", "--output", "--crop", "--stats", "--quiet"})
+    for (const char* opt : {"--spp", "--time", "--threads", "--seed", "--integrator", "--output", "--crop", "--stats", "--quiet",
+                            "--chains", "--bootstrap", "--large-step-probability", "--sigma"})
         EXPECT_NE(rr.out.find(opt), std::string::npos) << opt;
 }
 
@@ -317,4 +318,67 @@ TEST_F(Cli, MisOption) {
         for (size_t k = 0; k + 1 < images.size(); ++k) EXPECT_NE(images[k], images.back()) << "same image as #" << k;
     }
     EXPECT_EQ(run("render --quiet --integrator bdpt --mis nope " + scene + " -o " + out).status, 2);
+}
+
+// --chains, --bootstrap, --large-step-probability and --sigma override the scene's Metropolis
+// parameters and reach the chains: the statistics report the chains and bootstrap samples
+// used, a large-step probability of 1 leaves no small step, and sigma changes the image.
+TEST_F(Cli, MetropolisOptions) {
+    const std::string scene = write("s.pbrt", kSmallScene);
+    const std::string base = "render --quiet --integrator pssmlt --spp 2 --seed 3 " + scene;
+    auto stats = [&](const std::string& opts, const std::string& name) {
+        fs::path json = dir / (name + ".json");
+        Result r = run(base + " " + opts + " -o " + (dir / (name + ".pfm")).string() + " --stats " + json.string());
+        EXPECT_EQ(r.status, 0) << opts << "\n" << r.out;
+        return nlohmann::json::parse(std::ifstream(json))["metropolis"];
+    };
+    nlohmann::json m = stats("--chains 7 --bootstrap 300 --large-step-probability 1 --sigma 0.05", "a");
+    EXPECT_EQ(m["chains"], 7);
+    EXPECT_EQ(m["bootstrap_samples"], 300);
+    EXPECT_DOUBLE_EQ(m["large_step_probability"].get<double>(), 1.0);
+    EXPECT_NEAR(m["sigma"].get<double>(), 0.05, 1e-7);
+    EXPECT_EQ(m["small_steps"], 0);
+    EXPECT_GT(m["large_steps"].get<long long>(), 0);
+    nlohmann::json d = stats("--chains 7 --bootstrap 300", "d");  // the scene's (default) step mix
+    EXPECT_GT(d["small_steps"].get<long long>(), 0);
+    stats("--chains 7 --bootstrap 300 --sigma 0.2", "s");
+    EXPECT_NE(ps::readImage((dir / "d.pfm").string()).rgb, ps::readImage((dir / "s.pfm").string()).rgb);
+
+    // Out of range, not a whole number, or with an integrator that has no chains: exit 2 and
+    // a message naming the option.
+    for (const std::string bad : {"--chains 0", "--chains 2.5", "--bootstrap -1", "--large-step-probability 1.5",
+                                  "--large-step-probability -0.1", "--sigma 0", "--sigma nan"}) {
+        Result r = run(base + " " + bad + " -o " + (dir / "x.pfm").string());
+        EXPECT_EQ(r.status, 2) << bad << "\n" << r.out;
+        EXPECT_NE(r.out.find(bad.substr(0, bad.find(' '))), std::string::npos) << bad << "\n" << r.out;
+    }
+    Result wrong = run("render --quiet --integrator bdpt --chains 8 " + scene + " -o " + (dir / "x.pfm").string());
+    EXPECT_EQ(wrong.status, 2);
+    EXPECT_NE(wrong.out.find("--integrator pssmlt"), std::string::npos) << wrong.out;
+}
+
+// A pbrt-v4 scene asking for Integrator "mlt" renders (with pssmlt, until multiplexed MLT
+// exists) and says so; "regularize" true is named as biased and ignored.
+TEST_F(Cli, PbrtMltIntegratorIsAStandIn) {
+    std::string text = kSmallScene;
+    text.insert(text.find("WorldBegin"), R"(Integrator "mlt" "integer bootstrapsamples" [ 300 ] "integer chains" [ 7 ]
+    "integer mutationsperpixel" [ 2 ] "bool regularize" true
+)");
+    const std::string scene = write("mlt.pbrt", text);
+    fs::path json = dir / "stats.json";
+    Result r = run("render --quiet " + scene + " -o " + (dir / "m.pfm").string() + " --stats " + json.string());
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("\"mlt\" (multiplexed MLT) is not available yet; using \"pssmlt\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"regularize\" true makes the image biased"), std::string::npos) << r.out;
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
+    EXPECT_EQ(j["integrator"], "pssmlt");
+    EXPECT_EQ(j["spp_target"], 2);
+    EXPECT_EQ(j["metropolis"]["chains"], 7);
+    // The command line overrides the scene's parameters.
+    Result o = run("render --quiet --chains 5 --spp 1 " + scene + " -o " + (dir / "m.pfm").string() + " --stats " +
+                   json.string());
+    ASSERT_EQ(o.status, 0) << o.out;
+    j = nlohmann::json::parse(std::ifstream(json));
+    EXPECT_EQ(j["metropolis"]["chains"], 5);
+    EXPECT_EQ(j["spp_target"], 1);
 }
