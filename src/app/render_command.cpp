@@ -47,40 +47,45 @@ void checkWritable(const std::string& path) {
 }
 
 // CLI11's own range checks print the range's limits as 300-digit numbers; these say it plainly.
+// A validator that accepts the text when ok(text), else says "expected WHAT, got TEXT".
+template <typename Ok>
+CLI::Validator plainCheck(const std::string& what, const std::string& name, Ok ok) {
+    return CLI::Validator(
+        [what, ok](std::string& text) -> std::string {
+            return ok(text) ? std::string() : "expected " + what + ", got " + quoteForMessage(text);
+        },
+        name);
+}
+
+// The whole text is a finite number.
+bool parseNumber(const std::string& text, double& v) {
+    char* end = nullptr;
+    v = std::strtod(text.c_str(), &end);
+    return end != text.c_str() && *end == '\0' && std::isfinite(v);
+}
+
 CLI::Validator numberCheck(bool allowZero) {
-    std::string what = allowZero ? "a number >= 0" : "a positive number";
-    return CLI::Validator(
-        [allowZero, what](std::string& text) -> std::string {
-            char* end = nullptr;
-            double v = std::strtod(text.c_str(), &end);
-            bool ok = end != text.c_str() && *end == '\0' && std::isfinite(v) && (allowZero ? v >= 0 : v > 0);
-            return ok ? std::string() : "expected " + what + ", got " + quoteForMessage(text);
-        },
-        allowZero ? "NUMBER>=0" : "NUMBER>0");
+    return plainCheck(allowZero ? "a number >= 0" : "a positive number", allowZero ? "NUMBER>=0" : "NUMBER>0",
+                      [allowZero](const std::string& t) {
+                          double v;
+                          return parseNumber(t, v) && (allowZero ? v >= 0 : v > 0);
+                      });
 }
 
-// A whole number >= 1 (CLI11 would accept "2.5" for an int by truncating it, or print its limits).
-CLI::Validator countCheck() {
-    return CLI::Validator(
-        [](std::string& text) -> std::string {
-            char* end = nullptr;
-            long long v = std::strtoll(text.c_str(), &end, 10);
-            bool ok = end != text.c_str() && *end == '\0' && v >= 1 && v <= 2147483647LL;
-            return ok ? std::string() : "expected a whole number >= 1, got " + quoteForMessage(text);
-        },
-        "INT>=1");
-}
-
-// A probability in [0, 1].
 CLI::Validator probabilityCheck() {
-    return CLI::Validator(
-        [](std::string& text) -> std::string {
-            char* end = nullptr;
-            double v = std::strtod(text.c_str(), &end);
-            bool ok = end != text.c_str() && *end == '\0' && v >= 0 && v <= 1;
-            return ok ? std::string() : "expected a probability in [0, 1], got " + quoteForMessage(text);
-        },
-        "P in [0,1]");
+    return plainCheck("a probability in [0, 1]", "P in [0,1]", [](const std::string& t) {
+        double v;
+        return parseNumber(t, v) && v >= 0 && v <= 1;
+    });
+}
+
+// A whole number >= 1 (CLI11 would accept "2.5" for an int by truncating it).
+CLI::Validator countCheck() {
+    return plainCheck("a whole number >= 1", "INT>=1", [](const std::string& t) {
+        char* end = nullptr;
+        long long v = std::strtoll(t.c_str(), &end, 10);
+        return end != t.c_str() && *end == '\0' && v >= 1 && v <= 2147483647LL;
+    });
 }
 
 // out.exr -> out.variance.exr, next to the output and in its format.
@@ -142,11 +147,8 @@ void RenderCommand::attach(CLI::App& app) {
                      "(binary units; default: 80% of physical memory, here " + formatBytes(memoryLimit()) +
                          "). An input that needs more fails before it is allocated, saying how much it needs")
         ->type_name("SIZE")
-        ->check(CLI::Validator(
-            [](const std::string& s) {
-                return parseByteSize(s) ? std::string() : "expected a size such as 512M, 8G or 1.5GiB, got " + quoteForMessage(s);
-            },
-            ""));
+        ->check(plainCheck("a size such as 512M, 8G or 1.5GiB", "",
+                           [](const std::string& s) { return parseByteSize(s).has_value(); }));
     // Metropolis (pssmlt): each overrides the scene's Integrator parameter of the same meaning.
     cmd_->add_option("--chains", chains_,
                      "Metropolis (pssmlt) only: number of Markov chains (overrides the scene's \"chains\"; default 1000)")
@@ -199,8 +201,8 @@ int RenderCommand::run() {
     std::unique_ptr<Integrator> integrator = createIntegrator(settings.integrator, *scene, mis_);
     const AdaptiveMode adaptive = parseAdaptiveMode(adaptive_);
     if (adaptive != AdaptiveMode::None && integrator->splats())
-        throw InputError("--adaptive " + adaptive_ + " needs --integrator path: light tracing and BDPT splat light "
-                         "paths anywhere on the film, so a pixel's samples do not make its value");
+        throw InputError("--adaptive " + adaptive_ + " needs --integrator path: light tracing, BDPT and Metropolis "
+                         "splat paths anywhere on the film, so a pixel's samples do not make its value");
     BDPTIntegrator* bdpt = nullptr;
     if (!strategiesDir_.empty()) {
         bdpt = dynamic_cast<BDPTIntegrator*>(integrator.get());

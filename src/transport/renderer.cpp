@@ -52,19 +52,23 @@ void requireFilmMemory(const Scene& scene, const Integrator& integrator, const R
 
 }  // namespace
 
+void filmResults(const Film& film, double lightPaths, RenderResult& result) {
+    result.lightPaths = lightPaths;
+    result.image = film.image(lightPaths);
+    result.variance = film.varianceImage(lightPaths);
+    result.rejectedSamples = film.rejectedSamples();
+    result.error = film.errorEstimate(lightPaths);
+    result.efficiency = efficiency(result.error.meanRelativeVariance, result.seconds);
+}
+
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options) {
-    // Markov chains have their own driver: a chain is not a per-camera-ray estimate.
-    if (auto* mlt = dynamic_cast<const PSSMLTIntegrator*>(&integrator)) {
-        if (options.adaptive != AdaptiveMode::None)
-            throw InputError("adaptive sampling needs an integrator whose pixels come from their own samples (path)");
-        requireFilmMemory(scene, integrator, options);
-        return renderMetropolis(scene, *mlt, options);
-    }
-    const PixelBounds& bounds = scene.pixelBounds();
     if (options.adaptive != AdaptiveMode::None && integrator.splats())
         throw InputError("adaptive sampling needs an integrator whose pixels come from their own samples "
-                         "(path); light tracing and BDPT splat onto the whole film");
+                         "(path); light tracing, BDPT and Metropolis splat onto the whole film");
     requireFilmMemory(scene, integrator, options);
+    // Markov chains have their own driver: a chain is not a per-camera-ray estimate.
+    if (auto* mlt = dynamic_cast<const PSSMLTIntegrator*>(&integrator)) return renderMetropolis(scene, *mlt, options);
+    const PixelBounds& bounds = scene.pixelBounds();
     Film film(scene.camera().params().xRes, scene.camera().params().yRes, bounds,
               integrator.splats() ? &scene.filter() : nullptr);
     const int spp = std::max(1, options.spp);
@@ -88,15 +92,10 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     // Every camera sample traced one light path; the imaging ratio scales splats as well.
     const float imagingRatio = scene.settings().imagingRatio;
     const double lightPaths = imagingRatio > 0 ? film.meanSamplesPerPixel() * double(bounds.area()) / imagingRatio : 0.0;
-    result.lightPaths = lightPaths;
     result.meanSpp = double(passes.samplesDone()) / double(bounds.area());
-    result.image = film.image(lightPaths);
-    result.variance = film.varianceImage(lightPaths);
     result.pixelSamples = film.sampleCounts();
     result.stoppedEarly = !complete;
-    result.rejectedSamples = film.rejectedSamples();
-    result.error = film.errorEstimate(lightPaths);
-    result.efficiency = efficiency(result.error.meanRelativeVariance, result.seconds);
+    filmResults(film, lightPaths, result);
     return result;
 }
 

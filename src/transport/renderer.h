@@ -54,6 +54,10 @@ struct RenderResult {
     MetropolisStats metropolis;
 };
 
+// What a finished film gives every driver's result: the image, variance image, rejected
+// samples, error estimate and efficiency (result.seconds set), splats normalised by lightPaths.
+void filmResults(const Film& film, double lightPaths, RenderResult& result);
+
 // Throws InputError before anything is allocated if the film would exceed the memory limit
 // (util/memory_limit.h), naming the scene's Film directive.
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options);

@@ -201,16 +201,11 @@ RenderResult renderMetropolis(const Scene& scene, const PSSMLTIntegrator& integr
     const float imagingRatio = scene.settings().imagingRatio;
     const double lightPaths =
         ms.b > 0 && imagingRatio > 0 && ms.mutations > 0 ? double(ms.mutations) / (ms.b * imagingRatio) : 0.0;
-    result.lightPaths = lightPaths;
     result.targetSpp = std::max(1, options.spp);
     result.meanSpp = double(ms.mutations) / double(bounds.area());
     result.stoppedEarly = ms.mutations < total && ms.b > 0;
-    result.image = film.image(lightPaths);
-    result.variance = film.varianceImage(lightPaths);
     result.pixelSamples.assign(size_t(bounds.area()), 0);
-    result.rejectedSamples = film.rejectedSamples();
-    result.error = film.errorEstimate(lightPaths);
-    result.efficiency = efficiency(result.error.meanRelativeVariance, result.seconds);
+    filmResults(film, lightPaths, result);
     return result;
 }
 
