@@ -110,9 +110,10 @@ void RenderCommand::attach(CLI::App& app) {
     cmd_->add_option("--integrator", integrator_,
                      "Integrator: path (path tracing with MIS), light (light tracing: particles from the lights "
                      "splatted through the lens), bdpt (bidirectional path tracing, every strategy with MIS), pssmlt "
-                     "(primary-sample-space Metropolis light transport over BDPT; --spp sets the mutations per "
-                     "pixel). pbrt names volpath, lightpath map to them")
-        ->check(CLI::IsMember({"path", "volpath", "light", "lightpath", "bdpt", "pssmlt"}));
+                     "(primary-sample-space Metropolis light transport over BDPT), mmlt (multiplexed Metropolis: the "
+                     "chains also choose the path depth and one BDPT strategy); for both --spp sets the mutations per "
+                     "pixel. pbrt names volpath, lightpath, mlt (= mmlt) map to them")
+        ->check(CLI::IsMember({"path", "volpath", "light", "lightpath", "bdpt", "pssmlt", "mmlt", "mlt"}));
     cmd_->add_option("--bdpt-strategies", strategiesDir_,
                      "With --integrator bdpt: also write, into this directory, one EXR per strategy (s light "
                      "vertices, t camera vertices) up to path depth 5, MIS-weighted (s<S>_t<T>.exr) and "
@@ -149,20 +150,20 @@ void RenderCommand::attach(CLI::App& app) {
         ->type_name("SIZE")
         ->check(plainCheck("a size such as 512M, 8G or 1.5GiB", "",
                            [](const std::string& s) { return parseByteSize(s).has_value(); }));
-    // Metropolis (pssmlt): each overrides the scene's Integrator parameter of the same meaning.
+    // Metropolis (pssmlt, mmlt): each overrides the scene's Integrator parameter of the same meaning.
     cmd_->add_option("--chains", chains_,
-                     "Metropolis (pssmlt) only: number of Markov chains (overrides the scene's \"chains\"; default 1000)")
+                     "Metropolis (pssmlt, mmlt) only: number of Markov chains (overrides the scene's \"chains\"; default 1000)")
         ->check(countCheck());
     cmd_->add_option("--bootstrap", bootstrap_,
-                     "Metropolis (pssmlt) only: number of independent BDPT samples that estimate the normalisation b "
+                     "Metropolis (pssmlt, mmlt) only: number of independent BDPT samples that estimate the normalisation b "
                      "and seed the chains (overrides \"bootstrapsamples\"; default 100000)")
         ->check(countCheck());
     cmd_->add_option("--large-step-probability", largeStepProbability_,
-                     "Metropolis (pssmlt) only: probability in [0, 1] that a mutation draws every random number afresh "
+                     "Metropolis (pssmlt, mmlt) only: probability in [0, 1] that a mutation draws every random number afresh "
                      "(overrides \"largestepprobability\"; default 0.3)")
         ->check(probabilityCheck());
     cmd_->add_option("--sigma", sigma_,
-                     "Metropolis (pssmlt) only: standard deviation (> 0) of a small step's perturbation of each random "
+                     "Metropolis (pssmlt, mmlt) only: standard deviation (> 0) of a small step's perturbation of each random "
                      "number (overrides \"sigma\"; default 0.01)")
         ->check(numberCheck(false));
     cmd_->add_flag("--quiet", quiet_, "No progress bar or statistics on the terminal");
@@ -177,12 +178,16 @@ int RenderCommand::run() {
     if (seed_ >= 0) settings.seed = uint64_t(seed_);
     if (maxDepth_ >= 0) settings.maxDepth = maxDepth_;
     if (!integrator_.empty())
-        settings.integrator = integrator_ == "volpath" ? "path" : integrator_ == "lightpath" ? "light" : integrator_;
+        settings.integrator = integrator_ == "volpath"     ? "path"
+                              : integrator_ == "lightpath" ? "light"
+                              : integrator_ == "mlt"       ? "mmlt"
+                                                           : integrator_;
     if (!sampler_.empty()) settings.sampler = sampler_;
     if (chains_ > 0 || bootstrap_ > 0 || largeStepProbability_ >= 0 || sigma_ > 0) {
-        if (settings.integrator != "pssmlt")
+        if (settings.integrator != "pssmlt" && settings.integrator != "mmlt")
             throw InputError("--chains, --bootstrap, --large-step-probability and --sigma are Metropolis parameters: "
-                             "they need --integrator pssmlt (the integrator here is \"" + settings.integrator + "\")");
+                             "they need --integrator pssmlt or mmlt (the integrator here is \"" + settings.integrator +
+                             "\")");
         if (chains_ > 0) settings.mltChains = chains_;
         if (bootstrap_ > 0) settings.mltBootstrapSamples = bootstrap_;
         if (largeStepProbability_ >= 0) settings.mltLargeStepProbability = float(largeStepProbability_);
@@ -285,7 +290,21 @@ int RenderCommand::run() {
             {"small_steps", ms.proposedSmall},
             {"small_step_acceptance_rate", MetropolisStats::rate(ms.acceptedSmall, ms.proposedSmall)},
             {"invalid_proposals", ms.invalidProposals},
+            {"b_relative_error", ms.bRelativeError},
         };
+    if (ms.present) {
+        // Per path depth: its share of the image and, for mmlt, its proposals' acceptance.
+        nlohmann::json depths = nlohmann::json::array();
+        for (size_t d = 0; d < ms.depths.size(); ++d) {
+            nlohmann::json e = {{"depth", d}, {"share", ms.depths[d].share}};
+            if (ms.multiplexed) {
+                e["proposals"] = ms.depths[d].proposed;
+                e["acceptance_rate"] = MetropolisStats::rate(ms.depths[d].accepted, ms.depths[d].proposed);
+            }
+            depths.push_back(e);
+        }
+        stats["metropolis"]["depths"] = depths;
+    }
     if (!statsFile_.empty()) {
         std::ofstream f(statsFile_);
         if (!f) throw InputError("--stats: cannot write \"" + statsFile_ + "\"");
@@ -308,6 +327,16 @@ int RenderCommand::run() {
                         ms.b, ms.chains, ms.mutations, ms.acceptanceRate(),
                         MetropolisStats::rate(ms.acceptedLarge, ms.proposedLarge),
                         MetropolisStats::rate(ms.acceptedSmall, ms.proposedSmall), ms.invalidProposals);
+        if (ms.present) {
+            std::printf("metropolis: b relative error %.3g | per depth: share", ms.bRelativeError);
+            for (const MetropolisStats::Depth& d : ms.depths) std::printf(" %.3f", d.share);
+            if (ms.multiplexed) {
+                std::printf(" | acceptance");
+                for (const MetropolisStats::Depth& d : ms.depths)
+                    std::printf(" %.3f", MetropolisStats::rate(d.accepted, d.proposed));
+            }
+            std::printf("\n");
+        }
         if (r.stoppedEarly) std::printf("stopped early: %s\n", gInterrupt.load() ? "interrupted" : "time budget reached");
     }
     return gInterrupt.load() ? kExitInterrupted : kExitOk;

@@ -28,19 +28,22 @@ void PrimarySampleSampler::startIteration() {
 void PrimarySampleSampler::startIteration(bool largeStep) {
     ++iteration_;
     largeStep_ = largeStep || iteration_ == 1;
+    touched_.clear();
     restartStreams();
 }
 
 void PrimarySampleSampler::accept() {
     if (largeStep_) lastLargeStep_ = iteration_;
+    touched_.clear();
 }
 
 void PrimarySampleSampler::reject() {
-    for (Value& v : values_)
-        if (v.modified == iteration_) {
-            v.value = v.backupValue;
-            v.modified = v.backupModified;
-        }
+    for (uint32_t i : touched_) {
+        Value& v = values_[i];
+        v.value = v.backupValue;
+        v.modified = v.backupModified;
+    }
+    touched_.clear();
     --iteration_;
 }
 
@@ -71,7 +74,14 @@ double PrimarySampleSampler::read(size_t index) {
     x.backupModified = x.modified;
     x.value = largeStep_ ? rng_.uniformDouble() : small(x.value, 1);
     x.modified = iteration_;
+    touched_.push_back(uint32_t(index));
     return x.value;
+}
+
+void PrimarySampleSampler::stratify(int stream, int index, int k, int count) {
+    size_t i = size_t(stream < params_.streamCount ? stream : 0) + size_t(params_.streamCount) * size_t(index);
+    double v = (double(k) + read(i)) / double(count);
+    values_[i].value = v < 1.0 ? v : 0x1.fffffffffffffp-1;
 }
 
 float PrimarySampleSampler::get1D() {

@@ -52,6 +52,11 @@ public:
     // an iteration, a stream continues where it stopped; every iteration starts each stream
     // at its first value.
     void startStream(int stream) override { stream_ = stream < params_.streamCount ? stream : 0; }
+    void seekDimension(int index) override { streamIndex_[size_t(stream_)] = index >= 0 ? index : 0; }
+    // Confines the value of `stream` at `index` in the proposal under way to stratum k of
+    // `count` equal strata of [0,1), uniform within it (a bootstrap that stratifies one
+    // dimension; replayed by the same call).
+    void stratify(int stream, int index, int k, int count);
     // A new random stream for the mutations from here on; the stored values stay. A chain
     // started from a replayed bootstrap sample takes its own stream this way.
     void reseed(uint64_t chainSeed);
@@ -85,7 +90,8 @@ private:
     int64_t lastLargeStep_ = 0;    // iteration of the last accepted large step
     bool largeStep_ = true;
     int stream_ = 0;
-    std::vector<int64_t> streamIndex_;  // values read from each stream this iteration
+    std::vector<int64_t> streamIndex_;  // each stream's next value this iteration
+    std::vector<uint32_t> touched_;     // indices the proposal under way modified
 };
 
 // The acceptance probability of a proposal with target value fy from a state with fx, for

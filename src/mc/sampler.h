@@ -28,6 +28,11 @@ public:
     // part consumes never shifts the values another reads. A no-op for samplers with one
     // stream, whose values then follow in the order drawn.
     virtual void startStream(int) {}
+    // Within the current stream, the next value drawn is its index-th: a walk that reads a
+    // fixed block of values per bounce keeps each bounce on its own values, whatever earlier
+    // bounces drew conditionally (a lobe choice, Russian roulette). A no-op for samplers
+    // with one stream.
+    virtual void seekDimension(int) {}
     virtual std::unique_ptr<Sampler> clone() const = 0;
 };
 

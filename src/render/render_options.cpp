@@ -172,14 +172,11 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
                                                                    "\" is not supported; use --bdpt-strategies");
     } else if (it == "lightpath") {
         s.integrator = "light";
-    } else if (it == "pssmlt" || it == "mlt") {
-        // "pssmlt" is ours: Kelemen-style MLT over BDPT, with pbrt-v4's "mlt" parameters.
-        // pbrt-v4's "mlt" is multiplexed MLT, which we do not have yet: its scenes render with
-        // pssmlt, which converges to the same image (both are unbiased) at another speed.
-        if (it == "mlt")
-            warning(desc.integrator.loc, "Integrator \"mlt\" (multiplexed MLT) is not available yet; using \"pssmlt\" "
-                                         "(primary-sample-space MLT over BDPT, same parameters, same expected image)");
-        s.integrator = "pssmlt";
+    } else if (it == "pssmlt" || it == "mmlt" || it == "mlt") {
+        // pbrt-v4's "mlt" is multiplexed MLT over BDPT: ours is "mmlt" (whose chains also move
+        // between path depths, see transport/mlt/mmlt.h). "pssmlt" is Kelemen-style MLT over
+        // BDPT. All three read pbrt-v4's "mlt" parameters.
+        s.integrator = it == "pssmlt" ? "pssmlt" : "mmlt";
         // pbrt-v4's default for "mlt" is 100 mutations per pixel whatever the Sampler says.
         s.spp = ip.getInt("mutationsperpixel", it == "mlt" ? 100 : s.spp);
         s.mltBootstrapSamples = ip.getInt("bootstrapsamples", s.mltBootstrapSamples);

@@ -26,7 +26,7 @@ struct RenderSettings {
     uint64_t seed = 0;
     std::string outputFile = "pbrt.exr";
     float imagingRatio = 1;  // (shutterclose - shutteropen) * iso / 100
-    // Markov-chain integrators (pssmlt), with pbrt-v4's parameter names and defaults.
+    // Markov-chain integrators (pssmlt, mmlt), with pbrt-v4's parameter names and defaults.
     int mltBootstrapSamples = 100000;  // "bootstrapsamples"
     int mltChains = 1000;              // "chains"
     float mltLargeStepProbability = 0.3f;  // "largestepprobability"

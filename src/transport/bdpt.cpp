@@ -310,6 +310,7 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
             if ((s == 1 && t == 1) || depth < 0 || depth > maxDepth) continue;
             // Most camera vertices emit nothing: skip the call for the s = 0 strategy.
             if (s == 0 && !camera[t - 1].isLight()) continue;
+            sampler.seekDimension(connectionDimension(s, t));
             Connection c = connect(light, camera, s, t, sampler, stats, true, &prefixes, splatTo);
             if (c.L.isBlack()) continue;
             deposit(s, t, c);
@@ -351,6 +352,27 @@ void BDPTIntegrator::contributions(const Ray& ray, Vec2 pFilm, PrimarySampleSamp
         if (c.weight == 0) return;
         out.push_back({t == 1 ? c.pRaster : pFilm, c.L * c.weight, s, t});
     });
+}
+
+bool BDPTIntegrator::strategyContribution(const Ray& ray, Vec2 pFilm, int s, int t, PrimarySampleSampler& sampler,
+                                          ScratchBuffer& scratch, PathStats& stats, PathContribution& out) const {
+    if (t < 1 || s < 0 || t > paths_.maxCameraVertices() || s > paths_.maxLightVertices() || (s == 1 && t == 1))
+        return false;
+    auto* camera = static_cast<PathVertex*>(scratch.allocBytes(sizeof(PathVertex) * size_t(t), alignof(PathVertex)));
+    auto* light = static_cast<PathVertex*>(scratch.allocBytes(sizeof(PathVertex) * size_t(std::max(s, 1)), alignof(PathVertex)));
+    if (s > 0) {
+        sampler.startStream(kLightStream);
+        const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, stats, light);
+        if (paths_.continueLightSubpath(origin, sampler, scratch, stats, light, s) != s) return false;
+    }
+    sampler.startStream(kCameraStream);
+    if (paths_.cameraSubpath(ray, sampler, scratch, stats, camera, t) != t) return false;
+    sampler.startStream(kConnectionStream);
+    sampler.seekDimension(connectionDimension(s, t));
+    Connection c = connect(light, camera, s, t, sampler, stats);
+    if (c.L.isBlack() || c.weight == 0) return false;
+    out = {t == 1 ? c.pRaster : pFilm, c.L * c.weight, s, t};
+    return true;
 }
 
 template BDPTIntegrator::Connection BDPTIntegrator::connect<Sampler>(PathVertex*, PathVertex*, int, int, Sampler&,

@@ -69,6 +69,13 @@ public:
     // The dimension streams of one sample (see Sampler::startStream): the camera subpath
     // (after the film and lens position), the light subpath, and the connections.
     static constexpr int kCameraStream = 0, kLightStream = 1, kConnectionStream = 2, kStreamCount = 3;
+    // In the connection stream each strategy reads its own block of values (a lens or light
+    // point: at most 3), ordered by depth and then s.
+    static constexpr int kDimensionsPerConnection = 3;
+    static int connectionDimension(int s, int t) {
+        int depth = s + t - 2;
+        return kDimensionsPerConnection * (depth * (depth + 3) / 2 + s);
+    }
     // One strategy's MIS-weighted contribution and where it lands on the film.
     struct PathContribution {
         Vec2 pRaster;
@@ -80,6 +87,12 @@ public:
     // chain over primary samples (transport/mlt/) needs to know before it accepts a sample.
     void contributions(const Ray& ray, Vec2 pFilm, PrimarySampleSampler& sampler, ScratchBuffer& scratch,
                        PathStats& stats, std::vector<PathContribution>& out) const;
+    // Strategy (s, t) alone (multiplexed Metropolis): subpaths of exactly s light and t
+    // camera vertices and their connection, MIS-weighted. False if the subpaths end
+    // earlier or the connection carries nothing.
+    bool strategyContribution(const Ray& ray, Vec2 pFilm, int s, int t, PrimarySampleSampler& sampler,
+                              ScratchBuffer& scratch, PathStats& stats, PathContribution& out) const;
+    void setRoulette(bool on) { paths_.setRoulette(on); }
     // For tests: connect() also computes each weight from densities evaluated afresh at the
     // join, not those its BSDF evaluations produced, into Connection::recomputedWeight.
     void recomputeWeights(bool on) { recomputeWeights_ = on; }

@@ -2,6 +2,7 @@
 
 #include "transport/bdpt.h"
 #include "transport/light_tracer.h"
+#include "transport/mlt/mmlt.h"
 #include "transport/mlt/pssmlt.h"
 #include "transport/path_tracer.h"
 #include "util/error.h"
@@ -15,18 +16,19 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
     else if (mis != "power") throw InputError("unknown MIS heuristic \"" + mis + "\" (available: power, balance, none)");
     int maxDepth = scene.settings().maxDepth;
     if (name == "path") return std::make_unique<PathTracer>(scene, maxDepth);
-    if (name == "light" || name == "bdpt" || name == "pssmlt") {
+    if (name == "light" || name == "bdpt" || name == "pssmlt" || name == "mmlt") {
         if (!scene.camera().hasImportance())
             throw InputError("integrator \"" + name + "\" connects light paths to the lens and needs a perspective camera");
         if (name == "light") return std::make_unique<LightTracer>(scene, maxDepth);
-        if (name == "pssmlt") {
+        if (name == "pssmlt" || name == "mmlt") {
             const RenderSettings& st = scene.settings();
             MetropolisParams mp{st.mltBootstrapSamples, st.mltChains, st.mltLargeStepProbability, st.mltSigma};
+            if (name == "mmlt") return std::make_unique<MMLTIntegrator>(scene, maxDepth, mp, heuristic);
             return std::make_unique<PSSMLTIntegrator>(scene, maxDepth, mp, heuristic);
         }
         return std::make_unique<BDPTIntegrator>(scene, maxDepth, heuristic);
     }
-    throw InputError("unknown integrator \"" + name + "\" (available: path, light, bdpt, pssmlt)");
+    throw InputError("unknown integrator \"" + name + "\" (available: path, light, bdpt, pssmlt, mmlt)");
 }
 
 }  // namespace ps

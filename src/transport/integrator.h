@@ -64,7 +64,7 @@ public:
     virtual bool splats() const { return false; }
 };
 
-// Names: "path", "light", "bdpt", "pssmlt" (Markov chains over BDPT: render() runs its own
+// Names: "path", "light", "bdpt", "pssmlt", "mmlt" (Markov chains over BDPT: render() runs its own
 // driver, transport/mlt/); mis (BDPT's weighting): "power", "balance" or "none"
 // (uniform weights). Throws InputError for an unknown name.
 std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scene& scene,

@@ -10,7 +10,7 @@
 #include "util/error.h"
 #include "util/memory_limit.h"
 
-#include "transport/mlt/pssmlt.h"
+#include "transport/mlt/metropolis.h"
 #include "transport/render_monitor.h"
 #include "transport/sample_passes.h"
 
@@ -67,7 +67,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
                          "(path); light tracing, BDPT and Metropolis splat onto the whole film");
     requireFilmMemory(scene, integrator, options);
     // Markov chains have their own driver: a chain is not a per-camera-ray estimate.
-    if (auto* mlt = dynamic_cast<const PSSMLTIntegrator*>(&integrator)) return renderMetropolis(scene, *mlt, options);
+    if (auto* mlt = dynamic_cast<const MetropolisIntegrator*>(&integrator)) return renderMetropolis(scene, *mlt, options);
     const PixelBounds& bounds = scene.pixelBounds();
     Film film(scene.camera().params().xRes, scene.camera().params().yRes, bounds,
               integrator.splats() ? &scene.filter() : nullptr);

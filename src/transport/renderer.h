@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdint>
 #include <string>
+#include <vector>
 #include "film/film.h"
 #include "image/image.h"
 #include "render/scene.h"
@@ -33,6 +34,15 @@ struct MetropolisStats {
     long long bootstrapSamples = 0, mutations = 0;
     long long proposedLarge = 0, acceptedLarge = 0, proposedSmall = 0, acceptedSmall = 0;
     long long invalidProposals = 0;  // zero, negative or non-finite target: rejected, never splatted
+    double bRelativeError = 0;      // standard error of b from the bootstrap, relative to b
+    bool multiplexed = false;       // the chains choose the path depth (proposals per depth)
+    // Per path depth: its share of the image's luminance (sums to 1 over depths) and, when
+    // the chains choose the depth, the proposals of that depth and how many were accepted.
+    struct Depth {
+        double share = 0;
+        long long proposed = 0, accepted = 0;
+    };
+    std::vector<Depth> depths;
     static double rate(long long accepted, long long proposed) { return proposed ? double(accepted) / double(proposed) : 0.0; }
     double acceptanceRate() const { return rate(acceptedLarge + acceptedSmall, proposedLarge + proposedSmall); }
 };
@@ -52,6 +62,7 @@ struct RenderResult {
     // Efficiency 1/(V T) with V the mean relative variance and T the render time (thesis eq. 2.26).
     double efficiency = 0;
     MetropolisStats metropolis;
+    std::vector<Image> depthImages;  // per path depth, if a Metropolis render was asked to record them
 };
 
 // What a finished film gives every driver's result: the image, variance image, rejected

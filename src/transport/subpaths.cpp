@@ -1,5 +1,6 @@
 #include "transport/subpaths.h"
 
+#include <algorithm>
 #include <new>
 
 #include "lights/infinity_disk.h"
@@ -19,7 +20,7 @@ PathVertex& resetVertex(PathVertex& v) { return *new (&v) PathVertex(); }
 
 template <typename S>
 int Subpaths::cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats,
-                            PathVertex* path) const {
+                            PathVertex* path, int maxVertices) const {
     PathVertex& cam = path[0];
     resetVertex(cam);
     cam.kind = VertexKind::Camera;
@@ -29,8 +30,9 @@ int Subpaths::cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, 
     float pdfDir = scene_.camera().generatedRayPdfDir(ray.d);
     ++stats.cameraPaths;
     if (!(pdfDir > 0)) return 1;
-    return 1 + randomWalk(ray, cam.beta, pdfDir, sampler, scratch, stats, path + 1, maxCameraVertices() - 1,
-                          TransportMode::Radiance);
+    int n = maxVertices > 0 ? std::min(maxVertices, maxCameraVertices()) : maxCameraVertices();
+    return 1 + randomWalk(ray, cam.beta, pdfDir, sampler, scratch, stats, path + 1, n - 1, TransportMode::Radiance,
+                          kCameraStartDimensions);
 }
 
 template <typename S>
@@ -78,11 +80,12 @@ Subpaths::LightOrigin Subpaths::lightOrigin(S& sampler, PathStats& stats, PathVe
 
 template <typename S>
 int Subpaths::continueLightSubpath(const LightOrigin& o, S& sampler, ScratchBuffer& scratch, PathStats& stats,
-                                   PathVertex* path) const {
+                                   PathVertex* path, int maxVertices) const {
     if (!o.valid) return 0;
     PathVertex& v = path[0];
-    int n = randomWalk(o.ray, o.beta, o.pdfDir, sampler, scratch, stats, path + 1, maxLightVertices() - 1,
-                       TransportMode::Importance);
+    int limit = maxVertices > 0 ? std::min(maxVertices, maxLightVertices()) : maxLightVertices();
+    int n = randomWalk(o.ray, o.beta, o.pdfDir, sampler, scratch, stats, path + 1, limit - 1,
+                       TransportMode::Importance, kLightStartDimensions);
     // From a disk at infinity the second vertex's density is the disk's area density
     // projected onto its surface, and the first is the directional density (thesis §10.2).
     if (v.infinite) {
@@ -97,7 +100,8 @@ int Subpaths::continueLightSubpath(const LightOrigin& o, S& sampler, ScratchBuff
 
 template <typename S>
 int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, ScratchBuffer& scratch,
-                         PathStats& stats, PathVertex* path, int maxVertices, TransportMode mode) const {
+                         PathStats& stats, PathVertex* path, int maxVertices, TransportMode mode,
+                         int firstDimension) const {
     if (maxVertices <= 0) return 0;
     int bounces = 0, passThroughs = 0;
     Spectrum scatter(1.0f);  // the walk's own throughput, for Russian roulette
@@ -107,7 +111,12 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
     while (true) {
         // The next direction sample does not depend on the hit: drawn before the ray is
         // traced, the sampler's hashing overlaps the traversal instead of following it.
-        if (!haveU) u = sampler.get2D();
+        // Each vertex reads its own block of dimensions (see kDimensionsPerVertex).
+        const int block = firstDimension + kDimensionsPerVertex * bounces;
+        if (!haveU) {
+            sampler.seekDimension(block);
+            u = sampler.get2D();
+        }
         haveU = true;
         SurfaceInteraction si;
         ++stats.rays;
@@ -156,6 +165,7 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
         if (++bounces >= maxVertices) break;
 
         if (woLocal.z == 0) break;
+        sampler.seekDimension(block + 2);
         float uc = bxdf->usesLobeSample() ? sampler.get1D() : 0.5f;
         auto bs = bxdf->sample(woLocal, uc, u, mode);
         haveU = false;
@@ -191,8 +201,9 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
         // Russian roulette on the walk's own throughput (radiance scaling of refraction undone),
         // after the second scattering as in the path tracer (thesis §2.5.3.2).
         float m = (scatter * etaScale).maxComponent();
-        if (m < 1 && bounces > 1) {
+        if (m < 1 && bounces > 1 && roulette_) {
             float q = std::max(0.0f, 1 - m);
+            sampler.seekDimension(block + 3);
             if (sampler.get1D() < q) break;
             beta /= 1 - q;
             scatter /= 1 - q;
@@ -202,11 +213,11 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
 }
 
 #define PS_SUBPATH_WALKS(S)                                                                                  \
-    template int Subpaths::cameraSubpath<S>(const Ray&, S&, ScratchBuffer&, PathStats&, PathVertex*) const;     \
+    template int Subpaths::cameraSubpath<S>(const Ray&, S&, ScratchBuffer&, PathStats&, PathVertex*, int) const; \
     template int Subpaths::lightSubpath<S>(S&, ScratchBuffer&, PathStats&, PathVertex*) const;                 \
     template Subpaths::LightOrigin Subpaths::lightOrigin<S>(S&, PathStats&, PathVertex*) const;                 \
     template int Subpaths::continueLightSubpath<S>(const LightOrigin&, S&, ScratchBuffer&, PathStats&,          \
-                                                   PathVertex*) const;
+                                                   PathVertex*, int) const;
 PS_SUBPATH_WALKS(Sampler)
 PS_SUBPATH_WALKS(PaddedSobolSampler)
 PS_SUBPATH_WALKS(IndependentSampler)

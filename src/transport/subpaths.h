@@ -19,13 +19,24 @@ public:
     // surface or escape vertices; light subpaths the light vertex and maxDepth surfaces.
     int maxCameraVertices() const { return maxDepth_ + 2; }
     int maxLightVertices() const { return maxDepth_ + 1; }
+    // Russian roulette ends walks early (on by default). A caller that fixes the subpaths'
+    // lengths itself (multiplexed Metropolis) turns it off.
+    void setRoulette(bool on) { roulette_ = on; }
+
+    // The sample dimensions the walks read, per stream (see Sampler::seekDimension): the
+    // camera stream starts with the film and lens position (4 values, drawn by the caller),
+    // the light stream with the emission sample (5 values); then every vertex of a walk
+    // reads its own block of 4: the direction (2), the lobe choice and Russian roulette.
+    static constexpr int kCameraStartDimensions = 4, kLightStartDimensions = 5, kDimensionsPerVertex = 4;
 
     // Vertex 0 on the lens, then the walk along `ray`, which the scene camera generated;
     // returns the number of vertices. The walks are compiled for the renderer's samplers
     // (S: Sampler, PaddedSobolSampler or IndependentSampler) so that hot loops call them
     // without virtual dispatch.
+    // maxVertices (> 0) stops the walk earlier than maxCameraVertices().
     template <typename S>
-    int cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const;
+    int cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path,
+                      int maxVertices = 0) const;
     // Vertex 0 on a light chosen by power, then the walk; returns the number of vertices.
     template <typename S>
     int lightSubpath(S& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const;
@@ -43,7 +54,7 @@ public:
     LightOrigin lightOrigin(S& sampler, PathStats& stats, PathVertex* path) const;
     template <typename S>
     int continueLightSubpath(const LightOrigin& origin, S& sampler, ScratchBuffer& scratch, PathStats& stats,
-                             PathVertex* path) const;
+                             PathVertex* path, int maxVertices = 0) const;
 
     // The BSDF at surface vertex v for light between v.wo and the direction to `next`,
     // including the adjoint shading-normal factor under importance transport.
@@ -76,10 +87,11 @@ public:
 private:
     template <typename S>
     int randomWalk(Ray ray, Spectrum beta, float pdfDir, S& sampler, ScratchBuffer& scratch, PathStats& stats,
-                   PathVertex* path, int maxVertices, TransportMode mode) const;
+                   PathVertex* path, int maxVertices, TransportMode mode, int firstDimension) const;
 
     const Scene& scene_;
     int maxDepth_;
+    bool roulette_ = true;
 };
 
 // The adjoint BSDF's shading-normal factor (thesis §5.3, the adjoint of a BSDF with

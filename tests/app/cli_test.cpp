@@ -359,21 +359,30 @@ TEST_F(Cli, MetropolisOptions) {
 
 // A pbrt-v4 scene asking for Integrator "mlt" renders (with pssmlt, until multiplexed MLT
 // exists) and says so; "regularize" true is named as biased and ignored.
-TEST_F(Cli, PbrtMltIntegratorIsAStandIn) {
+// pbrt-v4's "mlt" is our multiplexed MLT; the statistics carry the chain's figures, per path
+// depth too.
+TEST_F(Cli, PbrtMltIntegratorIsMultiplexedMLT) {
     std::string text = kSmallScene;
     text.insert(text.find("WorldBegin"), R"(Integrator "mlt" "integer bootstrapsamples" [ 300 ] "integer chains" [ 7 ]
-    "integer mutationsperpixel" [ 2 ] "bool regularize" true
+    "integer mutationsperpixel" [ 2 ] "bool regularize" true "integer maxdepth" [ 3 ]
 )");
     const std::string scene = write("mlt.pbrt", text);
     fs::path json = dir / "stats.json";
     Result r = run("render --quiet " + scene + " -o " + (dir / "m.pfm").string() + " --stats " + json.string());
     ASSERT_EQ(r.status, 0) << r.out;
-    EXPECT_NE(r.out.find("\"mlt\" (multiplexed MLT) is not available yet; using \"pssmlt\""), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("\"regularize\" true makes the image biased"), std::string::npos) << r.out;
     nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
-    EXPECT_EQ(j["integrator"], "pssmlt");
+    EXPECT_EQ(j["integrator"], "mmlt");
     EXPECT_EQ(j["spp_target"], 2);
     EXPECT_EQ(j["metropolis"]["chains"], 7);
+    EXPECT_EQ(j["metropolis"]["bootstrap_samples"], 300 * 4);  // per depth
+    ASSERT_EQ(j["metropolis"]["depths"].size(), 4u);
+    double share = 0;
+    for (const auto& d : j["metropolis"]["depths"]) {
+        share += d["share"].get<double>();
+        EXPECT_TRUE(d.contains("acceptance_rate"));
+    }
+    EXPECT_NEAR(share, 1.0, 1e-9);
     // The command line overrides the scene's parameters.
     Result o = run("render --quiet --chains 5 --spp 1 " + scene + " -o " + (dir / "m.pfm").string() + " --stats " +
                    json.string());

@@ -1,16 +1,19 @@
-// Primary-sample-space MLT over BDPT (transport/mlt/pssmlt.h) against answers it must reach:
-// the closed furnace's exact radiance, and BDPT's images (agreement.h: block and image
-// means within 4 sigma). An MLT image's pixels are correlated through its chains, so every
-// sigma here is measured across independent renders (seeds), never from one image.
+// Metropolis light transport over BDPT, both variants (transport/mlt/: primary-sample-space
+// pssmlt and multiplexed mmlt), against answers they must reach: exact radiance in closed
+// scenes, and BDPT's images (agreement.h: block and image means within 4 sigma), per path
+// depth too. An MLT image's pixels are correlated through its chains, so every sigma here is
+// measured across independent renders (seeds), never from one image.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "agreement.h"
 #include "mc/estimator.h"
 #include "render_helpers.h"
+#include "transport/mlt/metropolis.h"
 
 using namespace ps;
 using namespace ps::test;
@@ -69,24 +72,40 @@ std::string box(const std::string& light, const std::string& left, const std::st
     )";
 }
 
+// Every test runs for both variants: the parameter is the integrator's name. A multiplexed
+// sample evaluates one strategy of one depth: it costs a fraction of a BDPT sample, and its
+// target varies more, so b's estimate from the same bootstrap spreads more (its per-sample
+// relative deviation is about 5x BDPT's in these scenes). mmlt runs two to eight times the
+// mutations and its image means are held to 1.5x the detectable bias of pssmlt's (still under 2% where
+// pssmlt's is 1%, 3% where it is 2%).
+class Metropolis : public ::testing::TestWithParam<std::string> {
+protected:
+    bool multiplexed() const { return GetParam() == "mmlt"; }
+    int mutations(int n, int multiplexedFactor = 2) const { return multiplexed() ? multiplexedFactor * n : n; }
+    double detectable(double bias) const { return multiplexed() ? 1.5 * bias : bias; }
+};
+
 }  // namespace
+
+INSTANTIATE_TEST_SUITE_P(Variants, Metropolis, ::testing::Values("pssmlt", "mmlt"),
+                         [](const ::testing::TestParamInfo<std::string>& i) { return i.param; });
 
 // The closed furnace (thesis ch. 11's chains must reach the same answer as independent
 // samples): image mean within 4 sigma of the exact value, sigma across 16 renders.
-TEST(PSSMLT, ClosedFurnaceIsExact) {
+TEST_P(Metropolis, ClosedFurnaceIsExact) {
     const std::string scene = furnace();
     RunningStats means;
     for (int k = 0; k < 16; ++k) {
-        RenderResult r = renderString(scene, 64, 300 + uint64_t(k), 0, "pssmlt");
+        RenderResult r = renderString(scene, mutations(64), 300 + uint64_t(k), 0, GetParam());
         RegionStats s = wholeImage(r.image);
         means.add((s.mean[0] + s.mean[1] + s.mean[2]) / 3);
         EXPECT_NEAR(r.metropolis.b, kFurnaceExact, 0.05 * kFurnaceExact);
     }
     double z = (means.mean() - kFurnaceExact) / means.standardError();
-    std::printf("[ pssmlt   ] furnace: %.5f +- %.5f, exact %.5f (%.2f sigma; 4 sigma = %.2f%%)\n", means.mean(),
+    std::printf("[ %-8s ] furnace: %.5f +- %.5f, exact %.5f (%.2f sigma; 4 sigma = %.2f%%)\n", GetParam().c_str(), means.mean(),
                 means.standardError(), kFurnaceExact, z, 400 * means.standardError() / kFurnaceExact);
     EXPECT_LT(std::fabs(z), 4.0);
-    EXPECT_LT(4 * means.standardError(), 0.01 * kFurnaceExact) << "too noisy to detect a 1% bias";
+    EXPECT_LT(4 * means.standardError(), detectable(0.01) * kFurnaceExact) << "too noisy";
 }
 
 // A point light of intensity I at the centre of a closed diffuse sphere of radius R and
@@ -94,7 +113,7 @@ TEST(PSSMLT, ClosedFurnaceIsExact) {
 // each bounce multiplies it by rho: L = I / (pi R^2) sum_{k=1..maxdepth} rho^k. Here I = pi,
 // R = 1, rho = 0.5, maxdepth 5. Every path ends on a delta light, reachable only through
 // connections (no camera subpath hits it): the chain's target is all connection strategies.
-TEST(PSSMLT, PointLightInADiffuseSphereIsExact) {
+TEST_P(Metropolis, PointLightInADiffuseSphereIsExact) {
     const std::string scene = std::string(R"(
         LookAt 0 0 -0.2  0 0 1  0 1 0
         Camera "perspective" "float fov" [ 60 ]
@@ -109,33 +128,34 @@ TEST(PSSMLT, PointLightInADiffuseSphereIsExact) {
     const double exact = 0.5 + 0.25 + 0.125 + 0.0625 + 0.03125;
     RunningStats means;
     for (int k = 0; k < 16; ++k) {
-        RegionStats s = wholeImage(renderString(scene, 64, 400 + uint64_t(k), 0, "pssmlt").image);
+        RegionStats s = wholeImage(renderString(scene, mutations(64), 400 + uint64_t(k), 0, GetParam()).image);
         means.add((s.mean[0] + s.mean[1] + s.mean[2]) / 3);
     }
     double z = (means.mean() - exact) / means.standardError();
-    std::printf("[ pssmlt   ] point light in a sphere: %.5f +- %.5f, exact %.5f (%.2f sigma; 4 sigma = %.2f%%)\n",
-                means.mean(), means.standardError(), exact, z, 400 * means.standardError() / exact);
+    std::printf("[ %-8s ] point light in a sphere: %.5f +- %.5f, exact %.5f (%.2f sigma; 4 sigma = %.2f%%)\n",
+                GetParam().c_str(), means.mean(), means.standardError(), exact, z, 400 * means.standardError() / exact);
     EXPECT_LT(std::fabs(z), 4.0);
-    EXPECT_LT(4 * means.standardError(), 0.01 * exact) << "too noisy to detect a 1% bias";
+    EXPECT_LT(4 * means.standardError(), detectable(0.01) * exact) << "too noisy";
 }
 
 // A diffuse box: block means and the image mean against BDPT's (the image mean to within a
 // detectable 2%: each render's bootstrap costs as much as its chains).
-TEST(PSSMLT, AgreesWithBDPTOnADiffuseBox) {
-    expectAgreement(AgreementCase{"diffuse box", box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), {"bdpt", "pssmlt"}, 16,
-                                  16, {{"pssmlt", 64}}, 0.02});
+TEST_P(Metropolis, AgreesWithBDPTOnADiffuseBox) {
+    expectAgreement(AgreementCase{"diffuse box", box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), {"bdpt", GetParam()}, 16,
+                                  16, {{GetParam(), mutations(64, 8)}},
+                                  detectable(0.02)});
 }
 
 // Saturated colours: red and blue walls under a blue light. The target is luminance, the
 // splats RGB: each channel's image mean against BDPT's (a chain that splatted the target's
 // luminance as grey, or weighted the channels by it, keeps the luminance right and fails
 // here), sigma across 20 renders of each.
-TEST(PSSMLT, AgreesWithBDPTOnASaturatedBoxPerChannel) {
+TEST_P(Metropolis, AgreesWithBDPTOnASaturatedBoxPerChannel) {
     const std::string scene = box("1 1 12", "0.8 0.05 0.05", "0.05 0.05 0.8");
     RunningStats bdpt[3], mlt[3];
     for (int k = 0; k < 20; ++k) {
         RegionStats a = wholeImage(renderString(scene, 16, 100 + uint64_t(k), 0, "bdpt").image);
-        RegionStats b = wholeImage(renderString(scene, 48, 100 + uint64_t(k), 0, "pssmlt").image);
+        RegionStats b = wholeImage(renderString(scene, mutations(48), 100 + uint64_t(k), 0, GetParam()).image);
         for (int c = 0; c < 3; ++c) {
             bdpt[c].add(a.mean[c]);
             mlt[c].add(b.mean[c]);
@@ -144,17 +164,17 @@ TEST(PSSMLT, AgreesWithBDPTOnASaturatedBoxPerChannel) {
     for (int c = 0; c < 3; ++c) {
         double se = std::hypot(bdpt[c].standardError(), mlt[c].standardError());
         double z = (mlt[c].mean() - bdpt[c].mean()) / se;
-        std::printf("[ pssmlt   ] saturated box, channel %d: bdpt %.5f, pssmlt %.5f +- %.5f (%.2f sigma; 4 sigma = %.2f%%)\n",
-                    c, bdpt[c].mean(), mlt[c].mean(), se, z, 400 * se / bdpt[c].mean());
+        std::printf("[ %-8s ] saturated box, channel %d: bdpt %.5f, mlt %.5f +- %.5f (%.2f sigma; 4 sigma = %.2f%%)\n",
+                    GetParam().c_str(), c, bdpt[c].mean(), mlt[c].mean(), se, z, 400 * se / bdpt[c].mean());
         EXPECT_LT(std::fabs(z), 4.0) << "channel " << c;
-        EXPECT_LT(4 * se, 0.02 * bdpt[c].mean()) << "channel " << c << ": too noisy to detect a 2% bias";
+        EXPECT_LT(4 * se, detectable(0.02) * bdpt[c].mean()) << "channel " << c << ": too noisy";
     }
 }
 
 // The chains, not the threads, own the random streams: the same bits at 1 and 4 threads.
-TEST(PSSMLT, SameBitsWhateverTheThreadCount) {
+TEST_P(Metropolis, SameBitsWhateverTheThreadCount) {
     const std::string scene = box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1");
-    RenderResult a = renderString(scene, 4, 9, 1, "pssmlt"), b = renderString(scene, 4, 9, 4, "pssmlt");
+    RenderResult a = renderString(scene, 4, 9, 1, GetParam()), b = renderString(scene, 4, 9, 4, GetParam());
     ASSERT_EQ(a.image.width, b.image.width);
     int differ = 0, nonFinite = 0;
     for (int y = 0; y < a.image.height; ++y)
@@ -171,7 +191,7 @@ TEST(PSSMLT, SameBitsWhateverTheThreadCount) {
 
 // No path carries light to the camera (the light faces away, into the floor of a closed
 // room): a warning and a black image, not a crash (pbrt-v4's #77).
-TEST(PSSMLT, NoLightCarryingPathGivesABlackImage) {
+TEST_P(Metropolis, NoLightCarryingPathGivesABlackImage) {
     std::string scene = std::string(R"(
         LookAt 0 0.5 2  0 0.5 0  0 1 0
         Camera "perspective" "float fov" [ 30 ]
@@ -185,18 +205,18 @@ TEST(PSSMLT, NoLightCarryingPathGivesABlackImage) {
           Shape "bilinearmesh" "point3 P" [ -0.1 -1 -0.1   0.1 -1 -0.1   -0.1 -1 0.1   0.1 -1 0.1 ]
         AttributeEnd
     )";
-    RenderResult r = renderString(scene, 4, 1, 0, "pssmlt");
+    RenderResult r = renderString(scene, 4, 1, 0, GetParam());
     EXPECT_EQ(r.metropolis.b, 0.0);
     EXPECT_EQ(r.metropolis.mutations, 0);
     RegionStats s = wholeImage(r.image);
     EXPECT_EQ(s.mean[0] + s.mean[1] + s.mean[2], 0.0);
 }
 
-// pbrt-v4's Integrator "mlt" (multiplexed MLT) renders with pssmlt until mmlt exists, with
-// pbrt-v4's parameters and defaults: maxdepth 5, bootstrapsamples 100000, chains 1000,
-// mutationsperpixel 100 (not the Sampler's pixelsamples), largestepprobability 0.3, sigma
-// 0.01. One warning says it is a stand-in; "regularize" true (biased) warns and is ignored.
-TEST(PSSMLT, PbrtMltIntegratorReadsPbrtParametersAndDefaults) {
+// pbrt-v4's Integrator "mlt" (multiplexed MLT) is our mmlt, with pbrt-v4's parameters and
+// defaults: maxdepth 5, bootstrapsamples 100000, chains 1000, mutationsperpixel 100 (not the
+// Sampler's pixelsamples), largestepprobability 0.3, sigma 0.01. "regularize" true (biased)
+// warns and is ignored.
+TEST(MetropolisOptions, PbrtMltIntegratorReadsPbrtParametersAndDefaults) {
     setWarningsQuiet(true);
     auto settings = [](const std::string& integrator) {
         return buildScene(parseSceneString(R"(
@@ -209,8 +229,8 @@ TEST(PSSMLT, PbrtMltIntegratorReadsPbrtParametersAndDefaults) {
     };
     int before = warningCount();
     RenderSettings d = settings(R"(Integrator "mlt")");
-    EXPECT_EQ(warningCount(), before + 1);  // the stand-in
-    EXPECT_EQ(d.integrator, "pssmlt");
+    EXPECT_EQ(warningCount(), before);
+    EXPECT_EQ(d.integrator, "mmlt");
     EXPECT_EQ(d.maxDepth, 5);
     EXPECT_EQ(d.mltBootstrapSamples, 100000);
     EXPECT_EQ(d.mltChains, 1000);
@@ -222,9 +242,9 @@ TEST(PSSMLT, PbrtMltIntegratorReadsPbrtParametersAndDefaults) {
     RenderSettings p = settings(R"(Integrator "mlt" "integer maxdepth" [ 3 ] "integer bootstrapsamples" [ 500 ]
         "integer chains" [ 7 ] "integer mutationsperpixel" [ 9 ] "float largestepprobability" [ 0.5 ]
         "float sigma" [ 0.02 ] "bool regularize" true)");
-    // regularize (the stand-in's warning, at the same place, is printed once); no unused parameter.
+    // regularize; no unused parameter.
     EXPECT_EQ(warningCount(), before + 1);
-    EXPECT_EQ(p.integrator, "pssmlt");
+    EXPECT_EQ(p.integrator, "mmlt");
     EXPECT_EQ(p.maxDepth, 3);
     EXPECT_EQ(p.mltBootstrapSamples, 500);
     EXPECT_EQ(p.mltChains, 7);
@@ -233,6 +253,8 @@ TEST(PSSMLT, PbrtMltIntegratorReadsPbrtParametersAndDefaults) {
     EXPECT_FLOAT_EQ(p.mltSigma, 0.02f);
     EXPECT_FALSE(p.regularize);
 
+    EXPECT_EQ(settings(R"(Integrator "pssmlt")").integrator, "pssmlt");
+    EXPECT_EQ(settings(R"(Integrator "mmlt")").integrator, "mmlt");
     EXPECT_THROW(settings(R"(Integrator "mlt" "float sigma" [ 0 ])"), InputError);
     EXPECT_THROW(settings(R"(Integrator "mlt" "integer chains" [ 0 ])"), InputError);
 }
@@ -240,7 +262,7 @@ TEST(PSSMLT, PbrtMltIntegratorReadsPbrtParametersAndDefaults) {
 // A caustic: a small area light above a glass sphere focuses on a diffuse floor. Its paths
 // (L S S D E) reach the lens only through BDPT's light-subpath strategies, so the chain's
 // target comes from the splats of t = 1 connections. Block and image means against BDPT.
-TEST(PSSMLT, AgreesWithBDPTOnAGlassCaustic) {
+TEST_P(Metropolis, AgreesWithBDPTOnAGlassCaustic) {
     const std::string scene = std::string(R"(
         LookAt 0 2.2 2.6  0 0.3 0  0 1 0
         Camera "perspective" "float fov" [ 30 ]
@@ -260,14 +282,15 @@ TEST(PSSMLT, AgreesWithBDPTOnAGlassCaustic) {
           Shape "sphere" "float radius" [ 0.5 ]
         AttributeEnd
     )";
-    expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", "pssmlt"}, 128, 16, {{"pssmlt", 64}}, 0.02});
+    expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", GetParam()}, 128, 16, {{GetParam(), mutations(64, 8)}},
+                                  detectable(0.02)});
 }
 
 // An area light the camera sees only in a smooth mirror (behind the camera, facing the
 // mirror), and a point light over the floor. The light's mirror image is reachable only by
 // camera subpaths that hit it (s = 0), the point light only by connections: both kinds of
 // strategy carry the chain. Block and image means against BDPT.
-TEST(PSSMLT, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
+TEST_P(Metropolis, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
     const std::string scene = std::string(R"(
         LookAt 0 1 3  0 0.7 0  0 1 0
         Camera "perspective" "float fov" [ 35 ]
@@ -285,5 +308,105 @@ TEST(PSSMLT, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
         Material "conductor" "rgb reflectance" [ 0.9 0.9 0.9 ] "float roughness" [ 0 ]
         Shape "bilinearmesh" "point3 P" [ -1 0 -1   1 0 -1   -1 2 -1   1 2 -1 ]
     )";
-    expectAgreement(AgreementCase{"light seen in a mirror", scene, {"bdpt", "pssmlt"}, 32, 16, {{"pssmlt", 32}}, 0.02});
+    expectAgreement(AgreementCase{"light seen in a mirror", scene, {"bdpt", GetParam()}, 32, 16,
+                                  {{GetParam(), mutations(32, 8)}}, detectable(0.02)});
+}
+
+namespace {
+
+double luminanceMean(const Image& img) {
+    RegionStats s = wholeImage(img);
+    return 0.2126 * s.mean[0] + 0.7152 * s.mean[1] + 0.0722 * s.mean[2];
+}
+
+// Per path depth, the mean luminance of BDPT's image of that depth (the MIS-weighted
+// strategy images of the depth summed), over `renders` seeds.
+std::vector<RunningStats> bdptDepthMeans(const std::string& text, int maxDepth, int spp, int renders) {
+    std::vector<RunningStats> out(size_t(maxDepth + 1));
+    for (int k = 0; k < renders; ++k) {
+        auto scene = buildScene(parseSceneString(text, ".", "<test>"));
+        BDPTIntegrator bdpt(*scene, maxDepth);
+        bdpt.recordStrategies(maxDepth);
+        RenderOptions o;
+        o.spp = spp;
+        o.seed = uint64_t(900 + k);
+        o.progress = false;
+        RenderResult r = render(*scene, bdpt, o);
+        std::vector<double> depth(out.size(), 0.0);
+        for (const auto& [name, img] : bdpt.strategyImages()->images(r.lightPaths)) {
+            int s = 0, t = 0;
+            if (name.find("_unweighted") != std::string::npos || std::sscanf(name.c_str(), "s%d_t%d", &s, &t) != 2)
+                continue;
+            depth[size_t(s + t - 2)] += luminanceMean(img);
+        }
+        for (size_t d = 0; d < out.size(); ++d) out[d].add(depth[d]);
+    }
+    return out;
+}
+
+// One Metropolis render with each depth's image recorded.
+RenderResult renderDepths(const std::string& text, const std::string& integrator, int mutations, uint64_t seed) {
+    setWarningsQuiet(true);
+    auto scene = buildScene(parseSceneString(text, ".", "<test>"));
+    auto integ = createIntegrator(integrator, *scene);
+    auto* mlt = dynamic_cast<MetropolisIntegrator*>(integ.get());
+    mlt->params().depthImages = true;
+    RenderOptions o;
+    o.spp = mutations;
+    o.seed = seed;
+    o.progress = false;
+    return render(*scene, *integ, o);
+}
+
+}  // namespace
+
+// Per-depth energy. Each depth's share of the image is what a chain must learn as it runs:
+// chains whose depth is fixed at the start keep the bootstrap's estimate of it. So the
+// bootstrap here is deliberately small (600 samples per depth): each depth's share, relative
+// to the render's own total (the bootstrap's error in b, common to every depth, drops out),
+// must still agree with BDPT's within 4 sigma (sigma across seeds), and its spread across
+// seeds must shrink when the chains run 8x longer. Each depth's image itself is compared
+// with BDPT's too (its sigma then includes the small bootstrap's error in b).
+TEST_P(Metropolis, EachDepthsShareConvergesToBDPTs) {
+    const int maxDepth = 3, renders = 16;
+    std::string scene = box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1");
+    scene.replace(scene.find("maxdepth\" [ 5 ]"), 15, "maxdepth\" [ 3 ]");
+    scene.replace(scene.find("bootstrapsamples\" [ 50000 ]"), 27,
+                  "bootstrapsamples\" [ " + std::to_string(multiplexed() ? 600 : 2400) + " ]");
+    std::vector<RunningStats> bdpt = bdptDepthMeans(scene, maxDepth, 16, renders);
+    std::vector<RunningStats> bdptShare(bdpt.size()), mlt(bdpt.size()), shareShort(bdpt.size()), shareLong(bdpt.size());
+    double bdptTotal = 0;
+    for (const RunningStats& d : bdpt) bdptTotal += d.mean();
+    for (int k = 0; k < renders; ++k) {
+        RenderResult shortRun = renderDepths(scene, GetParam(), mutations(16), 500 + uint64_t(k));
+        RenderResult longRun = renderDepths(scene, GetParam(), mutations(128), 700 + uint64_t(k));
+        ASSERT_EQ(longRun.depthImages.size(), mlt.size());
+        double totalShort = luminanceMean(shortRun.image), totalLong = luminanceMean(longRun.image);
+        for (size_t d = 0; d < mlt.size(); ++d) {
+            double lum = luminanceMean(longRun.depthImages[d]);
+            mlt[d].add(lum);
+            shareLong[d].add(lum / totalLong);
+            shareShort[d].add(luminanceMean(shortRun.depthImages[d]) / totalShort);
+        }
+    }
+    for (size_t d = 0; d < mlt.size(); ++d) {
+        // BDPT's share: its depth's mean over the sum of the depths' means (its relative
+        // error is the depth's own, the total's being much smaller).
+        double ref = bdpt[d].mean() / bdptTotal, refSe = bdpt[d].standardError() / bdptTotal;
+        double se = std::hypot(refSe, shareLong[d].standardError());
+        double z = (shareLong[d].mean() - ref) / se;
+        double shrink = std::sqrt(shareLong[d].variance() / shareShort[d].variance());
+        double seImage = std::hypot(bdpt[d].standardError(), mlt[d].standardError());
+        double zImage = (mlt[d].mean() - bdpt[d].mean()) / seImage;
+        std::printf("[ %-8s ] depth %zu: share bdpt %.4f, mlt %.4f +- %.4f (%.2f sigma; 4 sigma = %.2f%%), spread "
+                    "x%.2f from 16 to 128 mutations per pixel; image %.2f sigma (4 sigma = %.1f%%)\n",
+                    GetParam().c_str(), d, ref, shareLong[d].mean(), se, z, 400 * se / ref, shrink, zImage,
+                    400 * seImage / bdpt[d].mean());
+        EXPECT_LT(std::fabs(z), 4.0) << "depth " << d;
+        EXPECT_LT(4 * se, 0.1 * ref) << "depth " << d << ": too noisy to detect a 10% error in a depth's share";
+        // 1/sqrt(8) = 0.35 for independent batches; 0.7 leaves room for the spread's own
+        // noise over 16 seeds and for the chains' correlation.
+        EXPECT_LT(shrink, 0.7) << "depth " << d;
+        EXPECT_LT(std::fabs(zImage), 4.0) << "depth " << d;
+    }
 }

@@ -1,0 +1,231 @@
+#include "transport/mlt/metropolis.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "mc/estimator.h"
+#include "mc/primary_sample_sampler.h"
+#include "transport/render_monitor.h"
+#include "util/error.h"
+
+namespace ps {
+
+MetropolisIntegrator::MetropolisIntegrator(const Scene& scene, int maxDepth, const MetropolisParams& params,
+                                           MisHeuristic heuristic)
+    : scene_(scene), bdpt_(scene, maxDepth, heuristic), params_(params) {
+    const Camera::Params& c = scene.camera().params();
+    margin_ = scene.filter().radius();
+    filmSize_ = Vec2(float(c.xRes) + 2 * margin_.x, float(c.yRes) + 2 * margin_.y);
+}
+
+Spectrum MetropolisIntegrator::Li(const Ray&, SampleContext&) const {
+    throw std::logic_error(std::string(name()) + " is a Markov-chain integrator: render it with renderMetropolis");
+}
+
+CameraSample MetropolisIntegrator::filmSample(PrimarySampleSampler& sampler) const {
+    sampler.startStream(BDPTIntegrator::kCameraStream);
+    Vec2 u = sampler.get2D();
+    CameraSample cs;
+    cs.pFilm = {-margin_.x + u.x * filmSize_.x, -margin_.y + u.y * filmSize_.y};
+    cs.pLens = sampler.get2D();
+    if (!(scene_.camera().params().lensRadius > 0)) cs.pLens = Vec2(0.5f, 0.5f);
+    return cs;
+}
+
+namespace {
+
+using PathContribution = BDPTIntegrator::PathContribution;
+
+// Keys of the random streams, per bootstrap sample and per chain. The seed is mixed before
+// the index enters: keyed on seed ^ constant directly, nearby seeds would give largely the
+// same set of keys over a range of indices (shifted), and renders with different seeds would
+// share most of their bootstrap samples.
+uint64_t bootstrapSeed(uint64_t seed, int64_t i) { return mixWithKey(mix64(seed ^ 0x6a09e667f3bcc908ULL), uint64_t(i)); }
+uint64_t chainSeed(uint64_t seed, int chain) { return mixWithKey(mix64(seed ^ 0xbb67ae8584caa73bULL), uint64_t(chain)); }
+
+struct ChainCounts {
+    long long proposedLarge = 0, acceptedLarge = 0, proposedSmall = 0, acceptedSmall = 0, invalid = 0, done = 0;
+    // Per path depth: proposals and acceptances (by the proposal's depth, when the chain
+    // chooses it), and the expected-value weight of each depth's splats in units of the
+    // target (their sum over depths is the number of iterations).
+    std::vector<long long> proposedAt, acceptedAt;
+    std::vector<double> shareAt;
+};
+
+// The expected-value weight w of sample x, splatted (divided by its target value) onto the
+// film and, if recorded, each depth's film; its share of the target goes to its depths.
+void record(const ChainState& x, double w, int chain, Film& film, std::vector<std::unique_ptr<Film>>& depthFilms,
+            ChainCounts& cc) {
+    const float scale = float(w / x.f);
+    for (const PathContribution& pc : x.splats) {
+        const Spectrum L = pc.L * scale;
+        film.addSplat(pc.pRaster, L, chain);
+        const size_t depth = size_t(pc.s + pc.t - 2);
+        if (depth < cc.shareAt.size()) cc.shareAt[depth] += w * pc.L.luminance() / x.f;
+        if (depth < depthFilms.size()) depthFilms[depth]->addSplat(pc.pRaster, L, chain);
+    }
+}
+
+}  // namespace
+
+RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& integrator, const RenderOptions& options) {
+    const std::string name = integrator.name();
+    if (!scene.camera().hasImportance())
+        throw InputError("integrator \"" + name + "\" splats every path onto the film and needs a perspective camera");
+    const MetropolisParams& mp = integrator.params();
+    const PixelBounds& bounds = scene.pixelBounds();
+    const Camera::Params& cp = scene.camera().params();
+    Film film(cp.xRes, cp.yRes, bounds, &scene.filter());
+    const int depths = integrator.maxDepth() + 1;
+    std::vector<std::unique_ptr<Film>> depthFilms;
+    if (mp.depthImages)
+        for (int d = 0; d < depths; ++d) depthFilms.push_back(std::make_unique<Film>(cp.xRes, cp.yRes, bounds, &scene.filter()));
+    PrimarySampleParams pss;
+    pss.sigma = mp.sigma;
+    pss.largeStepProbability = mp.largeStepProbability;
+    pss.streamCount = integrator.streamCount();
+
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    tbb::enumerable_thread_specific<ChainEvaluator> evaluators;
+    tbb::enumerable_thread_specific<ChainState> states;
+
+    RenderResult result;
+    MetropolisStats& ms = result.metropolis;
+    ms.present = true;
+    ms.multiplexed = integrator.choosesDepth();
+
+    // Bootstrap: b and the weights of the candidate initial states.
+    const int64_t nBoot = std::max<int64_t>(1, integrator.bootstrapCount());
+    std::vector<double> weights(size_t(nBoot), 0.0);
+    arena.execute([&] {
+        tbb::parallel_for(int64_t(0), nBoot, [&](int64_t i) {
+            PrimarySampleSampler sampler(bootstrapSeed(options.seed, i), pss);
+            sampler.startIteration();
+            integrator.prepareBootstrap(sampler, i);
+            ChainState& st = states.local();
+            integrator.evaluate(sampler, evaluators.local(), st);
+            weights[size_t(i)] = st.f;
+        });
+    });
+    std::vector<double> cumulative(weights.size());
+    double sum = 0, sumSquares = 0;
+    for (size_t i = 0; i < weights.size(); ++i) {
+        cumulative[i] = (sum += weights[i]);
+        sumSquares += weights[i] * weights[i];
+    }
+    ms.bootstrapSamples = nBoot;
+    ms.b = sum / double(nBoot);
+    // b scales the whole image: its own error, which the chains' half-buffers cannot see.
+    const double varianceB = std::max(0.0, sumSquares / double(nBoot) - ms.b * ms.b) / double(nBoot);
+    ms.bRelativeError = ms.b > 0 ? std::sqrt(varianceB) / ms.b : 0.0;
+
+    const long long total = std::max(1LL, (long long)std::max(1, options.spp) * bounds.area());
+    const int chains = int(std::min<long long>(std::max(1, mp.chains), total));
+    ms.chains = chains;
+    std::atomic<bool> stop{false};
+    std::atomic<long long> done{0};
+    std::vector<ChainCounts> counts(static_cast<size_t>(chains));
+    bool replayFailed = false;
+    if (!(ms.b > 0)) {
+        warning(name + ": the " + std::to_string(nBoot) +
+                " bootstrap samples found no path that carries light to the camera; the image is black");
+    } else {
+        Monitor monitor(options.progress, options.timeLimit, options.cancel, stop, done, total);
+        std::atomic<bool> replayMismatch{false};
+        arena.execute([&] {
+            tbb::parallel_for(0, chains, [&](int c) {
+                ChainEvaluator& ev = evaluators.local();
+                ChainCounts& cc = counts[size_t(c)];
+                cc.proposedAt.assign(size_t(depths), 0);
+                cc.acceptedAt.assign(size_t(depths), 0);
+                cc.shareAt.assign(size_t(depths), 0.0);
+                Rng rng(chainSeed(options.seed, c), 0x3c6ef372fe94f82bULL);
+                // The initial state in proportion to its bootstrap value, replayed.
+                double pick = rng.uniformDouble() * sum;
+                int64_t i = std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin();
+                i = std::min<int64_t>(i, nBoot - 1);
+                while (i > 0 && weights[size_t(i)] == 0) --i;  // a rounding at the end: the last positive one
+                PrimarySampleSampler sampler(bootstrapSeed(options.seed, i), pss);
+                sampler.startIteration();
+                integrator.prepareBootstrap(sampler, i);
+                ChainState x, y;
+                integrator.evaluate(sampler, ev, x);
+                sampler.accept();
+                if (x.f != weights[size_t(i)]) {
+                    replayMismatch = true;
+                    return;
+                }
+                sampler.reseed(chainSeed(options.seed, c));
+                const long long n = total / chains + (c < total % chains ? 1 : 0);
+                for (long long k = 0; k < n; ++k) {
+                    if ((k & 255) == 0 && stop.load(std::memory_order_relaxed)) break;
+                    sampler.startIteration();
+                    const bool large = sampler.largeStep();
+                    integrator.evaluate(sampler, ev, y);
+                    const double a = acceptanceProbability(x.f, y.f);
+                    if (!(y.f > 0)) ++cc.invalid;
+                    // Expected values: the state with 1 - a, the proposal with a.
+                    if (a < 1) record(x, 1 - a, c, film, depthFilms, cc);
+                    if (a > 0) record(y, a, c, film, depthFilms, cc);
+                    ++(large ? cc.proposedLarge : cc.proposedSmall);
+                    if (y.depth >= 0) ++cc.proposedAt[size_t(y.depth)];
+                    if (rng.uniformDouble() < a) {
+                        sampler.accept();
+                        std::swap(x, y);
+                        ++(large ? cc.acceptedLarge : cc.acceptedSmall);
+                        if (x.depth >= 0) ++cc.acceptedAt[size_t(x.depth)];
+                    } else {
+                        sampler.reject();
+                    }
+                    ++cc.done;
+                    if ((k & 255) == 255) done.fetch_add(256, std::memory_order_relaxed);
+                }
+                done.fetch_add(cc.done & 255, std::memory_order_relaxed);
+            });
+        });
+        result.seconds = monitor.elapsed();
+        replayFailed = replayMismatch.load();
+    }
+    if (replayFailed)
+        throw std::logic_error(name + ": a bootstrap sample replayed with a different contribution");
+
+    ms.depths.assign(size_t(depths), {});
+    for (const ChainCounts& cc : counts) {
+        ms.proposedLarge += cc.proposedLarge;
+        ms.acceptedLarge += cc.acceptedLarge;
+        ms.proposedSmall += cc.proposedSmall;
+        ms.acceptedSmall += cc.acceptedSmall;
+        ms.invalidProposals += cc.invalid;
+        ms.mutations += cc.done;
+        for (size_t d = 0; d < cc.shareAt.size(); ++d) {
+            ms.depths[d].proposed += cc.proposedAt[d];
+            ms.depths[d].accepted += cc.acceptedAt[d];
+            ms.depths[d].share += cc.shareAt[d];
+        }
+    }
+    for (MetropolisStats::Depth& d : ms.depths) d.share = ms.mutations > 0 ? d.share / double(ms.mutations) : 0.0;
+    for (const ChainEvaluator& ev : evaluators) result.stats += ev.stats;
+    // Splats are normalised by "light paths" (Film::image): mutations / b per unit of the
+    // target's integral, with the imaging ratio as for BDPT's splats.
+    const float imagingRatio = scene.settings().imagingRatio;
+    const double lightPaths =
+        ms.b > 0 && imagingRatio > 0 && ms.mutations > 0 ? double(ms.mutations) / (ms.b * imagingRatio) : 0.0;
+    result.targetSpp = std::max(1, options.spp);
+    result.meanSpp = double(ms.mutations) / double(bounds.area());
+    result.stoppedEarly = ms.mutations < total && ms.b > 0;
+    result.pixelSamples.assign(size_t(bounds.area()), 0);
+    filmResults(film, lightPaths, result);
+    for (const auto& f : depthFilms) result.depthImages.push_back(f->image(lightPaths));
+    return result;
+}
+
+}  // namespace ps

@@ -1,0 +1,92 @@
+// Metropolis light transport over BDPT (thesis ch. 11): the machinery every Markov-chain
+// integrator shares, and the interface through which each gives its target function.
+//
+// A chain is not a per-camera-ray estimate, so these integrators have their own driver,
+// renderMetropolis, which render() hands them to:
+//  - bootstrap: N independent samples estimate b, the integral of the target over primary
+//    sample space, and the chains' initial states are drawn from them in proportion to
+//    their target values (no start-up bias, thesis ch. 11); each drawn state is replayed and
+//    must reproduce its bootstrap value bit for bit;
+//  - expected values: every iteration splats the current state with weight 1 - a and the
+//    proposal with weight a, each contribution divided by its sample's target value;
+//  - the image is scaled by b / (mutations made per film pixel), so an interrupted render
+//    is normalised by the mutations it made;
+//  - each chain owns its random streams (keyed by the seed and its index) and a fixed share
+//    of the mutations, and splats accumulate in fixed point: the image does not depend on
+//    the thread count;
+//  - the chains' even and odd halves fill the film's two half-buffers, whose difference
+//    gives the error estimate (independent chains, unlike the correlated samples of one).
+#pragma once
+#include <cstdint>
+#include <vector>
+#include "mc/primary_sample_sampler.h"
+#include "transport/bdpt.h"
+#include "transport/integrator.h"
+#include "transport/renderer.h"
+
+namespace ps {
+
+struct MetropolisParams {
+    int bootstrapSamples = 100000;
+    int chains = 1000;
+    double largeStepProbability = 0.3;
+    double sigma = 0.01;
+    // For tests: also record the image of each path depth (RenderResult::depthImages).
+    bool depthImages = false;
+};
+
+// A sample of a chain: its splats (each strategy's share of the path, at its film position)
+// and its target value.
+struct ChainState {
+    std::vector<BDPTIntegrator::PathContribution> splats;
+    double f = 0;
+    int depth = -1;  // the path depth the sample chose (multiplexed MLT), else -1
+};
+
+// One thread's tools for evaluating the sample a sampler holds.
+struct ChainEvaluator {
+    ScratchBuffer scratch;
+    PathStats stats;
+};
+
+class MetropolisIntegrator : public Integrator {
+public:
+    MetropolisIntegrator(const Scene& scene, int maxDepth, const MetropolisParams& params, MisHeuristic heuristic);
+    // Not a per-ray estimator: render() runs renderMetropolis instead.
+    Spectrum Li(const Ray& ray, SampleContext& ctx) const final;
+    bool splats() const final { return true; }
+    virtual const char* name() const = 0;
+    // The sample the sampler holds (its iteration started): splats and target value.
+    virtual void evaluate(PrimarySampleSampler& sampler, ChainEvaluator& ev, ChainState& out) const = 0;
+    // Dimension streams the target reads.
+    virtual int streamCount() const { return BDPTIntegrator::kStreamCount; }
+    // Bootstrap samples for the parameter's count (multiplexed MLT: per path depth).
+    virtual int64_t bootstrapCount() const { return params_.bootstrapSamples; }
+    // Called before bootstrap sample i is evaluated, and again before it is replayed: may
+    // stratify its first values over the bootstrap (sample i of bootstrapCount()).
+    virtual void prepareBootstrap(PrimarySampleSampler&, int64_t) const {}
+    // Whether the chain itself chooses a path depth (per-depth acceptance statistics).
+    virtual bool choosesDepth() const { return false; }
+
+    const BDPTIntegrator& bdpt() const { return bdpt_; }
+    int maxDepth() const { return bdpt_.subpaths().maxDepth(); }
+    const MetropolisParams& params() const { return params_; }
+    MetropolisParams& params() { return params_; }
+
+protected:
+    // The film position, uniform over the film widened by the filter radius (the area over
+    // which the film normalises splats, Film::image), and the lens position: the first
+    // four values of the camera stream.
+    CameraSample filmSample(PrimarySampleSampler& sampler) const;
+
+    const Scene& scene_;
+    BDPTIntegrator bdpt_;
+    MetropolisParams params_;
+    Vec2 margin_, filmSize_;
+};
+
+// The Markov-chain driver: options.spp is the number of mutations per film pixel (crop
+// region); threads, seed, time limit, cancellation and progress as for render().
+RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& integrator, const RenderOptions& options);
+
+}  // namespace ps
