@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -24,46 +25,87 @@ static double rmse(const Image& a, const Image& b) {
     return std::sqrt(s / double(n));
 }
 
+// Relative MSE: per pixel and channel (x - ref)^2 / (ref^2 + 0.01), averaged. With the
+// reference's own variance per pixel (its --aov variance image, of the mean luminance), that
+// variance is subtracted: E[(x - ref)^2] = MSE(x) + Var(ref) for independent renders, so the
+// reference's noise does not put a floor under the figure.
+static double relativeMse(const Image& x, const Image& ref, const Image* refVariance) {
+    double s = 0;
+    size_t n = x.rgb.size();
+    for (size_t i = 0; i < n; ++i) {
+        double d = double(x.rgb[i]) - ref.rgb[i];
+        double e = d * d - (refVariance ? double(refVariance->rgb[i]) : 0.0);
+        s += e / (double(ref.rgb[i]) * ref.rgb[i] + 0.01);
+    }
+    return s / double(n);
+}
+
+static double imageMean(const Image& img) {
+    double m = 0;
+    for (float v : img.rgb) m += v / double(img.rgb.size());
+    return m;
+}
+
 int main(int argc, char** argv) {
-    CLI::App app{"Equal-time benchmark: RMSE against a reference for each integrator at the same render time"};
-    std::string scenePath, refPath, jsonPath;
+    CLI::App app{"Equal-time benchmark: error against a reference for each integrator at the same render time"};
+    std::string scenePath, refPath, refVariancePath, jsonPath;
     double seconds = 20;
-    int threads = 2;
+    int threads = 2, seeds = 1;
     std::vector<std::string> integrators = {"path", "bdpt"};
     app.add_option("scene", scenePath, "Scene file")->required();
     app.add_option("reference", refPath, "Reference image of the same scene (EXR/PFM)")->required();
-    app.add_option("--time", seconds, "Render time per integrator, seconds");
+    app.add_option("--reference-variance", refVariancePath,
+                   "The reference's per-pixel variance image (pathspace render --aov variance), subtracted from the "
+                   "relative MSE");
+    app.add_option("--time", seconds, "Render time per integrator, seconds (Metropolis: bootstrap included)");
     app.add_option("--threads", threads, "Worker threads");
+    app.add_option("--seeds", seeds, "Renders per integrator (seeds 1..N): mean error and the image mean's spread");
     app.add_option("--integrators", integrators, "Integrators to compare");
     app.add_option("--json", jsonPath, "Write the results as JSON");
     CLI11_PARSE(app, argc, argv);
     try {
         setWarningsQuiet(true);
         Image ref = readImage(refPath);
+        Image refVariance;
+        if (!refVariancePath.empty()) refVariance = readImage(refVariancePath);
         auto scene = buildScene(parseSceneFile(scenePath));
-        double refMean = 0;
-        for (float v : ref.rgb) refMean += v / double(ref.rgb.size());
+        const double refMean = imageMean(ref);
         nlohmann::json rows = nlohmann::json::array();
-        std::printf("%-8s %10s %10s %12s %10s\n", "integ", "spp", "seconds", "RMSE", "rel RMSE");
-        double firstMse = 0;
+        std::printf("%-8s %5s %10s %8s %10s %10s %10s %11s  %s\n", "integ", "seed", "spp", "seconds", "rel RMSE",
+                    "relMSE", "mean/ref", "acceptance", "relMSE ratio to first");
+        double firstRelMse = 0;
         for (const std::string& name : integrators) {
             auto integrator = createIntegrator(name, *scene);
-            RenderOptions o;
-            o.spp = 1 << 20;
-            o.timeLimit = seconds;
-            o.threads = threads;
-            o.seed = 1;
-            o.sampler = scene->settings().sampler;
-            o.progress = false;
-            RenderResult r = render(*scene, *integrator, o);
-            if (r.image.width != ref.width || r.image.height != ref.height)
-                throw InputError("the reference's resolution differs from the scene's");
-            double e = rmse(r.image, ref);
-            if (firstMse == 0) firstMse = e * e;
-            std::printf("%-8s %10.1f %10.2f %12.5f %10.4f   MSE ratio to %s: %.3f\n", name.c_str(), r.meanSpp, r.seconds, e,
-                        e / refMean, integrators[0].c_str(), e * e / firstMse);
-            rows.push_back({{"integrator", name}, {"spp", r.meanSpp}, {"seconds", r.seconds}, {"rmse", e},
-                            {"relative_rmse", e / refMean}});
+            double sumRelMse = 0, sumMean = 0, sumMean2 = 0;
+            for (int k = 1; k <= seeds; ++k) {
+                RenderOptions o;
+                o.spp = 1 << 20;
+                o.timeLimit = seconds;
+                o.threads = threads;
+                o.seed = uint64_t(k);
+                o.sampler = scene->settings().sampler;
+                o.progress = false;
+                RenderResult r = render(*scene, *integrator, o);
+                if (r.image.width != ref.width || r.image.height != ref.height)
+                    throw InputError("the reference's resolution differs from the scene's");
+                double e = rmse(r.image, ref);
+                double rel = relativeMse(r.image, ref, refVariancePath.empty() ? nullptr : &refVariance);
+                double meanRatio = imageMean(r.image) / refMean;
+                sumRelMse += rel;
+                sumMean += meanRatio;
+                sumMean2 += meanRatio * meanRatio;
+                double acceptance = r.metropolis.present ? r.metropolis.acceptanceRate() : 0.0;
+                std::printf("%-8s %5d %10.1f %8.2f %10.4f %10.5f %10.4f %11.3f\n", name.c_str(), k, r.meanSpp, r.seconds,
+                            e / refMean, rel, meanRatio, acceptance);
+                rows.push_back({{"integrator", name}, {"seed", k}, {"spp", r.meanSpp}, {"seconds", r.seconds},
+                                {"rmse", e}, {"relative_rmse", e / refMean}, {"relative_mse", rel},
+                                {"mean_ratio", meanRatio}, {"acceptance", acceptance}});
+            }
+            double relMse = sumRelMse / seeds, mean = sumMean / seeds;
+            double spread = seeds > 1 ? std::sqrt(std::max(0.0, (sumMean2 - seeds * mean * mean) / (seeds - 1))) : 0.0;
+            if (firstRelMse == 0) firstRelMse = relMse;
+            std::printf("%-8s  mean relMSE %.5f (%.3f of %s's), image mean / ref %.4f, its spread across seeds %.4f\n",
+                        name.c_str(), relMse, relMse / firstRelMse, integrators[0].c_str(), mean, spread);
         }
         if (!jsonPath.empty()) std::ofstream(jsonPath) << nlohmann::json{{"scene", scenePath}, {"results", rows}}.dump(2);
     } catch (const std::exception& e) {

@@ -15,10 +15,10 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # The longest statistical renders (minutes each under the sanitizers) repeat code paths that
 # cheaper tests run too: they already ran in the Release suite and are left out here, unless
 # PS_SANITIZE_ALL=1. Each family keeps cheap cases under the sanitizers (the shared scenes'
-# renders, EstimatorAgreement.DiffuseBox, the other LightAgreement and PSSMLT cases,
+# renders, EstimatorAgreement.DiffuseBox, the other LightAgreement and Metropolis cases,
 # Cli.BdptStrategyImagesAndIntegratorChecks).
 skip='PbrtReference|EstimatorAgreement\.(SmoothNormals|GlassSphere)|LightAgreement\.(EmitterInsideGlass|CameraInsideGlass|DiffuseUnderGlass)'
-skip+='|PSSMLT\.(AgreesWith|ClosedFurnace|PointLight)|BdptStrategies\.|ErrorEstimate\.'
+skip+='|Metropolis\.(AgreesWith|ClosedFurnace|PointLight|EachDepth)|BdptStrategies\.|ErrorEstimate\.'
 exclude=()
 [ "${PS_SANITIZE_ALL:-0}" = 1 ] || exclude=(-E "$skip")
 cd build-asan

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -103,11 +104,16 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     ms.present = true;
     ms.multiplexed = integrator.choosesDepth();
 
-    // Bootstrap: b and the weights of the candidate initial states.
+    // Bootstrap: b and the weights of the candidate initial states. It counts against the
+    // time budget, and a cancellation during it leaves a black image (b unknown).
+    const auto startTime = std::chrono::steady_clock::now();
     const int64_t nBoot = std::max<int64_t>(1, integrator.bootstrapCount());
     std::vector<double> weights(size_t(nBoot), 0.0);
+    std::atomic<bool> bootstrapCancelled{false};
     arena.execute([&] {
         tbb::parallel_for(int64_t(0), nBoot, [&](int64_t i) {
+            if ((i & 1023) == 0 && options.cancel && options.cancel->load()) bootstrapCancelled = true;
+            if (bootstrapCancelled.load(std::memory_order_relaxed)) return;
             PrimarySampleSampler sampler(bootstrapSeed(options.seed, i), pss);
             sampler.startIteration();
             integrator.prepareBootstrap(sampler, i);
@@ -135,11 +141,24 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     std::atomic<long long> done{0};
     std::vector<ChainCounts> counts(static_cast<size_t>(chains));
     bool replayFailed = false;
-    if (!(ms.b > 0)) {
+    const double bootstrapSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
+    result.seconds = bootstrapSeconds;
+    if (bootstrapCancelled) {
+        warning(name + ": interrupted during the bootstrap, before any chain ran; the image is black");
+        ms.b = 0;
+    } else if (!(ms.b > 0)) {
         warning(name + ": the " + std::to_string(nBoot) +
                 " bootstrap samples found no path that carries light to the camera; the image is black");
     } else {
-        Monitor monitor(options.progress, options.timeLimit, options.cancel, stop, done, total);
+        // The chains get what the bootstrap left of the budget, and at least a tenth of it.
+        double chainTime = options.timeLimit;
+        if (chainTime > 0) {
+            chainTime = std::max(options.timeLimit - bootstrapSeconds, 0.1 * options.timeLimit);
+            if (bootstrapSeconds > 0.9 * options.timeLimit)
+                warning(name + ": the bootstrap took " + std::to_string(bootstrapSeconds) + " s of the " +
+                        std::to_string(options.timeLimit) + " s budget; fewer bootstrap samples leave the chains more");
+        }
+        Monitor monitor(options.progress, chainTime, options.cancel, stop, done, total);
         std::atomic<bool> replayMismatch{false};
         arena.execute([&] {
             tbb::parallel_for(0, chains, [&](int c) {
@@ -192,7 +211,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                 done.fetch_add(cc.done & 255, std::memory_order_relaxed);
             });
         });
-        result.seconds = monitor.elapsed();
+        result.seconds += monitor.elapsed();
         replayFailed = replayMismatch.load();
     }
     if (replayFailed)
@@ -221,7 +240,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
         ms.b > 0 && imagingRatio > 0 && ms.mutations > 0 ? double(ms.mutations) / (ms.b * imagingRatio) : 0.0;
     result.targetSpp = std::max(1, options.spp);
     result.meanSpp = double(ms.mutations) / double(bounds.area());
-    result.stoppedEarly = ms.mutations < total && ms.b > 0;
+    result.stoppedEarly = bootstrapCancelled || (ms.mutations < total && ms.b > 0);
     result.pixelSamples.assign(size_t(bounds.area()), 0);
     filmResults(film, lightPaths, result);
     for (const auto& f : depthFilms) result.depthImages.push_back(f->image(lightPaths));
