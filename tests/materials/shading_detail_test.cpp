@@ -196,6 +196,10 @@ TEST_F(ShadingDetailParams, DisplacementOnEveryScatteringMaterialAndMixMembers) 
     auto mix = make("mix", Params().s("materials", std::vector<std::string>{"plain", "bumpy"}));
     EXPECT_FALSE(mix->shadingDetail());
     EXPECT_TRUE(mix->needsShadingDerivatives());
+    // A map on the mix itself is ignored with a warning (its members' maps apply).
+    auto mapped = make("mix", Params().s("materials", std::vector<std::string>{"plain", "plain"}).tex("displacement", "bump"));
+    EXPECT_FALSE(mapped->shadingDetail());
+    EXPECT_FALSE(mapped->needsShadingDerivatives());
 }
 
 }  // namespace
