@@ -14,6 +14,10 @@ struct SurfaceInteraction {
     Vec3 ng;        // geometric normal, oriented by pbrt's rules (winding/N/ReverseOrientation)
     Vec3 ns;        // shading normal, in the hemisphere of ng
     Vec3 dpdu;      // shading tangent along u
+    // pbrt-v4's shading dp/dv and dn/du, dn/dv: filled (and dpdu set to pbrt-v4's shading
+    // dp/du) only where the material has a bump or normal map, which reads them
+    // (Material::needsShadingDerivatives); zero elsewhere.
+    Vec3 dpdv, dndu, dndv;
     Vec2 uv;
     Vec3 wo;        // towards the ray origin
     const Material* material = nullptr;

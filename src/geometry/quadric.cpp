@@ -1,5 +1,6 @@
 #include "geometry/quadric.h"
 
+#include "materials/material.h"
 #include "math/warp.h"
 
 namespace ps {
@@ -71,7 +72,30 @@ float phiOf(Vec3 p) {
     return phi < 0 ? phi + 2 * kPi : phi;
 }
 
+// dn/du and dn/dv of the unit normal normalize(dpdu x dpdv) from the second derivatives of
+// p (Weingarten equations), as pbrt-v4's quadrics compute them.
+void weingarten(Vec3 dpdu, Vec3 dpdv, Vec3 d2pduu, Vec3 d2pduv, Vec3 d2pdvv, Vec3& dndu, Vec3& dndv) {
+    float E = dot(dpdu, dpdu), F = dot(dpdu, dpdv), G = dot(dpdv, dpdv);
+    Vec3 n = normalize(cross(dpdu, dpdv));
+    float e = dot(n, d2pduu), f = dot(n, d2pduv), g = dot(n, d2pdvv);
+    float egf2 = E * G - F * F;
+    float inv = egf2 == 0 ? 0.0f : 1 / egf2;
+    dndu = dpdu * ((f * F - e * G) * inv) + dpdv * ((e * F - f * E) * inv);
+    dndv = dpdu * ((g * F - f * G) * inv) + dpdv * ((f * F - g * E) * inv);
+}
+
 }  // namespace
+
+bool Quadric::wantsDerivatives() const { return material && material->needsShadingDerivatives(); }
+
+// The normal's derivatives are not flipped with the normal (pbrt-v4 flips n only).
+void Quadric::setDerivatives(SurfaceInteraction& si, Vec3 dpdu, Vec3 dpdv, Vec3 dndu, Vec3 dndv) const {
+    si.dpdu = toScene_.vector(dpdu);
+    si.dpdv = toScene_.vector(dpdv);
+    si.dndu = toScene_.normal(dndu);
+    si.dndv = toScene_.normal(dndv);
+    si.tangentIsFrameAxis = false;
+}
 
 RTCGeometry Quadric::buildGeometry(RTCDevice device) const {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
@@ -137,6 +161,22 @@ int Sphere::interaction(const Ray& r, float t, int, float, float, SurfaceInterac
     if (flip_) n = -n;
     si.ng = si.ns = n;
     si.dpdu = toScene_.vector({-phiMax_ * pObj.y, phiMax_ * pObj.x, 0});
+    if (wantsDerivatives()) {
+        Vec3 q = pObj;
+        if (q.x == 0 && q.y == 0) q.x = 1e-5f * radius_;  // on the axis phi is undefined: as pbrt-v4
+        float zRadius = std::sqrt(q.x * q.x + q.y * q.y);
+        float cosPhi = q.x / zRadius, sinPhi = q.y / zRadius;
+        float sinTheta = safeSqrt(1 - sqr(q.z / radius_));
+        float dTheta = thetaZMax_ - thetaZMin_;
+        Vec3 dpdu(-phiMax_ * q.y, phiMax_ * q.x, 0);
+        Vec3 dpdv = Vec3(q.z * cosPhi, q.z * sinPhi, -radius_ * sinTheta) * dTheta;
+        Vec3 d2pduu = Vec3(q.x, q.y, 0) * (-phiMax_ * phiMax_);
+        Vec3 d2pduv = Vec3(-sinPhi, cosPhi, 0) * (dTheta * q.z * phiMax_);
+        Vec3 d2pdvv = q * (-dTheta * dTheta);
+        Vec3 dndu, dndv;
+        weingarten(dpdu, dpdv, d2pduu, d2pduv, d2pdvv, dndu, dndv);
+        setDerivatives(si, dpdu, dpdv, dndu, dndv);
+    }
     return 0;
 }
 
@@ -242,6 +282,10 @@ int Disk::interaction(const Ray& r, float t, int, float, float, SurfaceInteracti
     if (flip_) n = -n;
     si.ng = si.ns = n;
     si.dpdu = toScene_.vector({-phiMax_ * pObj.y, phiMax_ * pObj.x, 0});
+    if (wantsDerivatives() && rho > 0) {
+        Vec3 dpdv = Vec3(pObj.x, pObj.y, 0) * ((innerRadius_ - radius_) / rho);
+        setDerivatives(si, {-phiMax_ * pObj.y, phiMax_ * pObj.x, 0}, dpdv, {}, {});
+    }
     return 0;
 }
 
@@ -311,6 +355,12 @@ int Cylinder::interaction(const Ray& r, float t, int, float, float, SurfaceInter
     si.t = t;
     si.ng = si.ns = normalAt(pObj);
     si.dpdu = toScene_.vector({-phiMax_ * pObj.y, phiMax_ * pObj.x, 0});
+    if (wantsDerivatives()) {
+        Vec3 dpdu(-phiMax_ * pObj.y, phiMax_ * pObj.x, 0), dpdv(0, 0, zMax_ - zMin_);
+        Vec3 dndu, dndv;
+        weingarten(dpdu, dpdv, Vec3(pObj.x, pObj.y, 0) * (-phiMax_ * phiMax_), {}, {}, dndu, dndv);
+        setDerivatives(si, dpdu, dpdv, dndu, dndv);
+    }
     return 0;
 }
 

@@ -18,6 +18,11 @@ public:
     const Transform& toScene() const { return toScene_; }
 
 protected:
+    // Whether hits must carry pbrt-v4's shading derivatives (a bump or normal map).
+    bool wantsDerivatives() const;
+    // Stores object-space dp/du, dp/dv, dn/du, dn/dv in si, in scene space.
+    void setDerivatives(SurfaceInteraction& si, Vec3 dpdu, Vec3 dpdv, Vec3 dndu, Vec3 dndv) const;
+
     Transform toScene_;
     bool flip_;
 };

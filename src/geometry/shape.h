@@ -27,6 +27,8 @@ public:
     // Fills geometry fields of si (p, ng, ns, dpdu, uv) for Embree's hit of its primitive
     // embreePrim at its (u, v) by ray r at distance t, and returns the shape's own primitive
     // index (the numbering of areaLights and sampling; Embree's may differ, e.g. for quads).
+    // When material->needsShadingDerivatives(), it also fills dpdv, dndu, dndv and sets dpdu
+    // to pbrt-v4's shading dp/du (a shape that does not leaves bump and normal maps inert).
     virtual int interaction(const Ray& r, float t, int embreePrim, float u, float v, SurfaceInteraction& si) const = 0;
     virtual float area(int prim) const = 0;
     // Uniform by area over the primitive.

@@ -1,5 +1,6 @@
 #include "geometry/triangle_mesh.h"
 
+#include "materials/material.h"
 #include "math/warp.h"
 
 namespace ps {
@@ -147,7 +148,52 @@ int TriangleMesh::interaction(const Ray& r, float t, int embreePrim, float u, fl
     si.ng = ng;
     si.dpdu = dpdu;
     si.tangentIsFrameAxis = tangentIsFrameAxis_[prim];
+    if (material && material->needsShadingDerivatives()) shadingDerivatives(prim, si);
     return prim;
+}
+
+// As pbrt-v4 builds a triangle's shading geometry: dp/du, dp/dv from the uv parameterisation
+// (an arbitrary frame when it is degenerate); with N, the tangent made orthogonal to the
+// shading normal, the bitangent n x dp/du, and dn/du, dn/dv from the vertex normals.
+void TriangleMesh::shadingDerivatives(int prim, SurfaceInteraction& si) const {
+    const unsigned* vi = &indices_[3 * prim];
+    Vec3 p0 = loadP(positions_, vi[0]), p1 = loadP(positions_, vi[1]), p2 = loadP(positions_, vi[2]);
+    Vec2 duv02 = uvAt(vi[0], 0) - uvAt(vi[2], 2), duv12 = uvAt(vi[1], 1) - uvAt(vi[2], 2);
+    Vec3 dp02 = p0 - p2, dp12 = p1 - p2;
+    float det = duv02.x * duv12.y - duv02.y * duv12.x;
+    bool degenerate = std::fabs(det) < 1e-9f;
+    Vec3 dpdu, dpdv;
+    if (!degenerate) {
+        dpdu = (dp02 * duv12.y - dp12 * duv02.y) / det;
+        dpdv = (dp12 * duv02.x - dp02 * duv12.x) / det;
+    }
+    if (degenerate || lengthSquared(cross(dpdu, dpdv)) == 0) {
+        Vec3 n = cross(p2 - p0, p1 - p0);
+        if (lengthSquared(n) == 0) return;  // a degenerate triangle: leave the maps inert
+        coordinateSystem(normalize(n), dpdu, dpdv);
+    }
+    si.tangentIsFrameAxis = false;
+    if (normals_.empty()) {
+        si.dpdu = dpdu;
+        si.dpdv = dpdv;
+        si.dndu = si.dndv = Vec3();
+        return;
+    }
+    Vec3 ss = dpdu, ts = cross(si.ns, ss);
+    if (lengthSquared(ts) > 0) ss = cross(ts, si.ns);
+    else coordinateSystem(si.ns, ss, ts);
+    si.dpdu = ss;
+    si.dpdv = ts;
+    const Vec3 &n0 = normals_[vi[0]], &n1 = normals_[vi[1]], &n2 = normals_[vi[2]];
+    if (degenerate) {
+        Vec3 dn = cross(n2 - n0, n1 - n0);
+        if (lengthSquared(dn) == 0) si.dndu = si.dndv = Vec3();
+        else coordinateSystem(dn, si.dndu, si.dndv);
+    } else {
+        Vec3 dn1 = n0 - n2, dn2 = n1 - n2;
+        si.dndu = (dn1 * duv12.y - dn2 * duv02.y) / det;
+        si.dndv = (dn2 * duv02.x - dn1 * duv12.x) / det;
+    }
 }
 
 float TriangleMesh::area(int prim) const {

@@ -33,6 +33,9 @@ public:
 private:
     Vec3 geometricNormal(int prim) const { return faceNormal_[prim]; }  // unit, oriented
     Vec2 uvAt(int vertex, int corner) const;
+    // pbrt-v4's shading dp/du, dp/dv, dn/du, dn/dv (constant over a triangle), for bump and
+    // normal maps; si.ns must already hold the shading normal.
+    void shadingDerivatives(int prim, SurfaceInteraction& si) const;
 
     std::vector<float> positions_;  // xyz per vertex plus padding for Embree's SSE loads
     std::vector<Vec3> normals_;

@@ -7,6 +7,7 @@
 
 #include "materials/image_texture.h"
 #include "materials/materials.h"
+#include "materials/shading_detail.h"
 #include "materials/textures.h"
 #include "scene/spectra.h"
 #include "util/path.h"
@@ -193,6 +194,33 @@ std::shared_ptr<typename TextureOf<T>::type> createTexture(const TextureEntity& 
     return t;
 }
 
+// "string normalmap" (a file) or "displacement" (a float texture): the bump or normal map
+// of a scattering material, or null. The normal map wins when both are given (as pbrt-v4).
+std::shared_ptr<const ShadingDetail> shadingDetailParam(const std::string& type, const ParamSet& ps,
+                                                        const TextureRegistry& reg, const std::string& base) {
+    if (!ps.has("normalmap") && !ps.has("displacement")) return nullptr;
+    if (type == "mix" || type == "interface" || type == "" || type == "none") {
+        // mix chooses a member first, whose own map then applies; interface does not scatter.
+        const char* name = ps.has("normalmap") ? "normalmap" : "displacement";
+        ps.getString("normalmap", "");
+        ps.getTexture("displacement");
+        ps.getFloat("displacement", 0);
+        warning(locOf(ps, name), "\"" + std::string(name) + "\" has no effect on a \"" + type + "\" material; ignored");
+        return nullptr;
+    }
+    std::string file = ps.getString("normalmap", "");
+    if (!file.empty()) {
+        ps.getTexture("displacement");
+        ps.getFloat("displacement", 0);
+        std::string path = resolvePath(base, file);
+        // Read linearly: only PNG honours an encoding, other 8-bit formats are sRGB-decoded.
+        auto img = readNamedBy(locOf(ps, "normalmap"), [&] { return loadTextureImage(path, ColorEncoding::Linear); });
+        return ShadingDetail::normalMap(std::move(img));
+    }
+    if (!ps.has("displacement")) return nullptr;  // an empty normalmap string: none, as pbrt-v4
+    return ShadingDetail::bumpMap(floatParam(ps, "displacement", 0, reg));
+}
+
 }  // namespace
 
 std::shared_ptr<FloatTexture> createFloatTexture(const TextureEntity& e, const TextureRegistry& reg, const std::string& base) {
@@ -204,18 +232,8 @@ std::shared_ptr<SpectrumTexture> createSpectrumTexture(const TextureEntity& e, c
 }
 
 std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet& ps, const TextureRegistry& reg,
-                                         const std::map<std::string, std::shared_ptr<Material>>& named, const std::string&) {
+                                         const std::map<std::string, std::shared_ptr<Material>>& named, const std::string& base) {
     const SpectrumKind A = SpectrumKind::Albedo;
-    // Shading-normal perturbation is not implemented: say so rather than ignore silently.
-    if (ps.has("normalmap")) {
-        ps.getString("normalmap", "");
-        warning(locOf(ps, "normalmap"), "\"normalmap\" is not supported yet; ignored");
-    }
-    if (ps.has("displacement")) {
-        ps.getTexture("displacement");
-        ps.getFloat("displacement", 0);
-        warning(locOf(ps, "displacement"), "\"displacement\" (bump mapping) is not supported yet; ignored");
-    }
     std::shared_ptr<Material> m;
     if (type == "diffuse") {
         m = std::make_shared<DiffuseMaterial>(spectrumParam(ps, "reflectance", Spectrum(0.5f), A, reg));
@@ -265,6 +283,7 @@ std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet
         warning(ps.loc, "material \"" + type + "\" is not supported; using diffuse 0.5");
         return defaultDiffuse();
     }
+    if (auto detail = shadingDetailParam(type, ps, reg, base)) m->setShadingDetail(std::move(detail));
     ps.reportUnused("Material \"" + type + "\"");
     return m;
 }

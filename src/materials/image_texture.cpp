@@ -32,16 +32,19 @@ Spectrum ImageLookup::texel(int x, int y) const {
     return {};
 }
 
-Spectrum ImageLookup::evaluate(const TextureEvalContext& ctx) const {
-    Vec2 st = map_.map(ctx);
+Spectrum ImageLookup::bilinear(Vec2 st) const {
     // Continuous texel coordinates: texel centres sit at half-integers.
     float x = st.x * img_->width - 0.5f, y = (1 - st.y) * img_->height - 0.5f;
     // Non-finite or absurd coordinates (beyond exact int conversion) read as black.
     if (!(std::fabs(x) < 1e8f) || !(std::fabs(y) < 1e8f)) return {};
     int x0 = int(std::floor(x)), y0 = int(std::floor(y));
     float fx = x - x0, fy = y - y0;
-    Spectrum v = (texel(x0, y0) * (1 - fx) + texel(x0 + 1, y0) * fx) * (1 - fy) +
-                 (texel(x0, y0 + 1) * (1 - fx) + texel(x0 + 1, y0 + 1) * fx) * fy;
+    return (texel(x0, y0) * (1 - fx) + texel(x0 + 1, y0) * fx) * (1 - fy) +
+           (texel(x0, y0 + 1) * (1 - fx) + texel(x0 + 1, y0 + 1) * fx) * fy;
+}
+
+Spectrum ImageLookup::evaluate(const TextureEvalContext& ctx) const {
+    Spectrum v = bilinear(map_.map(ctx));
     v *= scale_;
     if (invert_) v = Spectrum(1) - v;
     return clamp(v, 0, std::numeric_limits<float>::max());

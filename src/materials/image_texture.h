@@ -26,6 +26,9 @@ public:
         : img_(std::move(img)), map_(m), wrap_(w), scale_(scale), invert_(invert), channels_(c) {}
     // scale * bilinear lookup, then 1 - value if inverted, clamped to >= 0.
     Spectrum evaluate(const TextureEvalContext& ctx) const;
+    // The bilinear interpolation alone at texture coordinates st, looked up at (s, 1 - t);
+    // black for non-finite or absurd coordinates.
+    Spectrum bilinear(Vec2 st) const;
 
 private:
     Spectrum texel(int x, int y) const;

@@ -8,6 +8,8 @@
 
 namespace ps {
 
+class ShadingDetail;  // materials/shading_detail.h
+
 struct MaterialEvalContext : TextureEvalContext {
     Vec3 wo;     // world-space direction towards the previous vertex
     Vec3 dpdu;   // world-space tangent along u (anisotropic frames follow it)
@@ -24,9 +26,20 @@ public:
     // The BxDF when it is the same at every point (all textures constant), built once, so
     // the render loop neither evaluates textures nor builds one per hit; null otherwise.
     const BxDF* constantBxDF() const { return constant_.get(); }
+    // pbrt-v4's "normalmap" or "displacement" (bump map) of this material, or null.
+    const ShadingDetail* shadingDetail() const { return detail_.get(); }
+    void setShadingDetail(std::shared_ptr<const ShadingDetail> d) {
+        detail_ = std::move(d);
+        needsDerivatives_ = needsDerivatives_ || detail_;
+    }
+    // True when hits need the shading derivatives a map reads (SurfaceInteraction::dpdv ...):
+    // this material, or for `mix` one of its members, has a map.
+    bool needsShadingDerivatives() const { return needsDerivatives_; }
 
 protected:
     std::unique_ptr<const BxDF> constant_;
+    std::shared_ptr<const ShadingDetail> detail_;
+    bool needsDerivatives_ = false;
 };
 
 }  // namespace ps

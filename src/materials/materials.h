@@ -115,7 +115,9 @@ private:
 // Chooses materials[1] with probability `amount`, by a deterministic hash of (p, wo).
 class MixMaterial final : public Material {
 public:
-    MixMaterial(std::array<std::shared_ptr<Material>, 2> m, FloatTex amount) : m_(std::move(m)), amount_(std::move(amount)) {}
+    MixMaterial(std::array<std::shared_ptr<Material>, 2> m, FloatTex amount) : m_(std::move(m)), amount_(std::move(amount)) {
+        needsDerivatives_ = m_[0]->needsShadingDerivatives() || m_[1]->needsShadingDerivatives();
+    }
     const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override { return resolve(ctx)->bxdf(ctx, buf); }
     const Material* resolve(const MaterialEvalContext& ctx) const override;
 

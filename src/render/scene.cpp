@@ -67,6 +67,11 @@ bool Scene::intersect(const Ray& r, SurfaceInteraction& si) const {
         si.ns = normalize(T.normal(si.ns));
         si.dpdu = T.vector(si.dpdu);
         si.tangentIsFrameAxis = false;  // the transform may scale it
+        if (shape->material && shape->material->needsShadingDerivatives()) {
+            si.dpdv = T.vector(si.dpdv);
+            si.dndu = T.normal(si.dndu);
+            si.dndv = T.normal(si.dndv);
+        }
         si.material = shape->material;
         si.areaLight = nullptr;  // emitters inside instances are not supported (as in pbrt-v4)
     }

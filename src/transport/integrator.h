@@ -6,6 +6,7 @@
 #include "geometry/ray.h"
 #include "film/film.h"
 #include "materials/material.h"
+#include "materials/shading_detail.h"
 #include "math/spectrum.h"
 #include "mc/sampler.h"
 #include "render/scene.h"
@@ -27,10 +28,14 @@ struct PathStats {
 };
 
 // The BxDF at a surface hit (textures evaluated, `mix` resolved), allocated in scratch;
-// nullptr for `interface` materials, which do not scatter.
-inline const BxDF* surfaceBxDF(const SurfaceInteraction& si, ScratchBuffer& scratch) {
+// nullptr for `interface` materials, which do not scatter. A bump or normal map of the
+// resolved material replaces si's shading frame first (ns, dpdu): every integrator builds
+// its frame from si after this call, so all of them use the mapped one.
+inline const BxDF* surfaceBxDF(SurfaceInteraction& si, ScratchBuffer& scratch) {
     if (!si.material) return nullptr;
-    if (const BxDF* b = si.material->constantBxDF()) return b;
+    const bool maps = si.material->needsShadingDerivatives();
+    if (!maps)
+        if (const BxDF* b = si.material->constantBxDF()) return b;
     MaterialEvalContext ctx;
     ctx.p = si.p;
     ctx.n = si.ns;
@@ -39,6 +44,13 @@ inline const BxDF* surfaceBxDF(const SurfaceInteraction& si, ScratchBuffer& scra
     ctx.dpdu = si.dpdu;
     const Material* material = si.material->resolve(ctx);
     if (!material) return nullptr;
+    if (maps) {
+        if (const ShadingDetail* detail = material->shadingDetail()) {
+            detail->apply(si);
+            ctx.n = si.ns;
+            ctx.dpdu = si.dpdu;
+        }
+    }
     if (const BxDF* b = material->constantBxDF()) return b;
     return material->bxdf(ctx, scratch);
 }

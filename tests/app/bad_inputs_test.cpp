@@ -124,6 +124,13 @@ std::vector<Case> cases() {
          kHeader + "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" [ \"none.png\" ]\n"
                    "Material \"diffuse\" \"texture reflectance\" \"t\"\nShape \"sphere\"",
          {}, 2, {":7:1: error: ", "none.png: cannot open image"}},
+        {"missing_normal_map", kHeader + "Material \"diffuse\" \"string normalmap\" [ \"nm.png\" ]\nShape \"sphere\"",
+         {}, 2, {":7:", "error: ", "nm.png: cannot open image"}},
+        {"normal_map_not_an_image", kHeader + "Material \"diffuse\" \"string normalmap\" [ \"nm.png\" ]\nShape \"sphere\"",
+         {{"nm.png", "this is not a png\n"}}, 2, {":7:", "error: ", "nm.png", "not a readable image"}},
+        {"undefined_displacement_texture",
+         kHeader + "Material \"diffuse\" \"texture displacement\" \"bumps\"\nShape \"sphere\"", {}, 2,
+         {":7:", "error: ", "float texture \"bumps\" (for \"displacement\") is not defined"}},
         {"missing_environment_map", "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
                                     "LightSource \"infinite\" \"string filename\" [ \"sky.exr\" ]\n",
          {}, 2, {":4:1: error: ", "sky.exr: cannot open image"}},

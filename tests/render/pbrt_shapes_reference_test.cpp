@@ -1,4 +1,4 @@
-// Agreement with pbrt-v4 on shapes it defines: small grey scenes of our own
+// Agreement with pbrt-v4 on shapes and shading detail it defines: small grey scenes of our own
 // (tests/data/pbrt-v4) against pbrt-v4's renders of the same files. Grey scenes render alike
 // spectrally and in RGB, so there is no allowance: block means of luminance within 4 sigma
 // and the image's mean luminance within 4 sigma of pbrt-v4's, sigma under 0.5%.
@@ -21,18 +21,21 @@ namespace {
 
 double luminance(Spectrum c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
-}  // namespace
-
-// A Loop-subdivided cube, an emitting subdivided patch (its side set by pbrt-v4's limit
-// normals: the other side would darken the image by a fifth) and a partial cylinder.
-TEST(PbrtShapesReference, LoopSubdivisionAndCylinder) {
+// Our block means of luminance (16 renders of `spp`) against pbrt-v4's render of the same
+// scene file in tests/data/pbrt-v4, with no allowance: every block within 4 sigma, and the
+// image's mean luminance within 4 sigma with sigma under 0.5%. Texture paths in the file are
+// relative to it.
+void expectPbrtReference(const std::string& sceneFile, const std::string& refFile, int refSpp, int spp) {
     const fs::path dir = fs::path(PATHSPACE_SOURCE_DIR) / "tests" / "data" / "pbrt-v4";
-    std::ifstream in(dir / "loopsubdiv-cylinder.pbrt");
+    std::ifstream in(dir / sceneFile);
     std::stringstream text;
     text << in.rdbuf();
-    Image ref = readImage((dir / "loopsubdiv-cylinder-4096spp.exr").string());
-    const int refSpp = 4096, spp = 64, renders = 16, blocks = 4;
-    BlockMeans ours = blockMeans(text.str(), "", spp, renders, blocks);
+    std::string scene = text.str();
+    for (size_t at = 0; (at = scene.find("\"textures/", at)) != std::string::npos; at += dir.string().size() + 10)
+        scene.insert(at + 1, dir.string() + "/");
+    Image ref = readImage((dir / refFile).string());
+    const int renders = 16, blocks = 4;
+    BlockMeans ours = blockMeans(scene, "", spp, renders, blocks);
     ASSERT_EQ(ref.width, 64);
     const int bw = ref.width / blocks, bh = ref.height / blocks;
     // The reference's noise, from ours: a render's spread scaled to the reference's samples
@@ -61,4 +64,18 @@ TEST(PbrtShapesReference, LoopSubdivisionAndCylinder) {
                 ours.imageMean / refImage, se / refImage, (ours.imageMean - refImage) / se);
     EXPECT_LT(se / refImage, 0.005) << "too noisy to detect a 2% change";
     EXPECT_NEAR(ours.imageMean, refImage, 4 * se);
+}
+
+}  // namespace
+
+// A Loop-subdivided cube, an emitting subdivided patch (its side set by pbrt-v4's limit
+// normals: the other side would darken the image by a fifth) and a partial cylinder.
+TEST(PbrtShapesReference, LoopSubdivisionAndCylinder) {
+    expectPbrtReference("loopsubdiv-cylinder.pbrt", "loopsubdiv-cylinder-4096spp.exr", 4096, 64);
+}
+
+// Bump maps (an imagemap displacement on a diffuse plane and on a rough conductor sphere) and
+// a normal map (an 8-bit PNG on a diffuse wall), with texture filtering off in both renderers.
+TEST(PbrtShapesReference, BumpAndNormalMaps) {
+    expectPbrtReference("shading-detail.pbrt", "shading-detail-4096spp.exr", 4096, 64);
 }
