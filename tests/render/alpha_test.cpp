@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 
+#include "geometry/alpha_mask.h"
 #include "render_helpers.h"
 
 using namespace ps;
@@ -259,6 +260,40 @@ TEST(Alpha, CutOutEmitterEmitsFromItsPresentHalf) {
         RenderResult r = renderString(floorUnderLight("\"float alpha\" [ 0.5 ]"), 256, 7, 0, integrator);
         expectMean(wholeImage(r.image), 0.5 * lit, (std::string(integrator) + ", floor").c_str());
     }
+}
+
+// The cut-out emitter's own sampling: light-path origins (sampleLe) and light samples
+// (sampleLi) land on present points only, a fraction alpha of them, and emit there.
+TEST(Alpha, CutOutEmitterSamplesPresentPointsOnly) {
+    setWarningsQuiet(true);
+    std::string text = emitterBehind("");
+    const std::string opaque = "Shape \"trianglemesh\" \"point3 P\"";
+    text.replace(text.find(opaque), opaque.size(), "Shape \"trianglemesh\" \"float alpha\" [ 0.3 ] \"point3 P\"");
+    auto scene = buildScene(parseSceneString(text, ".", "<test>"));
+    ASSERT_EQ(scene->lights().size(), 2u);
+    const int n = 20000;
+    int le = 0, li = 0, leEmitting = 0, liEmitting = 0;
+    for (int i = 0; i < n; ++i) {
+        // Independent uniform numbers, hashed from i.
+        const float key[2] = {float(i), 0.5f}, key2[2] = {float(i), 1.5f}, key3[2] = {float(i), 2.5f};
+        Vec2 u(hashToUnit(key, 2), hashToUnit(key2, 2));
+        Vec2 uDir(hashToUnit(key3, 2), 0.5f);
+        const Light& light = *scene->lights()[size_t(i % 2)];
+        if (auto s = light.sampleLe(u, uDir)) {
+            ++le;
+            leEmitting += !light.L(s->ray.o, s->n, Vec2(), s->ray.d).isBlack();
+        }
+        if (auto s = light.sampleLi(LightSampleContext{Vec3(0, 0, 0), Vec3(0, 0, 1)}, u)) {
+            ++li;
+            liEmitting += !s->L.isBlack();
+        }
+    }
+    const double sigma = std::sqrt(0.3 * 0.7 / n);
+    std::printf("  sampleLe kept %.4f, sampleLi kept %.4f, alpha 0.3, sigma %.4f\n", double(le) / n, double(li) / n, sigma);
+    EXPECT_EQ(leEmitting, le) << "light-path origins on cut-out points";
+    EXPECT_EQ(liEmitting, li);
+    EXPECT_NEAR(double(le) / n, 0.3, 4 * sigma);
+    EXPECT_NEAR(double(li) / n, 0.3, 4 * sigma);
 }
 
 // A constant alpha 0 emitter is invisible yet lights the scene fully through light sampling
