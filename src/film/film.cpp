@@ -25,6 +25,13 @@ Film::Film(int xRes, int yRes, PixelBounds bounds, const Filter* splatFilter)
     }
 }
 
+void Film::setMaxComponentValue(float m, float imagingRatio) {
+    maxComponent_ = m;
+    splatMaxComponent_ = std::numeric_limits<float>::infinity();
+    if (splatFilter_ && imagingRatio > 0 && std::isfinite(m))
+        splatMaxComponent_ = float(double(m) * double(bounds_.area()) / (splatPixelCount() * imagingRatio));
+}
+
 bool Film::perThreadSplatsFit(double pixels, int threads) {
     return kSplatBytesPerPixel * pixels * threads < kPerThreadSplatBytes;
 }
@@ -96,6 +103,7 @@ void Film::addSplat(Vec2 pFilm, Spectrum L, int sampleIndex) {
         return;
     }
     if (L.isBlack()) return;
+    L = clampMaxComponent(L, splatMaxComponent_);
     // Every pixel whose filter footprint covers pFilm gets its filter-weighted share.
     const auto [x0, x1, y0, y1] = splatFootprint(pFilm);
     int64_t* local = perThreadSplats_ ? threadSplatSums() : nullptr;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <vector>
 #include <memory>
 #include <tbb/enumerable_thread_specific.h>
@@ -28,6 +29,13 @@ inline PixelBounds cropWindowToPixels(int xRes, int yRes, const float crop[4]) {
             px(yRes, c(std::min(crop[2], crop[3]))), px(yRes, c(std::max(crop[2], crop[3])))};
 }
 
+// pbrt-v4's Film "maxcomponentvalue": a sample whose largest RGB component exceeds m is scaled
+// down so that it equals m (hue kept). Biased (energy is lost), but it tames fireflies.
+inline Spectrum clampMaxComponent(Spectrum L, float m) {
+    float mx = std::max(L.r, std::max(L.g, L.b));
+    return mx > m ? L * (m / mx) : L;
+}
+
 class Film {
 public:
     // With a filter the film also accepts splats (light-path contributions that land
@@ -42,6 +50,13 @@ public:
     // counts). Checked against the memory limit before a film is made.
     static double estimateBytes(double pixels, bool splats, int threads);
 
+    // Film "maxcomponentvalue" m (default infinity: no clamping) for every camera sample and
+    // splat, each measured as the value it would have as one camera sample of its pixel: the
+    // sample as given (imaging ratio included), a splat times imagingRatio times the widened
+    // film's pixel count over the crop's (how image() scales splats per light path).
+    void setMaxComponentValue(float m, float imagingRatio);
+    float maxComponentValue() const { return maxComponent_; }
+
     int xRes() const { return xRes_; }
     int yRes() const { return yRes_; }
     const PixelBounds& bounds() const { return bounds_; }
@@ -54,6 +69,7 @@ public:
             L = Spectrum();
             rejected_.fetch_add(1, std::memory_order_relaxed);
         }
+        L = clampMaxComponent(L, maxComponent_);
         Pixel& p = pixels_[i];
         p.sum[0] += double(L.r) * weight;
         p.sum[1] += double(L.g) * weight;
@@ -157,6 +173,8 @@ private:
 
     int xRes_, yRes_;
     PixelBounds bounds_;
+    float maxComponent_ = std::numeric_limits<float>::infinity();
+    float splatMaxComponent_ = std::numeric_limits<float>::infinity();  // the same, in splat units
     std::vector<Pixel> pixels_;
     std::atomic<long long> rejected_{0};
     const Filter* splatFilter_ = nullptr;

@@ -29,9 +29,8 @@ void intersectCallback(const RTCIntersectFunctionNArguments* args) {
     auto* q = static_cast<const Quadric*>(args->geometryUserPtr);
     RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
     const Transform inv = q->toScene().inverse();
-    Vec3 o = inv.point({rh->ray.org_x, rh->ray.org_y, rh->ray.org_z});
-    Vec3 d = inv.vector({rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z});
-    float t = q->intersectObject(o, d, rh->ray.tfar);
+    Ray r{{rh->ray.org_x, rh->ray.org_y, rh->ray.org_z}, {rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z}};
+    float t = q->nearestKeptHit(r, inv.point(r.o), inv.vector(r.d), rh->ray.tfar);
     if (t > rh->ray.tnear && t < rh->ray.tfar) {
         rh->ray.tfar = t;
         rh->hit.u = rh->hit.v = 0;
@@ -48,9 +47,8 @@ void occludedCallback(const RTCOccludedFunctionNArguments* args) {
     auto* q = static_cast<const Quadric*>(args->geometryUserPtr);
     RTCRay* ray = reinterpret_cast<RTCRay*>(args->ray);
     const Transform inv = q->toScene().inverse();
-    Vec3 o = inv.point({ray->org_x, ray->org_y, ray->org_z});
-    Vec3 d = inv.vector({ray->dir_x, ray->dir_y, ray->dir_z});
-    float t = q->intersectObject(o, d, ray->tfar);
+    Ray r{{ray->org_x, ray->org_y, ray->org_z}, {ray->dir_x, ray->dir_y, ray->dir_z}};
+    float t = q->nearestKeptHit(r, inv.point(r.o), inv.vector(r.d), ray->tfar);
     if (t > ray->tnear && t < ray->tfar) ray->tfar = -std::numeric_limits<float>::infinity();
 }
 
@@ -97,6 +95,14 @@ void Quadric::setDerivatives(SurfaceInteraction& si, Vec3 dpdu, Vec3 dpdv, Vec3 
     si.tangentIsFrameAxis = false;
 }
 
+// User geometry gets no Embree filter calls, so the alpha test runs here, on each surface
+// crossing in turn, for closest hits and occlusion alike.
+float Quadric::nearestKeptHit(const Ray& sceneRay, Vec3 o, Vec3 d, float tMax) const {
+    float t = intersectObject(o, d, 0, tMax);
+    while (alpha && t > 0 && !keepsHit(sceneRay, t, 0, 0, 0)) t = intersectObject(o, d, t, tMax);
+    return t;
+}
+
 RTCGeometry Quadric::buildGeometry(RTCDevice device) const {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(g, 1);
@@ -133,17 +139,18 @@ bool Sphere::inRange(Vec3 p) const {
     return phiOf(p) <= phiMax_;
 }
 
-float Sphere::intersectObject(Vec3 o, Vec3 d, float tMax) const {
+float Sphere::intersectObject(Vec3 o, Vec3 d, float tMin, float tMax) const {
     // Quadratic in double precision: |o + t d|^2 = r^2.
     double a = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
     double b = 2 * (double(d.x) * o.x + double(d.y) * o.y + double(d.z) * o.z);
     double c = double(o.x) * o.x + double(o.y) * o.y + double(o.z) * o.z - double(radius_) * radius_;
     double t0, t1;
     if (!solveQuadratic(a, b, c, t0, t1)) return -1;
-    for (double t : {t0, t1}) {
-        if (!(t > 0) || t >= tMax) continue;
-        Vec3 p = o + d * float(t);
-        if (inRange(p)) return float(t);
+    for (double td : {t0, t1}) {
+        const float t = float(td);  // compared as returned: a cut-out hit's t is the next tMin
+        if (!(t > tMin) || t >= tMax) continue;
+        Vec3 p = o + d * t;
+        if (inRange(p)) return t;
     }
     return -1;
 }
@@ -259,10 +266,10 @@ void Disk::objectBounds(Vec3& lo, Vec3& hi) const {
     hi = {radius_, radius_, height_};
 }
 
-float Disk::intersectObject(Vec3 o, Vec3 d, float tMax) const {
+float Disk::intersectObject(Vec3 o, Vec3 d, float tMin, float tMax) const {
     if (d.z == 0) return -1;
     float t = (height_ - o.z) / d.z;
-    if (!(t > 0) || t >= tMax) return -1;
+    if (!(t > tMin) || t >= tMax) return -1;
     Vec3 p = o + d * t;
     float rho2 = p.x * p.x + p.y * p.y;
     if (rho2 > radius_ * radius_ || rho2 < innerRadius_ * innerRadius_) return -1;
@@ -321,19 +328,20 @@ void Cylinder::objectBounds(Vec3& lo, Vec3& hi) const {
     hi = {radius_, radius_, zMax_};
 }
 
-float Cylinder::intersectObject(Vec3 o, Vec3 d, float tMax) const {
+float Cylinder::intersectObject(Vec3 o, Vec3 d, float tMin, float tMax) const {
     // Quadratic in double precision: (o + t d).xy^2 = r^2.
     double a = double(d.x) * d.x + double(d.y) * d.y;
     double b = 2 * (double(d.x) * o.x + double(d.y) * o.y);
     double c = double(o.x) * o.x + double(o.y) * o.y - double(radius_) * radius_;
     double t0, t1;
     if (!solveQuadratic(a, b, c, t0, t1)) return -1;  // a == 0: parallel to the axis, never on the wall
-    for (double t : {t0, t1}) {
-        if (!(t > 0) || t >= tMax) continue;
-        Vec3 p = o + d * float(t);
+    for (double td : {t0, t1}) {
+        const float t = float(td);  // compared as returned (see Sphere::intersectObject)
+        if (!(t > tMin) || t >= tMax) continue;
+        Vec3 p = o + d * t;
         if (p.z < zMin_ || p.z > zMax_) continue;
         if (phiMax_ < 2 * kPi && phiOf(p) > phiMax_) continue;
-        return float(t);
+        return t;
     }
     return -1;
 }

@@ -12,10 +12,14 @@ public:
         : toScene_(toScene), flip_(reverseOrientation ^ toScene.swapsHandedness()) {}
     RTCGeometry buildGeometry(RTCDevice device) const override;
     int primitiveCount() const override { return 1; }
-    // Object-space ray-surface test: nearest t in (0, tMax), or a negative value.
-    virtual float intersectObject(Vec3 o, Vec3 d, float tMax) const = 0;
+    // Object-space ray-surface test: nearest t in (tMin, tMax), or a negative value (a larger
+    // tMin finds the hits behind one that alpha cut out).
+    virtual float intersectObject(Vec3 o, Vec3 d, float tMin, float tMax) const = 0;
     virtual void objectBounds(Vec3& lo, Vec3& hi) const = 0;
     const Transform& toScene() const { return toScene_; }
+    // The nearest hit in (0, tMax) that the alpha test keeps, or a negative value; o, d are
+    // the ray in the shape's space (sceneRay) and in object space.
+    float nearestKeptHit(const Ray& sceneRay, Vec3 o, Vec3 d, float tMax) const;
 
 protected:
     // Whether hits must carry pbrt-v4's shading derivatives (a bump or normal map).
@@ -30,7 +34,7 @@ protected:
 class Sphere final : public Quadric {
 public:
     Sphere(const Transform& toScene, bool reverseOrientation, float radius, float zMin, float zMax, float phiMaxDeg);
-    float intersectObject(Vec3 o, Vec3 d, float tMax) const override;
+    float intersectObject(Vec3 o, Vec3 d, float tMin, float tMax) const override;
     void objectBounds(Vec3& lo, Vec3& hi) const override;
     int interaction(const Ray& r, float t, int embreePrim, float u, float v, SurfaceInteraction& si) const override;
     float area(int prim) const override;
@@ -52,7 +56,7 @@ private:
 class Disk final : public Quadric {
 public:
     Disk(const Transform& toScene, bool reverseOrientation, float height, float radius, float innerRadius, float phiMaxDeg);
-    float intersectObject(Vec3 o, Vec3 d, float tMax) const override;
+    float intersectObject(Vec3 o, Vec3 d, float tMin, float tMax) const override;
     void objectBounds(Vec3& lo, Vec3& hi) const override;
     int interaction(const Ray& r, float t, int embreePrim, float u, float v, SurfaceInteraction& si) const override;
     float area(int prim) const override;
@@ -67,7 +71,7 @@ private:
 class Cylinder final : public Quadric {
 public:
     Cylinder(const Transform& toScene, bool reverseOrientation, float radius, float zMin, float zMax, float phiMaxDeg);
-    float intersectObject(Vec3 o, Vec3 d, float tMax) const override;
+    float intersectObject(Vec3 o, Vec3 d, float tMin, float tMax) const override;
     void objectBounds(Vec3& lo, Vec3& hi) const override;
     int interaction(const Ray& r, float t, int embreePrim, float u, float v, SurfaceInteraction& si) const override;
     float area(int prim) const override;

@@ -2,8 +2,10 @@
 // Area lights sample shapes by primitive; integrators only see SurfaceInteraction.
 #pragma once
 #include <embree3/rtcore.h>
+#include <memory>
 #include <optional>
 #include <vector>
+#include "geometry/alpha_mask.h"
 #include "geometry/interaction.h"
 #include "geometry/ray.h"
 
@@ -45,9 +47,22 @@ public:
     // Called once for emissive shapes: cache what light sampling needs per primitive.
     virtual void prepareSampling() {}
 
+    // The alpha test of Embree's hit (embreePrim, u, v) at distance t of ray r, r in the space
+    // the shape is stored in (the world's, or an instance prototype's): true without alpha.
+    // Emitters test the point, not the ray, so that a point is either present or cut out for
+    // rays and for emission alike (see DiffuseAreaLight::L).
+    bool keepsHit(const Ray& r, float t, int embreePrim, float u, float v) const;
+
     const Material* material = nullptr;
+    std::shared_ptr<const AlphaMask> alpha;  // null: opaque (no filter, no cost)
     // Per-primitive emitters (empty when the shape does not emit).
     std::vector<const Light*> areaLights;
+
+protected:
+    // For Embree's own primitives (triangles, quads): with alpha, installs intersection and
+    // occlusion filters that apply keepsHit, so closest hits and shadow rays (also inside
+    // instances) skip cut-out hits. Without alpha it installs nothing.
+    void installAlphaFilter(RTCGeometry g) const;
 };
 
 }  // namespace ps

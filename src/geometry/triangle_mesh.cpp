@@ -77,6 +77,7 @@ RTCGeometry TriangleMesh::buildGeometry(RTCDevice device) const {
     else
         rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices_.data(), 0,
                                    3 * sizeof(unsigned), indices_.size() / 3);
+    installAlphaFilter(g);
     rtcCommitGeometry(g);
     return g;
 }
@@ -230,7 +231,7 @@ namespace ps {
 std::optional<ShapeSample> TriangleMesh::sampleToward(int prim, Vec3 ref, Vec2 u) const {
     if (sampling_.empty()) return Shape::sampleToward(prim, ref, u);
     const SamplingData& t = sampling_[prim];
-    if (t.normalsMayFlip) return Shape::sampleToward(prim, ref, u);
+    if (t.normalsMayFlip || alpha) return Shape::sampleToward(prim, ref, u);  // alpha needs uv
     Vec2 b = sampleUniformTriangle(u);  // weights of vertices 0 and 1
     ShapeSample s;
     // p = b0 p0 + b1 p1 + b2 p2 = p0 + b1 e1 + b2 e2.

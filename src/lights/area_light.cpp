@@ -23,6 +23,7 @@ float DiffuseAreaLight::pdfLi(const LightSampleContext& ctx, Vec3, const Surface
 std::optional<LightLeSample> DiffuseAreaLight::sampleLe(Vec2 uPos, Vec2 uDir) const {
     ShapeSample s = shape_->sampleArea(prim_, uPos);
     if (!(s.pdf > 0)) return std::nullopt;
+    if (alpha_ && !alpha_->keepsPoint(s.p, s.n, s.uv)) return std::nullopt;
     Vec3 n = s.n;
     float sidePdf = 1;
     if (twoSided_) {

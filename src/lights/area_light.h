@@ -1,5 +1,9 @@
 // pbrt-v4's "diffuse" area light: constant radiance over one primitive of a shape,
-// one-sided (the side of the oriented normal) unless twosided.
+// one-sided (the side of the oriented normal) unless twosided. On a shape with alpha, points
+// the alpha test cuts out do not emit (pbrt-v4's semantics); the test is the point's own (see
+// Shape::keepsHit), so a point emits for light sampling exactly when rays see it. A constant
+// alpha 0 is pbrt-v4's invisible light: rays never hit it, it emits unmasked, and, like a
+// point light, it is reached by light sampling only (no MIS with strategies that hit it).
 #pragma once
 #include "geometry/shape.h"
 #include "lights/light.h"
@@ -10,15 +14,17 @@ namespace ps {
 class DiffuseAreaLight final : public Light {
 public:
     DiffuseAreaLight(const Shape* shape, int prim, Spectrum Lemit, bool twoSided)
-        : Light(LightType::Area), shape_(shape), prim_(prim), Lemit_(Lemit), twoSided_(twoSided) {}
+        : Light(shape->alpha && shape->alpha->alwaysMasked() ? LightType::DeltaPosition : LightType::Area),
+          shape_(shape), prim_(prim), Lemit_(Lemit), twoSided_(twoSided),
+          alpha_(type() == LightType::Area ? shape->alpha.get() : nullptr) {}
 
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
     float pdfLi(const LightSampleContext& ctx, Vec3 wi, const SurfaceInteraction* hit) const override;
     std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
     Spectrum L(Vec3 p, Vec3 n, Vec2 uv, Vec3 w) const override {
-        (void)p; (void)uv;
         if (!twoSided_ && dot(n, w) < 0) return {};
+        if (alpha_ && !alpha_->keepsPoint(p, n, uv)) return {};
         return Lemit_;
     }
     Spectrum phi() const override { return Lemit_ * (kPi * (twoSided_ ? 2.0f : 1.0f) * shape_->area(prim_)); }
@@ -33,6 +39,7 @@ private:
     int prim_;
     Spectrum Lemit_;
     bool twoSided_;
+    const AlphaMask* alpha_;  // the shape's, or null
 };
 
 }  // namespace ps

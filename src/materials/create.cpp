@@ -223,6 +223,11 @@ std::shared_ptr<const ShadingDetail> shadingDetailParam(const std::string& type,
 
 }  // namespace
 
+std::shared_ptr<FloatTexture> floatTextureParam(const ParamSet& ps, const std::string& name, float def,
+                                                const TextureRegistry& reg) {
+    return floatParam(ps, name, def, reg);
+}
+
 std::shared_ptr<FloatTexture> createFloatTexture(const TextureEntity& e, const TextureRegistry& reg, const std::string& base) {
     return createTexture<float>(e, reg, base);
 }

@@ -19,6 +19,10 @@ std::shared_ptr<FloatTexture> createFloatTexture(const TextureEntity& e, const T
                                                  const std::string& baseDirectory);
 std::shared_ptr<SpectrumTexture> createSpectrumTexture(const TextureEntity& e, const TextureRegistry& reg,
                                                        const std::string& baseDirectory);
+// A float parameter given as a constant (def when absent) or as `"texture name" "tex"`; an
+// undefined texture throws InputError at the parameter.
+std::shared_ptr<FloatTexture> floatTextureParam(const ParamSet& params, const std::string& name, float def,
+                                                const TextureRegistry& reg);
 // `named` holds the named materials created so far (mix refers to them).
 std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet& params,
                                          const TextureRegistry& reg,

@@ -1,5 +1,6 @@
 // Camera, film, filter, sampler and integrator directives -> Scene settings.
 #include <cmath>
+#include <limits>
 
 #include "render/scene_builder.h"
 
@@ -118,9 +119,10 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
         warning(desc.film.loc, "Film: \"whitebalance\" is not supported; ignored");
     if (film.getString("sensor", "cie1931") != "cie1931")
         warning(desc.film.loc, "Film: only the \"cie1931\" sensor is supported; using it");
-    if (film.has("maxcomponentvalue")) {
-        film.getFloat("maxcomponentvalue", 0);
-        warning(desc.film.loc, "Film: \"maxcomponentvalue\" is not supported; samples are not clamped");
+    s.maxComponentValue = film.getFloat("maxcomponentvalue", std::numeric_limits<float>::infinity());
+    if (!(s.maxComponentValue > 0)) {
+        const Param* p = film.find("maxcomponentvalue");
+        throw InputError(p ? p->loc : desc.film.loc, "Film: \"maxcomponentvalue\" must be positive");
     }
     film.reportUnused("Film \"rgb\"");
 

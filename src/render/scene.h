@@ -2,6 +2,7 @@
 // power-proportional light chooser, the camera and the render settings from the file.
 #pragma once
 #include <embree3/rtcore.h>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,6 +27,7 @@ struct RenderSettings {
     uint64_t seed = 0;
     std::string outputFile = "pbrt.exr";
     float imagingRatio = 1;  // (shutterclose - shutteropen) * iso / 100
+    float maxComponentValue = std::numeric_limits<float>::infinity();  // Film "maxcomponentvalue"
     // Markov-chain integrators (pssmlt, mmlt), with pbrt-v4's parameter names and defaults.
     int mltBootstrapSamples = 100000;  // "bootstrapsamples"
     int mltChains = 1000;              // "chains"

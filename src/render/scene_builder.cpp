@@ -128,7 +128,7 @@ unsigned SceneBuilder::attach(RTCScene target, const Shape& shape) {
 
 void SceneBuilder::addWorldShapes() {
     for (const ShapeEntity& e : desc_.shapes) {
-        std::unique_ptr<Shape> shape = createShape(e, e.worldFromObject, desc_.baseDirectory);
+        std::unique_ptr<Shape> shape = createShape(e, e.worldFromObject, desc_.baseDirectory, textures_);
         if (!shape || shape->primitiveCount() == 0) continue;
         shape->material = materialFor(e);
         addAreaLights(e, *shape);
@@ -151,7 +151,7 @@ void SceneBuilder::addInstances() {
         scene_.prototypeGeometry_.emplace_back();
         rtcSetSceneBuildQuality(proto, RTC_BUILD_QUALITY_HIGH);
         for (const ShapeEntity& e : def.shapes) {
-            std::unique_ptr<Shape> shape = createShape(e, e.worldFromObject, desc_.baseDirectory);
+            std::unique_ptr<Shape> shape = createShape(e, e.worldFromObject, desc_.baseDirectory, textures_);
             if (!shape || shape->primitiveCount() == 0) continue;
             shape->material = materialFor(e);
             unsigned id = attach(proto, *shape);

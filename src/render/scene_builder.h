@@ -7,12 +7,16 @@
 
 namespace ps {
 
+struct TextureRegistry;
+
 // Throws InputError for problems in the scene (missing files, bad values); warns for
 // unsupported features and falls back to the nearest supported behaviour.
 std::unique_ptr<Scene> buildScene(const SceneDescription& desc);
 
 // Individual steps, exposed for the builder's own files and for tests.
-std::unique_ptr<Shape> createShape(const ShapeEntity& e, const Transform& toScene, const std::string& baseDirectory);
+// `textures` resolves a "texture alpha".
+std::unique_ptr<Shape> createShape(const ShapeEntity& e, const Transform& toScene, const std::string& baseDirectory,
+                                   const TextureRegistry& textures);
 // Lights declared by LightSource (not area lights).
 std::unique_ptr<Light> createLight(const LightEntity& e, const std::string& baseDirectory);
 // Camera, film, filter, sampler and integrator settings.

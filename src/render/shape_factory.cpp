@@ -4,9 +4,11 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "geometry/alpha_mask.h"
 #include "geometry/loop_subdivision.h"
 #include "geometry/quadric.h"
 #include "geometry/triangle_mesh.h"
+#include "materials/create.h"
 #include "render/scene_builder.h"
 #include "scene/ply.h"
 #include "util/memory_limit.h"
@@ -146,16 +148,23 @@ std::unique_ptr<Shape> createLoopSubdiv(const ShapeEntity& e, const Transform& t
     }
 }
 
+// "float alpha" or "texture alpha"; null (opaque, no filter) for a constant alpha >= 1, the default.
+std::shared_ptr<const AlphaMask> alphaMask(const ParamSet& ps, const TextureRegistry& textures) {
+    if (!ps.has("alpha")) return nullptr;
+    if (ps.getTexture("alpha").empty()) {
+        float a = ps.getFloat("alpha", 1);
+        return a >= 1 ? nullptr : std::make_shared<AlphaMask>(nullptr, a);
+    }
+    return std::make_shared<AlphaMask>(floatTextureParam(ps, "alpha", 1, textures));
+}
+
 }  // namespace
 
-std::unique_ptr<Shape> createShape(const ShapeEntity& e, const Transform& toScene, const std::string& base) {
+std::unique_ptr<Shape> createShape(const ShapeEntity& e, const Transform& toScene, const std::string& base,
+                                   const TextureRegistry& textures) {
     const ParamSet& ps = e.params;
     std::unique_ptr<Shape> shape;
-    if (ps.has("alpha")) {
-        ps.getFloat("alpha", 1);
-        ps.getTexture("alpha");
-        warning(e.loc, "Shape \"" + e.type + "\": \"alpha\" is not supported yet; the shape is opaque");
-    }
+    std::shared_ptr<const AlphaMask> alpha = alphaMask(ps, textures);
     if (e.type == "trianglemesh") {
         shape = createTriangleMesh(e, toScene);
     } else if (e.type == "plymesh") {
@@ -184,6 +193,7 @@ std::unique_ptr<Shape> createShape(const ShapeEntity& e, const Transform& toScen
         return nullptr;
     }
     ps.reportUnused("Shape \"" + e.type + "\"");
+    shape->alpha = std::move(alpha);
     return shape;
 }
 

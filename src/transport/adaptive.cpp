@@ -125,6 +125,7 @@ bool renderTwoStage(SamplePasses& passes, Film& film, const Monitor& monitor, in
     using Stream = SamplePasses::Stream;
     const size_t pixels = film.pixelCount();
     Film pilot(film.xRes(), film.yRes(), film.bounds());
+    pilot.setMaxComponentValue(film.maxComponentValue(), 1);  // its pixels may stand in for the film's
     const int calibration = monitor.timeLimit() > 0 ? std::min(4, firstShare(spp)) : firstShare(spp);
     if (!fillTo(passes, pilot, Stream::Pilot, [&](size_t) { return calibration; })) {
         film.adoptEmptyPixels(pilot);

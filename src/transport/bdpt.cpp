@@ -302,8 +302,12 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
     const MisPrefixes prefixes = misPrefixes(light, nLight, camera, nCamera, scratch);
 
     const int maxDepth = paths_.maxDepth();
+    // s = 1 samples its own light vertex (joinLight), so it runs even when the light subpath
+    // is empty: its origin can fail where light sampling succeeds (a cut-out point of an
+    // emitter with alpha), and skipping s = 1 then would bias it by the chance of that failure.
+    const int sMax = std::max(nLight, 1);
     for (int t = 1; t <= nCamera; ++t)
-        for (int s = 0; s <= nLight; ++s) {
+        for (int s = 0; s <= sMax; ++s) {
             int depth = s + t - 2;
             // (1,1) would see a light through the lens by sampling both ends; the camera
             // ray finding the light (0,2) covers those paths with weight 1.

@@ -71,6 +71,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     const PixelBounds& bounds = scene.pixelBounds();
     Film film(scene.camera().params().xRes, scene.camera().params().yRes, bounds,
               integrator.splats() ? &scene.filter() : nullptr);
+    film.setMaxComponentValue(scene.settings().maxComponentValue, scene.settings().imagingRatio);
     const int spp = std::max(1, options.spp);
 
     std::atomic<bool> stop{false};

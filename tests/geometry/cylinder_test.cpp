@@ -56,21 +56,21 @@ TEST(Cylinder, IntersectionsAtConstructedPoints) {
                 ++misses;
             }
         }
-        float t = cyl.intersectObject(o, d, 1e30f);
+        float t = cyl.intersectObject(o, d, 0, 1e30f);
         if (expected < 0) {
             EXPECT_LT(t, 0) << "ray " << i;
             continue;
         }
         worst = std::max(worst, double(std::fabs(t - expected)));
         ASSERT_NEAR(t, expected, 1e-4f) << "ray " << i;
-        EXPECT_LT(cyl.intersectObject(o, d, expected * 0.999f), 0) << "tMax must cut the hit off";
+        EXPECT_LT(cyl.intersectObject(o, d, 0, expected * 0.999f), 0) << "tMax must cut the hit off";
     }
     std::printf("  %d entry hits, %d hits on the far wall, %d misses; largest |t - t_exact| %.2g\n", hits, exits, misses, worst);
     EXPECT_GT(hits, 1000);
     EXPECT_GT(exits, 500);
     EXPECT_GT(misses, 1000);
     // Parallel to the axis: never on the wall.
-    EXPECT_LT(cyl.intersectObject(Vec3(0.1f, 0, -5), Vec3(0, 0, 1), 1e30f), 0);
+    EXPECT_LT(cyl.intersectObject(Vec3(0.1f, 0, -5), Vec3(0, 0, 1), 0, 1e30f), 0);
 }
 
 // Normal away from the axis (flipped by ReverseOrientation), u = phi / phiMax,
@@ -85,7 +85,7 @@ TEST(Cylinder, InteractionAreaAndSampling) {
         Vec3 outward(std::cos(phi), std::sin(phi), 0);
         Ray ray{target + 2.0f * outward, -outward};
         Vec3 oObj = toScene.inverse().point(ray.o), dObj = toScene.inverse().vector(ray.d);
-        float t = cyl.intersectObject(oObj, dObj, 1e30f);
+        float t = cyl.intersectObject(oObj, dObj, 0, 1e30f);
         ASSERT_NEAR(t, 2.0f, 1e-5f);
         SurfaceInteraction si;
         cyl.interaction(ray, t, 0, 0, 0, si);

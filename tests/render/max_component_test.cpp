@@ -1,0 +1,81 @@
+// Film "maxcomponentvalue" m: every camera sample, and every light-path splat measured as a
+// camera sample of its pixel, whose largest RGB component exceeds m is scaled down to m.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "render_helpers.h"
+
+using namespace ps;
+using namespace ps::test;
+
+namespace {
+
+// A tiny one-sided emitter of radiance (1000, 500, 250) facing the camera, alone in the dark,
+// covering the central pixels fully.
+std::string tinyBrightEmitter(const std::string& filmExtra) {
+    return R"(
+        LookAt 0 0 0  0 0 1  0 1 0
+        Camera "perspective" "float fov" [ 8 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ] )" + filmExtra + R"(
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 1 ]
+        WorldBegin
+        Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+        AreaLightSource "diffuse" "rgb L" [ 1000 500 250 ]
+        Shape "trianglemesh" "point3 P" [ -0.1 -0.1 10  0.1 -0.1 10  0.1 0.1 10  -0.1 0.1 10 ]
+            "integer indices" [ 0 2 1  0 3 2 ]
+    )";
+}
+
+}  // namespace
+
+// Path tracing: a pixel the emitter covers gets (1000, 500, 250) from every sample, clamped to
+// exactly (m, m/2, m/4); no pixel exceeds m.
+TEST(MaxComponentValue, ClampsEachCameraSample) {
+    RenderResult plain = renderString(tinyBrightEmitter(""), 16);
+    RenderResult clamped = renderString(tinyBrightEmitter("\"float maxcomponentvalue\" [ 2 ]"), 16);
+    for (int p : {11, 12}) {
+        Spectrum a = plain.image.get(p, p), b = clamped.image.get(p, p);
+        std::printf("  pixel %d: unclamped (%g %g %g), clamped (%g %g %g)\n", p, a.r, a.g, a.b, b.r, b.g, b.b);
+        EXPECT_NEAR(a.r, 1000, 1e-2);
+        EXPECT_NEAR(b.r, 2, 1e-6);
+        EXPECT_NEAR(b.g, 1, 1e-6);
+        EXPECT_NEAR(b.b, 0.5, 1e-6);
+    }
+    for (int y = 0; y < 24; ++y)
+        for (int x = 0; x < 24; ++x) EXPECT_LE(clamped.image.get(x, y).r, 2 + 1e-5f) << x << "," << y;
+}
+
+// Light tracing: each light path splats once (from the emitter straight through the lens), a
+// value far above m, clamped to m in camera-sample units; with one light path per camera
+// sample the image's mean is then exactly m (and the hue is kept). Unclamped it is the
+// emitter's radiance times its share of the view.
+TEST(MaxComponentValue, ClampsEachSplatInCameraSampleUnits) {
+    RenderResult plain = renderString(tinyBrightEmitter(""), 16, 7, 0, "light");
+    RenderResult clamped = renderString(tinyBrightEmitter("\"float maxcomponentvalue\" [ 2 ]"), 16, 7, 0, "light");
+    RegionStats a = wholeImage(plain.image), b = wholeImage(clamped.image);
+    std::printf("  image mean: unclamped (%g %g %g), clamped (%.6f %.6f %.6f)\n", a.mean[0], a.mean[1], a.mean[2],
+                b.mean[0], b.mean[1], b.mean[2]);
+    EXPECT_GT(a.mean[0], 10.0);  // 1000 x the emitter's share of the view, 0.0204
+    EXPECT_NEAR(b.mean[0], 2.0, 2e-4);
+    EXPECT_NEAR(b.mean[1], 1.0, 1e-4);
+    EXPECT_NEAR(b.mean[2], 0.5, 1e-4);
+}
+
+TEST(MaxComponentValue, MustBePositive) {
+    setWarningsQuiet(true);
+    for (const char* v : {"0", "-1"}) {
+        SceneDescription desc =
+            parseSceneString(tinyBrightEmitter(std::string("\"float maxcomponentvalue\" [ ") + v + " ]"), ".", "<test>");
+        try {
+            buildScene(desc);
+            ADD_FAILURE() << "maxcomponentvalue " << v << " accepted";
+        } catch (const InputError& e) {
+            std::printf("  %s\n", e.what());
+            EXPECT_NE(std::string(e.what()).find("maxcomponentvalue"), std::string::npos);
+            EXPECT_NE(std::string(e.what()).find("<test>:4:"), std::string::npos) << "location of the parameter";
+        }
+    }
+}
