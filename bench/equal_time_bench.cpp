@@ -62,6 +62,17 @@ int main(int argc, char** argv) {
     app.add_option("--seeds", seeds, "Renders per integrator (seeds 1..N): mean error and the image mean's spread");
     app.add_option("--integrators", integrators, "Integrators to compare");
     app.add_option("--json", jsonPath, "Write the results as JSON");
+    int chains = 0, bootstrap = 0;
+    double largeStep = -1, sigma = 0;
+    app.add_option("--chains", chains, "Metropolis: chains (default: the scene's)");
+    app.add_option("--bootstrap", bootstrap, "Metropolis: bootstrap samples (default: the scene's)");
+    app.add_option("--large-step-probability", largeStep, "Metropolis: large-step probability (default: the scene's)");
+    app.add_option("--sigma", sigma, "Metropolis: small-step sigma (default: the scene's)");
+    std::vector<std::string> external;
+    app.add_option("--compare", external,
+                   "Also score these images (e.g. another renderer's equal-time renders of the scene): relative MSE "
+                   "after scaling each channel to the reference's channel mean (a spectral renderer's colours differ "
+                   "by a few percent), and the image mean before that");
     CLI11_PARSE(app, argc, argv);
     try {
         setWarningsQuiet(true);
@@ -69,6 +80,11 @@ int main(int argc, char** argv) {
         Image refVariance;
         if (!refVariancePath.empty()) refVariance = readImage(refVariancePath);
         auto scene = buildScene(parseSceneFile(scenePath));
+        RenderSettings& st = scene->settings();
+        if (chains > 0) st.mltChains = chains;
+        if (bootstrap > 0) st.mltBootstrapSamples = bootstrap;
+        if (largeStep >= 0) st.mltLargeStepProbability = float(largeStep);
+        if (sigma > 0) st.mltSigma = float(sigma);
         const double refMean = imageMean(ref);
         nlohmann::json rows = nlohmann::json::array();
         std::printf("%-8s %5s %10s %8s %10s %10s %10s %11s  %s\n", "integ", "seed", "spp", "seconds", "rel RMSE",
@@ -95,7 +111,7 @@ int main(int argc, char** argv) {
                 sumMean += meanRatio;
                 sumMean2 += meanRatio * meanRatio;
                 double acceptance = r.metropolis.present ? r.metropolis.acceptanceRate() : 0.0;
-                std::printf("%-8s %5d %10.1f %8.2f %10.4f %10.5f %10.4f %11.3f\n", name.c_str(), k, r.meanSpp, r.seconds,
+                std::printf("%-8s %5d %10.1f %8.2f %10.4f %10.4g %10.4f %11.3f\n", name.c_str(), k, r.meanSpp, r.seconds,
                             e / refMean, rel, meanRatio, acceptance);
                 rows.push_back({{"integrator", name}, {"seed", k}, {"spp", r.meanSpp}, {"seconds", r.seconds},
                                 {"rmse", e}, {"relative_rmse", e / refMean}, {"relative_mse", rel},
@@ -104,8 +120,26 @@ int main(int argc, char** argv) {
             double relMse = sumRelMse / seeds, mean = sumMean / seeds;
             double spread = seeds > 1 ? std::sqrt(std::max(0.0, (sumMean2 - seeds * mean * mean) / (seeds - 1))) : 0.0;
             if (firstRelMse == 0) firstRelMse = relMse;
-            std::printf("%-8s  mean relMSE %.5f (%.3f of %s's), image mean / ref %.4f, its spread across seeds %.4f\n",
+            std::printf("%-8s  mean relMSE %.4g (%.3f of %s's), image mean / ref %.4f, its spread across seeds %.4f\n",
                         name.c_str(), relMse, relMse / firstRelMse, integrators[0].c_str(), mean, spread);
+        }
+        for (const std::string& path : external) {
+            Image img = readImage(path);
+            if (img.width != ref.width || img.height != ref.height)
+                throw InputError(path + ": the resolution differs from the reference's");
+            const double meanRatio = imageMean(img) / refMean;
+            double own[3] = {0, 0, 0}, theirs[3] = {0, 0, 0};
+            for (size_t i = 0; i < img.rgb.size(); ++i) {
+                own[i % 3] += ref.rgb[i];
+                theirs[i % 3] += img.rgb[i];
+            }
+            for (size_t i = 0; i < img.rgb.size(); ++i)
+                img.rgb[i] = float(img.rgb[i] * (theirs[i % 3] > 0 ? own[i % 3] / theirs[i % 3] : 1.0));
+            double rel = relativeMse(img, ref, refVariancePath.empty() ? nullptr : &refVariance);
+            std::printf("%-40s relMSE %.4g (%.3f of %s's, channels scaled by %.4f %.4f %.4f), image mean / ref %.4f\n",
+                        path.c_str(), rel, firstRelMse > 0 ? rel / firstRelMse : 0.0, integrators.empty() ? "" : integrators[0].c_str(),
+                        own[0] / theirs[0], own[1] / theirs[1], own[2] / theirs[2], meanRatio);
+            rows.push_back({{"image", path}, {"relative_mse", rel}, {"mean_ratio", meanRatio}});
         }
         if (!jsonPath.empty()) std::ofstream(jsonPath) << nlohmann::json{{"scene", scenePath}, {"results", rows}}.dump(2);
     } catch (const std::exception& e) {

@@ -11,6 +11,7 @@ PrimarySampleSampler::PrimarySampleSampler(uint64_t chainSeed, const PrimarySamp
     : params_(params) {
     if (params_.streamCount < 1) params_.streamCount = 1;
     streamIndex_.assign(size_t(params_.streamCount), 0);
+    streams_.resize(size_t(params_.streamCount));
     reseed(chainSeed);
 }
 
@@ -38,8 +39,8 @@ void PrimarySampleSampler::accept() {
 }
 
 void PrimarySampleSampler::reject() {
-    for (uint32_t i : touched_) {
-        Value& v = values_[i];
+    for (const Touched& t : touched_) {
+        Value& v = streams_[t.stream][t.index];
         v.value = v.backupValue;
         v.modified = v.backupModified;
     }
@@ -54,9 +55,10 @@ double PrimarySampleSampler::small(double v, int64_t steps) {
     return v < 1.0 ? v : 0.0;  // v just below 0 can round up to 1
 }
 
-double PrimarySampleSampler::read(size_t index) {
-    if (index >= values_.size()) values_.resize(index + 1);
-    Value& x = values_[index];
+double PrimarySampleSampler::read(int stream, size_t index) {
+    std::vector<Value>& values = streams_[size_t(stream)];
+    if (index >= values.size()) values.resize(index + 1);
+    Value& x = values[index];
     if (x.modified == iteration_) return x.value;  // read twice by one proposal
     // Bring the value to the chain's current state (the last accepted iteration): a value
     // never read, or not read since an accepted large step, is uniform there; one read at
@@ -74,19 +76,18 @@ double PrimarySampleSampler::read(size_t index) {
     x.backupModified = x.modified;
     x.value = largeStep_ ? rng_.uniformDouble() : small(x.value, 1);
     x.modified = iteration_;
-    touched_.push_back(uint32_t(index));
+    touched_.push_back({uint32_t(stream), uint32_t(index)});
     return x.value;
 }
 
 void PrimarySampleSampler::stratify(int stream, int index, int k, int count) {
-    size_t i = size_t(stream < params_.streamCount ? stream : 0) + size_t(params_.streamCount) * size_t(index);
-    double v = (double(k) + read(i)) / double(count);
-    values_[i].value = v < 1.0 ? v : 0x1.fffffffffffffp-1;
+    stream = stream < params_.streamCount ? stream : 0;
+    double v = (double(k) + read(stream, size_t(index))) / double(count);
+    streams_[size_t(stream)][size_t(index)].value = v < 1.0 ? v : 0x1.fffffffffffffp-1;
 }
 
 float PrimarySampleSampler::get1D() {
-    size_t index = size_t(stream_) + size_t(params_.streamCount) * size_t(streamIndex_[size_t(stream_)]++);
-    float u = float(read(index));
+    float u = float(read(stream_, size_t(streamIndex_[size_t(stream_)]++)));
     return u < 1.0f ? u : 0x1.fffffep-1f;  // a double just below 1 rounds to 1.0f
 }
 
@@ -96,10 +97,14 @@ Vec2 PrimarySampleSampler::get2D() {
 }
 
 bool PrimarySampleSampler::sameState(const PrimarySampleSampler& o) const {
-    if (iteration_ != o.iteration_ || lastLargeStep_ != o.lastLargeStep_ || values_.size() != o.values_.size())
+    if (iteration_ != o.iteration_ || lastLargeStep_ != o.lastLargeStep_ || streams_.size() != o.streams_.size())
         return false;
-    for (size_t i = 0; i < values_.size(); ++i)
-        if (values_[i].value != o.values_[i].value || values_[i].modified != o.values_[i].modified) return false;
+    for (size_t k = 0; k < streams_.size(); ++k) {
+        const std::vector<Value>&a = streams_[k], &b = o.streams_[k];
+        if (a.size() != b.size()) return false;
+        for (size_t i = 0; i < a.size(); ++i)
+            if (a[i].value != b[i].value || a[i].modified != b[i].modified) return false;
+    }
     return true;
 }
 

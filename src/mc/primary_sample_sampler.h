@@ -27,7 +27,7 @@ namespace ps {
 struct PrimarySampleParams {
     double sigma = 0.01;                // small-step standard deviation (pbrt-v4's default)
     double largeStepProbability = 0.3;  // chance that an iteration is a large step
-    int streamCount = 1;                // interleaved dimension streams (see startStream)
+    int streamCount = 1;                // dimension streams (see startStream)
 };
 
 class PrimarySampleSampler final : public Sampler {
@@ -47,8 +47,8 @@ public:
     // Accepted iterations so far (between iterations; a proposal under way is the next one).
     int64_t acceptedIterations() const { return iteration_; }
 
-    // Dimension streams: stream k reads the values k, k + K, k + 2K, ... (K = streamCount),
-    // so that what one stream consumes never shifts another's values. Selected again within
+    // Dimension streams: each stream has its own sequence of values, so that what one stream
+    // consumes never shifts another's values. Selected again within
     // an iteration, a stream continues where it stopped; every iteration starts each stream
     // at its first value.
     void startStream(int stream) override { stream_ = stream < params_.streamCount ? stream : 0; }
@@ -75,23 +75,26 @@ public:
         double backupValue = 0;
         int64_t backupModified = -1;
     };
-    const std::vector<Value>& values() const { return values_; }
+    const std::vector<Value>& values(int stream = 0) const { return streams_[size_t(stream)]; }
     bool sameState(const PrimarySampleSampler& o) const;
 
 private:
-    double read(size_t index);
+    double read(int stream, size_t index);
     void restartStreams();
     double small(double v, int64_t steps);
 
     PrimarySampleParams params_;
     Rng rng_;
-    std::vector<Value> values_;
+    std::vector<std::vector<Value>> streams_;  // per stream, its values by index
     int64_t iteration_ = 0;        // the proposal's iteration number (accepted ones + 1)
     int64_t lastLargeStep_ = 0;    // iteration of the last accepted large step
     bool largeStep_ = true;
     int stream_ = 0;
     std::vector<int64_t> streamIndex_;  // each stream's next value this iteration
-    std::vector<uint32_t> touched_;     // indices the proposal under way modified
+    struct Touched {
+        uint32_t stream, index;
+    };
+    std::vector<Touched> touched_;  // the values the proposal under way modified
 };
 
 // The acceptance probability of a proposal with target value fy from a state with fx, for

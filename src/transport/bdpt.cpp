@@ -364,7 +364,8 @@ bool BDPTIntegrator::strategyContribution(const Ray& ray, Vec2 pFilm, int s, int
         return false;
     auto* camera = static_cast<PathVertex*>(scratch.allocBytes(sizeof(PathVertex) * size_t(t), alignof(PathVertex)));
     auto* light = static_cast<PathVertex*>(scratch.allocBytes(sizeof(PathVertex) * size_t(std::max(s, 1)), alignof(PathVertex)));
-    if (s > 0) {
+    // s = 1 samples its light vertex in the connection (joinLight): no light subpath.
+    if (s > 1) {
         sampler.startStream(kLightStream);
         const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, stats, light);
         if (paths_.continueLightSubpath(origin, sampler, scratch, stats, light, s) != s) return false;

@@ -75,7 +75,7 @@ std::string box(const std::string& light, const std::string& left, const std::st
 // Every test runs for both variants: the parameter is the integrator's name. A multiplexed
 // sample evaluates one strategy of one depth: it costs a fraction of a BDPT sample, and its
 // target varies more, so b's estimate from the same bootstrap spreads more (its per-sample
-// relative deviation is about 5x BDPT's in these scenes). mmlt runs two to eight times the
+// relative deviation is about 5x BDPT's in these scenes). mmlt runs 2-16 times the
 // mutations and its image means are held to 1.5x the detectable bias of pssmlt's (still under 2% where
 // pssmlt's is 1%, 3% where it is 2%).
 class Metropolis : public ::testing::TestWithParam<std::string> {
@@ -142,7 +142,7 @@ TEST_P(Metropolis, PointLightInADiffuseSphereIsExact) {
 // detectable 2%: each render's bootstrap costs as much as its chains).
 TEST_P(Metropolis, AgreesWithBDPTOnADiffuseBox) {
     expectAgreement(AgreementCase{"diffuse box", box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), {"bdpt", GetParam()}, 16,
-                                  16, {{GetParam(), mutations(64, 8)}},
+                                  16, {{GetParam(), mutations(64, 16)}},
                                   detectable(0.02)});
 }
 
@@ -282,7 +282,7 @@ TEST_P(Metropolis, AgreesWithBDPTOnAGlassCaustic) {
           Shape "sphere" "float radius" [ 0.5 ]
         AttributeEnd
     )";
-    expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", GetParam()}, 128, 16, {{GetParam(), mutations(64, 8)}},
+    expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", GetParam()}, 128, 16, {{GetParam(), mutations(64, 16)}},
                                   detectable(0.02)});
 }
 
@@ -309,7 +309,7 @@ TEST_P(Metropolis, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
         Shape "bilinearmesh" "point3 P" [ -1 0 -1   1 0 -1   -1 2 -1   1 2 -1 ]
     )";
     expectAgreement(AgreementCase{"light seen in a mirror", scene, {"bdpt", GetParam()}, 32, 16,
-                                  {{GetParam(), mutations(32, 8)}}, detectable(0.02)});
+                                  {{GetParam(), mutations(32, 16)}}, detectable(0.02)});
 }
 
 namespace {

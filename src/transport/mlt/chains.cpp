@@ -62,6 +62,15 @@ struct ChainCounts {
     std::vector<double> shareAt;
 };
 
+// A chain between passes: its sampler (the state's primary sample), the state, its own
+// acceptance stream and the mutations it has left.
+struct Chain {
+    std::unique_ptr<PrimarySampleSampler> sampler;
+    ChainState x;
+    Rng rng;
+    long long remaining = 0;
+};
+
 // The expected-value weight w of sample x, splatted (divided by its target value) onto the
 // film and, if recorded, each depth's film; its share of the target goes to its depths.
 void record(const ChainState& x, double w, int chain, Film& film, std::vector<std::unique_ptr<Film>>& depthFilms,
@@ -82,6 +91,9 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     const std::string name = integrator.name();
     if (!scene.camera().hasImportance())
         throw InputError("integrator \"" + name + "\" splats every path onto the film and needs a perspective camera");
+    if (std::isfinite(scene.settings().maxComponentValue))
+        warning(name + ": Film \"maxcomponentvalue\" is not applied to Metropolis renders (a chain's splats are "
+                       "not camera samples); the image is not clamped");
     const MetropolisParams& mp = integrator.params();
     const PixelBounds& bounds = scene.pixelBounds();
     const Camera::Params& cp = scene.camera().params();
@@ -160,57 +172,71 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
         }
         Monitor monitor(options.progress, chainTime, options.cancel, stop, done, total);
         std::atomic<bool> replayMismatch{false};
+        // Every chain starts from a bootstrap state, then all advance in passes of a few
+        // hundred mutations each, so that a render stopped early (time budget, Ctrl-C) has
+        // mutations from every chain, not the whole of a few.
+        std::vector<Chain> all(static_cast<size_t>(chains));
         arena.execute([&] {
             tbb::parallel_for(0, chains, [&](int c) {
-                ChainEvaluator& ev = evaluators.local();
+                Chain& ch = all[size_t(c)];
                 ChainCounts& cc = counts[size_t(c)];
                 cc.proposedAt.assign(size_t(depths), 0);
                 cc.acceptedAt.assign(size_t(depths), 0);
                 cc.shareAt.assign(size_t(depths), 0.0);
-                Rng rng(chainSeed(options.seed, c), 0x3c6ef372fe94f82bULL);
+                ch.rng = Rng(chainSeed(options.seed, c), 0x3c6ef372fe94f82bULL);
                 // The initial state in proportion to its bootstrap value, replayed.
-                double pick = rng.uniformDouble() * sum;
+                double pick = ch.rng.uniformDouble() * sum;
                 int64_t i = std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin();
                 i = std::min<int64_t>(i, nBoot - 1);
                 while (i > 0 && weights[size_t(i)] == 0) --i;  // a rounding at the end: the last positive one
-                PrimarySampleSampler sampler(bootstrapSeed(options.seed, i), pss);
-                sampler.startIteration();
-                integrator.prepareBootstrap(sampler, i);
-                ChainState x, y;
-                integrator.evaluate(sampler, ev, x);
-                sampler.accept();
-                if (x.f != weights[size_t(i)]) {
-                    replayMismatch = true;
-                    return;
-                }
-                sampler.reseed(chainSeed(options.seed, c));
-                const long long n = total / chains + (c < total % chains ? 1 : 0);
-                for (long long k = 0; k < n; ++k) {
-                    if ((k & 255) == 0 && stop.load(std::memory_order_relaxed)) break;
-                    sampler.startIteration();
-                    const bool large = sampler.largeStep();
-                    integrator.evaluate(sampler, ev, y);
-                    const double a = acceptanceProbability(x.f, y.f);
-                    if (!(y.f > 0)) ++cc.invalid;
-                    // Expected values: the state with 1 - a, the proposal with a.
-                    if (a < 1) record(x, 1 - a, c, film, depthFilms, cc);
-                    if (a > 0) record(y, a, c, film, depthFilms, cc);
-                    ++(large ? cc.proposedLarge : cc.proposedSmall);
-                    if (y.depth >= 0) ++cc.proposedAt[size_t(y.depth)];
-                    if (rng.uniformDouble() < a) {
-                        sampler.accept();
-                        std::swap(x, y);
-                        ++(large ? cc.acceptedLarge : cc.acceptedSmall);
-                        if (x.depth >= 0) ++cc.acceptedAt[size_t(x.depth)];
-                    } else {
-                        sampler.reject();
-                    }
-                    ++cc.done;
-                    if ((k & 255) == 255) done.fetch_add(256, std::memory_order_relaxed);
-                }
-                done.fetch_add(cc.done & 255, std::memory_order_relaxed);
+                ch.sampler = std::make_unique<PrimarySampleSampler>(bootstrapSeed(options.seed, i), pss);
+                ch.sampler->startIteration();
+                integrator.prepareBootstrap(*ch.sampler, i);
+                integrator.evaluate(*ch.sampler, evaluators.local(), ch.x);
+                ch.sampler->accept();
+                if (ch.x.f != weights[size_t(i)]) replayMismatch = true;
+                ch.sampler->reseed(chainSeed(options.seed, c));
+                ch.remaining = total / chains + (c < total % chains ? 1 : 0);
             });
         });
+        constexpr long long kPass = 256;
+        const long long largestShare = total / chains + (total % chains ? 1 : 0);
+        for (long long pass = 0; pass * kPass < largestShare && !replayMismatch && !stop.load(); ++pass) {
+            arena.execute([&] {
+                tbb::parallel_for(0, chains, [&](int c) {
+                    if (stop.load(std::memory_order_relaxed)) return;
+                    Chain& ch = all[size_t(c)];
+                    const long long n = std::min(ch.remaining, kPass);
+                    ChainEvaluator& ev = evaluators.local();
+                    ChainState& y = states.local();
+                    ChainCounts& cc = counts[size_t(c)];
+                    PrimarySampleSampler& sampler = *ch.sampler;
+                    for (long long k = 0; k < n; ++k) {
+                        sampler.startIteration();
+                        const bool large = sampler.largeStep();
+                        integrator.evaluate(sampler, ev, y);
+                        const double a = acceptanceProbability(ch.x.f, y.f);
+                        if (!(y.f > 0)) ++cc.invalid;
+                        // Expected values: the state with 1 - a, the proposal with a.
+                        if (a < 1) record(ch.x, 1 - a, c, film, depthFilms, cc);
+                        if (a > 0) record(y, a, c, film, depthFilms, cc);
+                        ++(large ? cc.proposedLarge : cc.proposedSmall);
+                        if (y.depth >= 0) ++cc.proposedAt[size_t(y.depth)];
+                        if (ch.rng.uniformDouble() < a) {
+                            sampler.accept();
+                            std::swap(ch.x, y);
+                            ++(large ? cc.acceptedLarge : cc.acceptedSmall);
+                            if (ch.x.depth >= 0) ++cc.acceptedAt[size_t(ch.x.depth)];
+                        } else {
+                            sampler.reject();
+                        }
+                    }
+                    ch.remaining -= n;
+                    cc.done += n;
+                    done.fetch_add(n, std::memory_order_relaxed);
+                });
+            });
+        }
         result.seconds += monitor.elapsed();
         replayFailed = replayMismatch.load();
     }
