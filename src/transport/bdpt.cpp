@@ -147,6 +147,13 @@ void BDPTIntegrator::joinInner(const PathVertex& qs, const PathVertex& pt, PathS
 
 namespace {
 
+// Room for n subpath vertices in scratch. No construction: the walks assign every vertex
+// they report (PathVertex is an aggregate, so the storage holds implicitly created
+// vertices), and nothing reads beyond.
+PathVertex* allocPath(ScratchBuffer& scratch, int n) {
+    return static_cast<PathVertex*>(scratch.allocBytes(sizeof(PathVertex) * size_t(n), alignof(PathVertex)));
+}
+
 // Delta densities are stored as 0; they cancel in the ratios (remapped to 1), and the
 // strategies that would need to sample a delta vertex by connection are excluded.
 inline float remapDelta(float f) { return f != 0 ? f : 1.0f; }
@@ -284,13 +291,8 @@ Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
 template <typename S, typename Deposit>
 void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats,
                              const SampleContext* splatTo, Deposit&& deposit) const {
-    auto allocPath = [&](int n) {
-        // No construction: the walks assign every vertex they report (PathVertex is an
-        // aggregate, so the storage holds implicitly created vertices), and nothing reads beyond.
-        return static_cast<PathVertex*>(scratch.allocBytes(sizeof(PathVertex) * size_t(n), alignof(PathVertex)));
-    };
-    PathVertex* camera = allocPath(paths_.maxCameraVertices());
-    PathVertex* light = allocPath(paths_.maxLightVertices());
+    PathVertex* camera = allocPath(scratch, paths_.maxCameraVertices());
+    PathVertex* light = allocPath(scratch, paths_.maxLightVertices());
     // The light subpath's origin first: its sampling then overlaps the camera walk.
     sampler.startStream(kLightStream);
     const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, stats, light);
@@ -362,8 +364,8 @@ bool BDPTIntegrator::strategyContribution(const Ray& ray, Vec2 pFilm, int s, int
                                           ScratchBuffer& scratch, PathStats& stats, PathContribution& out) const {
     if (t < 1 || s < 0 || t > paths_.maxCameraVertices() || s > paths_.maxLightVertices() || (s == 1 && t == 1))
         return false;
-    auto* camera = static_cast<PathVertex*>(scratch.allocBytes(sizeof(PathVertex) * size_t(t), alignof(PathVertex)));
-    auto* light = static_cast<PathVertex*>(scratch.allocBytes(sizeof(PathVertex) * size_t(std::max(s, 1)), alignof(PathVertex)));
+    PathVertex* camera = allocPath(scratch, t);
+    PathVertex* light = allocPath(scratch, std::max(s, 1));
     // s = 1 samples its light vertex in the connection (joinLight): no light subpath.
     if (s > 1) {
         sampler.startStream(kLightStream);

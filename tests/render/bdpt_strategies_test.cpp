@@ -39,11 +39,6 @@ const char* kScene = R"(
     Shape "sphere" "float radius" [ 1 ]
 )";
 
-double luminanceMean(const Image& img) {
-    RegionStats s = wholeImage(img);
-    return 0.2126 * s.mean[0] + 0.7152 * s.mean[1] + 0.0722 * s.mean[2];
-}
-
 }  // namespace
 
 TEST(BdptStrategies, WeightedSumIsTheImageAndUnweightedAgree) {
@@ -52,11 +47,6 @@ TEST(BdptStrategies, WeightedSumIsTheImageAndUnweightedAgree) {
     // Per strategy and render, the mean luminance of its unweighted image.
     std::map<std::string, std::vector<double>> unweighted;
     std::map<int, RunningStats> depthImage;  // the MIS-weighted image of each depth
-    auto strategyDepth = [](const std::string& name) {
-        int s = 0, t = 0;
-        std::sscanf(name.c_str(), "s%d_t%d", &s, &t);
-        return s + t - 2;
-    };
     for (int k = 0; k < K; ++k) {
         SceneDescription desc = parseSceneString(kScene, ".", "<test>");
         auto scene = buildScene(desc);

@@ -314,11 +314,6 @@ TEST_P(Metropolis, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
 
 namespace {
 
-double luminanceMean(const Image& img) {
-    RegionStats s = wholeImage(img);
-    return 0.2126 * s.mean[0] + 0.7152 * s.mean[1] + 0.0722 * s.mean[2];
-}
-
 // Per path depth, the mean luminance of BDPT's image of that depth (the MIS-weighted
 // strategy images of the depth summed), over `renders` seeds.
 std::vector<RunningStats> bdptDepthMeans(const std::string& text, int maxDepth, int spp, int renders) {
@@ -334,10 +329,9 @@ std::vector<RunningStats> bdptDepthMeans(const std::string& text, int maxDepth, 
         RenderResult r = render(*scene, bdpt, o);
         std::vector<double> depth(out.size(), 0.0);
         for (const auto& [name, img] : bdpt.strategyImages()->images(r.lightPaths)) {
-            int s = 0, t = 0;
-            if (name.find("_unweighted") != std::string::npos || std::sscanf(name.c_str(), "s%d_t%d", &s, &t) != 2)
-                continue;
-            depth[size_t(s + t - 2)] += luminanceMean(img);
+            const int d = strategyDepth(name);
+            if (name.find("_unweighted") != std::string::npos || d < 0) continue;
+            depth[size_t(d)] += luminanceMean(img);
         }
         for (size_t d = 0; d < out.size(); ++d) out[d].add(depth[d]);
     }

@@ -3,6 +3,7 @@
 // estimates of the same value, so their spread gives the standard error of the mean.
 #pragma once
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,18 @@ inline RegionStats regionStats(const Image& img, int x0, int x1, int y0, int y1)
 }
 
 inline RegionStats wholeImage(const Image& img) { return regionStats(img, 0, img.width, 0, img.height); }
+
+// The mean luminance (Rec. 709 weights) of a whole image.
+inline double luminanceMean(const Image& img) {
+    RegionStats s = wholeImage(img);
+    return 0.2126 * s.mean[0] + 0.7152 * s.mean[1] + 0.0722 * s.mean[2];
+}
+
+// The path depth s + t - 2 of a BDPT strategy image named "s<S>_t<T>[...]", or -1.
+inline int strategyDepth(const std::string& name) {
+    int s = 0, t = 0;
+    return std::sscanf(name.c_str(), "s%d_t%d", &s, &t) == 2 ? s + t - 2 : -1;
+}
 
 }  // namespace ps::test
 

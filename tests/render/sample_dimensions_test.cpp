@@ -102,7 +102,9 @@ TEST(SampleDimensions, EveryVertexReadsItsOwnBlock) {
             const int slot = (r.index - start) % Subpaths::kDimensionsPerVertex;
             // Blocks are visited in order, each vertex's direction first.
             ASSERT_GE(block, lastBlock[r.stream]) << "stream " << r.stream << " index " << r.index;
-            if (block > lastBlock[r.stream]) EXPECT_EQ(slot, 0) << "stream " << r.stream << " index " << r.index;
+            if (block > lastBlock[r.stream]) {
+                EXPECT_EQ(slot, 0) << "stream " << r.stream << " index " << r.index;
+            }
             lastBlock[r.stream] = block;
             conditionalReads += slot >= 2;
             // Slot 2 is the lobe choice: read only at a vertex whose BxDF draws one (a roulette
