@@ -7,6 +7,7 @@
 
 #include "materials/image_texture.h"
 #include "materials/materials.h"
+#include "materials/procedural_textures.h"
 #include "materials/shading_detail.h"
 #include "materials/textures.h"
 #include "scene/spectra.h"
@@ -111,16 +112,6 @@ void conductorParams(const ParamSet& ps, const TextureRegistry& reg, const std::
 
 std::shared_ptr<Material> defaultDiffuse() { return std::make_shared<DiffuseMaterial>(constantSpectrum(Spectrum(0.5f))); }
 
-UVMapping uvMapping(const ParamSet& ps, const SourceLoc& loc) {
-    std::string m = ps.getString("mapping", "uv");
-    if (m != "uv") {
-        warning(loc, "texture mapping \"" + m + "\" is not supported; using \"uv\"");
-        ps.getVector3("v1", {});
-        ps.getVector3("v2", {});
-    }
-    return UVMapping{ps.getFloat("uscale", 1), ps.getFloat("vscale", 1), ps.getFloat("udelta", 0), ps.getFloat("vdelta", 0)};
-}
-
 ImageLookup imageLookup(const TextureEntity& e, const std::string& base, bool isFloat) {
     const ParamSet& ps = e.params;
     std::string file = ps.getString("filename", "");
@@ -141,11 +132,27 @@ ImageLookup imageLookup(const TextureEntity& e, const std::string& base, bool is
     ps.getFloat("maxanisotropy", 8);
     auto img = readNamedBy(e.loc, [&] { return loadTextureImage(path, ce); });
     ImageChannels ch = !isFloat ? ImageChannels::RGB : hasNonOpaqueAlpha(*img) ? ImageChannels::Alpha : ImageChannels::Average;
-    return ImageLookup(img, uvMapping(ps, e.loc), wm, ps.getFloat("scale", 1), ps.getBool("invert", false), ch);
+    return ImageLookup(img, textureMapping2D(ps, e.worldFromTexture, e.loc), wm, ps.getFloat("scale", 1), ps.getBool("invert", false), ch);
 }
 
-// Float and spectrum textures share their classes and parameter names; `Value` reads one
-// parameter of the texture's own kind.
+// A unit direction parameter given in the texture's space, taken to world space by its CTM.
+Vec3 directionParam(const TextureEntity& e, const std::string& name, Vec3 def) {
+    Vec3 d = e.worldFromTexture.vector(e.params.getVector3(name, def));
+    float len = length(d);
+    if (!(len > 0) || !std::isfinite(len))
+        throw InputError(locOf(e.params, name), "\"" + name + "\" must be a non-zero direction (after the texture's transform)");
+    return d / len;
+}
+
+// The noise textures' "octaves" (8 by default); 1.99^i p overflows float beyond ~100 octaves.
+int octavesParam(const ParamSet& ps) {
+    int octaves = ps.getInt("octaves", 8);
+    if (octaves < 0 || octaves > 64) throw InputError(locOf(ps, "octaves"), "\"octaves\" must be between 0 and 64");
+    return octaves;
+}
+
+// Float and spectrum textures share their classes and parameter names; `get` reads one
+// parameter of the texture's own kind as a texture or a constant, `constant` as a constant only.
 template <typename T>
 struct TexParams;
 template <>
@@ -153,6 +160,7 @@ struct TexParams<float> {
     static FloatTex get(const ParamSet& ps, const std::string& n, float def, const TextureRegistry& reg) {
         return floatParam(ps, n, def, reg);
     }
+    static float constant(const ParamSet& ps, const std::string& n, float def) { return ps.getFloat(n, def); }
 };
 template <>
 struct TexParams<Spectrum> {
@@ -160,6 +168,9 @@ struct TexParams<Spectrum> {
     // given, and materials clamp albedos themselves.
     static SpectrumTex get(const ParamSet& ps, const std::string& n, float def, const TextureRegistry& reg) {
         return spectrumParam(ps, n, Spectrum(def), SpectrumKind::Unbounded, reg);
+    }
+    static Spectrum constant(const ParamSet& ps, const std::string& n, float def) {
+        return ps.getSpectrum(n, SpectrumKind::Unbounded).value_or(Spectrum(def));
     }
 };
 
@@ -178,8 +189,33 @@ std::shared_ptr<typename TextureOf<T>::type> createTexture(const TextureEntity& 
         t = std::make_shared<MixTexture<T>>(P::get(ps, "tex1", 0, reg), P::get(ps, "tex2", 1, reg), floatParam(ps, "amount", 0.5f, reg));
     } else if (e.type == "checkerboard") {
         int dim = ps.getInt("dimension", 2);
-        if (dim != 2) warning(locOf(ps, "dimension"), "checkerboard: only \"dimension\" 2 is supported; using the 2D (u,v) checkerboard");
-        t = std::make_shared<CheckerboardTexture<T>>(uvMapping(ps, e.loc), P::get(ps, "tex1", 1, reg), P::get(ps, "tex2", 0, reg));
+        if (dim != 2 && dim != 3) throw InputError(locOf(ps, "dimension"), "checkerboard: \"dimension\" must be 2 or 3");
+        auto tex1 = P::get(ps, "tex1", 1, reg), tex2 = P::get(ps, "tex2", 0, reg);
+        if (dim == 2) t = std::make_shared<CheckerboardTexture<T>>(textureMapping2D(ps, e.worldFromTexture, e.loc), tex1, tex2);
+        else t = std::make_shared<CheckerboardTexture<T>>(textureMapping3D(e.worldFromTexture, e.loc), tex1, tex2);
+    } else if (e.type == "directionmix") {
+        t = std::make_shared<DirectionMixTexture<T>>(P::get(ps, "tex1", 0, reg), P::get(ps, "tex2", 1, reg),
+                                                     directionParam(e, "dir", Vec3(0, 1, 0)));
+    } else if (e.type == "dots") {
+        // pbrt-v4 hands "inside" to the region outside the dots and "outside" to the dots
+        // (its constructor takes them in the other order); kept, so images match.
+        t = std::make_shared<DotsTexture<T>>(textureMapping2D(ps, e.worldFromTexture, e.loc), P::get(ps, "outside", 0, reg),
+                                             P::get(ps, "inside", 1, reg));
+    } else if (e.type == "bilerp") {
+        auto corner = [&](const char* n, float def) { return P::constant(ps, n, def); };  // constants only, as pbrt-v4
+        t = std::make_shared<BilerpTexture<T>>(textureMapping2D(ps, e.worldFromTexture, e.loc), corner("v00", 0), corner("v01", 1),
+                                               corner("v10", 0), corner("v11", 1));
+    } else if (std::is_same_v<T, float> && (e.type == "fbm" || e.type == "wrinkled" || e.type == "windy")) {
+        TextureMapping3D map = textureMapping3D(e.worldFromTexture, e.loc);
+        if constexpr (std::is_same_v<T, float>) {
+            if (e.type == "windy") t = std::make_shared<WindyTexture>(map);
+            else if (e.type == "fbm") t = std::make_shared<FBmTexture>(map, octavesParam(ps), ps.getFloat("roughness", 0.5f));
+            else t = std::make_shared<WrinkledTexture>(map, octavesParam(ps), ps.getFloat("roughness", 0.5f));
+        }
+    } else if (!std::is_same_v<T, float> && e.type == "marble") {
+        if constexpr (!std::is_same_v<T, float>)
+            t = std::make_shared<MarbleTexture>(textureMapping3D(e.worldFromTexture, e.loc), octavesParam(ps),
+                                                ps.getFloat("roughness", 0.5f), ps.getFloat("scale", 1), ps.getFloat("variation", 0.2f));
     } else if (e.type == "imagemap") {
         if constexpr (std::is_same_v<T, float>)
             t = std::make_shared<FloatImageTexture>(imageLookup(e, base, true));

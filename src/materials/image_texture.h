@@ -22,7 +22,7 @@ enum class ImageChannels { RGB, Average, Alpha };
 
 class ImageLookup {
 public:
-    ImageLookup(std::shared_ptr<const Image> img, UVMapping m, WrapMode w, float scale, bool invert, ImageChannels c)
+    ImageLookup(std::shared_ptr<const Image> img, TextureMapping2D m, WrapMode w, float scale, bool invert, ImageChannels c)
         : img_(std::move(img)), map_(m), wrap_(w), scale_(scale), invert_(invert), channels_(c) {}
     // scale * bilinear lookup, then 1 - value if inverted, clamped to >= 0.
     Spectrum evaluate(const TextureEvalContext& ctx) const;
@@ -33,7 +33,7 @@ public:
 private:
     Spectrum texel(int x, int y) const;
     std::shared_ptr<const Image> img_;
-    UVMapping map_;
+    TextureMapping2D map_;
     WrapMode wrap_;
     float scale_;
     bool invert_;

@@ -6,7 +6,7 @@ namespace ps {
 
 std::shared_ptr<const ShadingDetail> ShadingDetail::normalMap(std::shared_ptr<const Image> image) {
     auto d = std::make_shared<ShadingDetail>();
-    d->lookup_ = std::make_unique<ImageLookup>(std::move(image), UVMapping{}, WrapMode::Repeat, 1.0f, false,
+    d->lookup_ = std::make_unique<ImageLookup>(std::move(image), TextureMapping2D{}, WrapMode::Repeat, 1.0f, false,
                                                ImageChannels::RGB);
     return d;
 }
@@ -33,9 +33,9 @@ void ShadingDetail::normalMapped(const SurfaceInteraction& si, Vec3& dpdu, Vec3&
 // in v); dd/du by a forward difference whose shifted point moves along dp/du as well.
 void ShadingDetail::bumped(const SurfaceInteraction& si, Vec3& dpdu, Vec3& dpdv) const {
     const float du = kBumpDelta, dv = kBumpDelta;
-    TextureEvalContext here{si.p, si.ns, si.uv};
-    TextureEvalContext alongU{si.p + si.dpdu * du, si.ns, si.uv + Vec2(du, 0)};
-    TextureEvalContext alongV{si.p + si.dpdv * dv, si.ns, si.uv + Vec2(0, dv)};
+    TextureEvalContext here{si.p, si.ng, si.uv};
+    TextureEvalContext alongU{si.p + si.dpdu * du, si.ng, si.uv + Vec2(du, 0)};
+    TextureEvalContext alongV{si.p + si.dpdv * dv, si.ng, si.uv + Vec2(0, dv)};
     float d = displacement_->evaluate(here);
     float dU = displacement_->evaluate(alongU), dV = displacement_->evaluate(alongV);
     dpdu = si.dpdu + si.ns * ((dU - d) / du) + si.dndu * d;

@@ -7,7 +7,7 @@ namespace ps {
 
 struct TextureEvalContext {
     Vec3 p;   // world-space position
-    Vec3 n;   // shading normal
+    Vec3 n;   // geometric normal (pbrt-v4's textures see this one, not the shading normal)
     Vec2 uv;  // surface parameterisation
 };
 

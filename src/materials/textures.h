@@ -1,17 +1,13 @@
-// Texture classes: constant, scale, mix and checkerboard, for float and spectrum values,
-// with pbrt-v4's uv mapping (s = uscale*u + udelta, t = vscale*v + vdelta). Image maps are
-// in image_texture.h.
+// Texture classes: constant, scale, mix and checkerboard, for float and spectrum values.
+// Image maps are in image_texture.h, the other procedural classes in procedural_textures.h,
+// the mappings from the surface to texture coordinates in texture_mapping.h.
 #pragma once
 #include <cmath>
 #include <memory>
 #include "materials/texture.h"
+#include "materials/texture_mapping.h"
 
 namespace ps {
-
-struct UVMapping {
-    float su = 1, sv = 1, du = 0, dv = 0;
-    Vec2 map(const TextureEvalContext& ctx) const { return {su * ctx.uv.x + du, sv * ctx.uv.y + dv}; }
-};
 
 template <typename T>
 struct TextureOf;
@@ -25,6 +21,7 @@ class ConstantTexture final : public TextureOf<T>::type {
 public:
     explicit ConstantTexture(T v) : v_(v) {}
     T evaluate(const TextureEvalContext&) const override { return v_; }
+    T value() const { return v_; }
 
 private:
     T v_;
@@ -64,18 +61,27 @@ private:
     std::shared_ptr<FloatTexture> amount_;
 };
 
-// tex1 where floor(s) + floor(t) is even, tex2 elsewhere. Known difference: pbrt-v4 blends
-// the two near edges with a box-filtered checkerboard whose width comes from ray
-// differentials; this is the point-sampled (unfiltered) checkerboard that pbrt renders
+// tex1 where floor(s) + floor(t) is even, tex2 elsewhere; in 3-D ("dimension" 3), tex1 where
+// floor(x) + floor(y) + floor(z) of the texture-space point is even. Known difference:
+// pbrt-v4 blends the two near edges with a box-filtered checkerboard whose width comes from
+// ray differentials; this is the point-sampled (unfiltered) checkerboard that pbrt renders
 // with "disabletexturefiltering".
 template <typename T>
 class CheckerboardTexture final : public TextureOf<T>::type {
 public:
-    CheckerboardTexture(UVMapping m, std::shared_ptr<typename TextureOf<T>::type> a, std::shared_ptr<typename TextureOf<T>::type> b)
-        : map_(m), a_(std::move(a)), b_(std::move(b)) {}
+    using Tex = std::shared_ptr<typename TextureOf<T>::type>;
+    CheckerboardTexture(TextureMapping2D m, Tex a, Tex b) : map2_(m), a_(std::move(a)), b_(std::move(b)) {}
+    CheckerboardTexture(TextureMapping3D m, Tex a, Tex b) : map3_(m), solid_(true), a_(std::move(a)), b_(std::move(b)) {}
     T evaluate(const TextureEvalContext& ctx) const override {
-        Vec2 st = map_.map(ctx);
-        return oddCell(st.x) == oddCell(st.y) ? a_->evaluate(ctx) : b_->evaluate(ctx);
+        bool odd;
+        if (solid_) {
+            Vec3 q = map3_.map(ctx);
+            odd = oddCell(q.x) != (oddCell(q.y) != oddCell(q.z));
+        } else {
+            Vec2 st = map2_.map(ctx);
+            odd = oddCell(st.x) != oddCell(st.y);
+        }
+        return odd ? b_->evaluate(ctx) : a_->evaluate(ctx);
     }
 
 private:
@@ -84,8 +90,10 @@ private:
         float c = std::floor(v);
         return !(c - 2 * std::floor(c * 0.5f) == 0);
     }
-    UVMapping map_;
-    std::shared_ptr<typename TextureOf<T>::type> a_, b_;
+    TextureMapping2D map2_;
+    TextureMapping3D map3_;
+    bool solid_ = false;
+    Tex a_, b_;
 };
 
 }  // namespace ps

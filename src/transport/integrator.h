@@ -38,7 +38,7 @@ inline const BxDF* surfaceBxDF(SurfaceInteraction& si, ScratchBuffer& scratch) {
         if (const BxDF* b = si.material->constantBxDF()) return b;
     MaterialEvalContext ctx;
     ctx.p = si.p;
-    ctx.n = si.ns;
+    ctx.n = si.ng;  // textures see the geometric normal, as pbrt-v4's do
     ctx.uv = si.uv;
     ctx.wo = si.wo;
     ctx.dpdu = si.dpdu;
@@ -47,7 +47,6 @@ inline const BxDF* surfaceBxDF(SurfaceInteraction& si, ScratchBuffer& scratch) {
     if (maps) {
         if (const ShadingDetail* detail = material->shadingDetail()) {
             detail->apply(si);
-            ctx.n = si.ns;
             ctx.dpdu = si.dpdu;
         }
     }

@@ -22,6 +22,7 @@ public:
     Params& f(const std::string& name, double v) { return f(name, std::vector<double>{v}); }
     Params& i(const std::string& name, int v) { return add(ParamType::Integer, "integer", name, {double(v)}); }
     Params& rgb(const std::string& name, double r, double g, double b) { return add(ParamType::RGB, "rgb", name, {r, g, b}); }
+    Params& vec(const std::string& name, double x, double y, double z) { return add(ParamType::Vector3, "vector3", name, {x, y, z}); }
     Params& b(const std::string& name, bool v) {
         Param p = base(ParamType::Bool, "bool", name);
         p.bools = {v};

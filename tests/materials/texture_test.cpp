@@ -1,4 +1,5 @@
-// Textures from parameter lists: constant, scale, mix, checkerboard (parity and uv mapping)
+// Textures from parameter lists: constant, scale, mix, checkerboard (parity and uv mapping;
+// the other mappings and procedural classes are in texture_mapping_test, procedural_texture_test)
 // and image maps (v-flip, bilinear filtering, wrap modes, scale/invert, float = mean of RGB,
 // PNG encoding, the image cache).
 #include <gtest/gtest.h>
@@ -72,16 +73,16 @@ TEST_F(Textures, UVMapping) {
 
 TEST_F(Textures, UnsupportedModesWarnAndFallBack) {
     int before = warningCount();
-    auto c3 = ftex("checkerboard", Params().i("dimension", 3));
+    auto bogus = ftex("checkerboard", Params().s("mapping", "bogus"));
     EXPECT_EQ(warningCount(), before + 1);
-    EXPECT_EQ(c3->evaluate(at(1.5f, 0.5f)), 0);  // the 2D checkerboard
-    auto sph = ftex("checkerboard", Params().s("mapping", "spherical"));
+    EXPECT_EQ(bogus->evaluate(at(1.5f, 0.5f)), 0);  // uv mapping
+    auto unknown = ftex("ptex", Params());
     EXPECT_EQ(warningCount(), before + 2);
-    EXPECT_EQ(sph->evaluate(at(1.5f, 0.5f)), 0);  // uv mapping
-    auto unknown = ftex("fbm", Params());
-    EXPECT_EQ(warningCount(), before + 3);
     EXPECT_EQ(unknown->evaluate(at(0, 0)), 1);
     ftex("constant", Params().f("value", 2).f("bogus", 1));  // unused parameter
+    EXPECT_EQ(warningCount(), before + 3);
+    // Parameters of another mapping are unused too.
+    ftex("checkerboard", Params().s("mapping", "planar").f("uscale", 2));
     EXPECT_EQ(warningCount(), before + 4);
 }
 
@@ -179,9 +180,9 @@ TEST(ImageLookup, FloatLookupsReturnAlphaWhenNotOpaque) {
     EXPECT_FALSE(hasNonOpaqueAlpha(*img));
     img->alpha = {0.25f};
     EXPECT_TRUE(hasNonOpaqueAlpha(*img));
-    ImageLookup l(img, UVMapping{}, WrapMode::Repeat, 1, false, ImageChannels::Alpha);
+    ImageLookup l(img, TextureMapping2D{}, WrapMode::Repeat, 1, false, ImageChannels::Alpha);
     EXPECT_FLOAT_EQ(l.evaluate(at(0.3f, 0.3f)).r, 0.25f);
-    ImageLookup m(img, UVMapping{}, WrapMode::Repeat, 1, false, ImageChannels::Average);
+    ImageLookup m(img, TextureMapping2D{}, WrapMode::Repeat, 1, false, ImageChannels::Average);
     EXPECT_NEAR(m.evaluate(at(0.3f, 0.3f)).r, 0.6f, 1e-6f);
 }
 
