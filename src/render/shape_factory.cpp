@@ -9,6 +9,7 @@
 #include "geometry/quadric.h"
 #include "geometry/triangle_mesh.h"
 #include "materials/create.h"
+#include "materials/textures.h"
 #include "render/scene_builder.h"
 #include "scene/ply.h"
 #include "util/memory_limit.h"
@@ -149,13 +150,16 @@ std::unique_ptr<Shape> createLoopSubdiv(const ShapeEntity& e, const Transform& t
 }
 
 // "float alpha" or "texture alpha"; null (opaque, no filter) for a constant alpha >= 1, the default.
+// A "constant" texture is a constant alpha, as pbrt-v4 takes it: constant 0 is an invisible
+// shape and, on an emitter, pbrt-v4's invisible light.
 std::shared_ptr<const AlphaMask> alphaMask(const ParamSet& ps, const TextureRegistry& textures) {
     if (!ps.has("alpha")) return nullptr;
-    if (ps.getTexture("alpha").empty()) {
-        float a = ps.getFloat("alpha", 1);
+    std::shared_ptr<FloatTexture> tex = floatTextureParam(ps, "alpha", 1, textures);
+    if (auto c = dynamic_cast<const ConstantTexture<float>*>(tex.get())) {
+        float a = c->value();
         return a >= 1 ? nullptr : std::make_shared<AlphaMask>(nullptr, a);
     }
-    return std::make_shared<AlphaMask>(floatTextureParam(ps, "alpha", 1, textures));
+    return std::make_shared<AlphaMask>(std::move(tex));
 }
 
 }  // namespace

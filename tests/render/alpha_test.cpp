@@ -298,18 +298,23 @@ TEST(Alpha, CutOutEmitterSamplesPresentPointsOnly) {
 
 // A constant alpha 0 emitter is invisible yet lights the scene fully through light sampling
 // (pbrt-v4's invisible area light): the floor below it gets the opaque light's radiance.
+// "texture alpha" naming a "constant" texture of value 0 is the same constant alpha.
 TEST(Alpha, AlphaZeroEmitterIsAnInvisibleLight) {
     const double lit = 0.5 * rectangleFormFactor(1.0, 0.5, 1.0);
-    for (const char* integrator : {"path", "bdpt"}) {
-        RenderResult r = renderString(floorUnderLight("\"float alpha\" [ 0 ]"), 64, 7, 0, integrator);
-        expectMean(wholeImage(r.image), lit, (std::string(integrator) + ", floor").c_str());
-    }
-    // Seen directly it is not there.
-    std::string direct = emitterBehind("");
-    const std::string opaque = "Shape \"trianglemesh\" \"point3 P\"";
-    direct.replace(direct.find(opaque), opaque.size(), "Shape \"trianglemesh\" \"float alpha\" [ 0 ] \"point3 P\"");
-    for (const char* integrator : kIntegrators) {
-        RenderResult r = renderString(direct, 4, 7, 0, integrator);
-        EXPECT_EQ(wholeImage(r.image).mean[1], 0.0) << integrator;
+    const std::string zeroTexture = "WorldBegin\nTexture \"zero\" \"float\" \"constant\" \"float value\" [ 0 ]\n";
+    auto withZeroTexture = [&](std::string scene) { return scene.replace(scene.find("WorldBegin"), 10, zeroTexture); };
+    for (const char* alpha : {"\"float alpha\" [ 0 ]", "\"texture alpha\" \"zero\""}) {
+        for (const char* integrator : {"path", "bdpt"}) {
+            RenderResult r = renderString(withZeroTexture(floorUnderLight(alpha)), 64, 7, 0, integrator);
+            expectMean(wholeImage(r.image), lit, (std::string(integrator) + ", floor, " + alpha).c_str());
+        }
+        // Seen directly it is not there.
+        std::string direct = withZeroTexture(emitterBehind(""));
+        const std::string opaque = "Shape \"trianglemesh\" \"point3 P\"";
+        direct.replace(direct.find(opaque), opaque.size(), "Shape \"trianglemesh\" " + std::string(alpha) + " \"point3 P\"");
+        for (const char* integrator : kIntegrators) {
+            RenderResult r = renderString(direct, 4, 7, 0, integrator);
+            EXPECT_EQ(wholeImage(r.image).mean[1], 0.0) << integrator << ", " << alpha;
+        }
     }
 }
