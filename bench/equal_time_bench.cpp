@@ -68,6 +68,8 @@ int main(int argc, char** argv) {
     app.add_option("--bootstrap", bootstrap, "Metropolis: bootstrap samples (default: the scene's)");
     app.add_option("--large-step-probability", largeStep, "Metropolis: large-step probability (default: the scene's)");
     app.add_option("--sigma", sigma, "Metropolis: small-step sigma (default: the scene's)");
+    double strategyPilot = -1;
+    app.add_option("--strategy-pilot", strategyPilot, "mmlt: the bootstrap's share that learns the strategy choice");
     std::vector<std::string> external;
     app.add_option("--compare", external,
                    "Also score these images (e.g. another renderer's equal-time renders of the scene): relative MSE "
@@ -85,6 +87,7 @@ int main(int argc, char** argv) {
         if (bootstrap > 0) st.mltBootstrapSamples = bootstrap;
         if (largeStep >= 0) st.mltLargeStepProbability = float(largeStep);
         if (sigma > 0) st.mltSigma = float(sigma);
+        if (strategyPilot >= 0) st.mltStrategyPilot = float(strategyPilot);
         const double refMean = imageMean(ref);
         nlohmann::json rows = nlohmann::json::array();
         std::printf("%-8s %5s %10s %8s %10s %10s %10s %11s  %s\n", "integ", "seed", "spp", "seconds", "rel RMSE",

@@ -166,6 +166,10 @@ void RenderCommand::attach(CLI::App& app) {
                      "Metropolis (pssmlt, mmlt) only: standard deviation (> 0) of a small step's perturbation of each random "
                      "number (overrides \"sigma\"; default 0.01)")
         ->check(numberCheck(false));
+    cmd_->add_option("--strategy-pilot", strategyPilot_,
+                     "mmlt only: fraction in [0, 1) of the bootstrap samples spent first on learning how often to choose "
+                     "each path depth and strategy (default 0.25; 0 chooses every depth equally often)")
+        ->check(probabilityCheck());
     cmd_->add_flag("--quiet", quiet_, "No progress bar or statistics on the terminal");
 }
 
@@ -183,6 +187,13 @@ int RenderCommand::run() {
                               : integrator_ == "mlt"       ? "mmlt"
                                                            : integrator_;
     if (!sampler_.empty()) settings.sampler = sampler_;
+    if (strategyPilot_ >= 0) {
+        if (settings.integrator != "mmlt")
+            throw InputError("--strategy-pilot is a parameter of multiplexed MLT: it needs --integrator mmlt (the "
+                             "integrator here is \"" + settings.integrator + "\")");
+        if (strategyPilot_ >= 1) throw InputError("--strategy-pilot must be below 1 (the bootstrap proper needs samples)");
+        settings.mltStrategyPilot = float(strategyPilot_);
+    }
     if (chains_ > 0 || bootstrap_ > 0 || largeStepProbability_ >= 0 || sigma_ > 0) {
         if (settings.integrator != "pssmlt" && settings.integrator != "mmlt")
             throw InputError("--chains, --bootstrap, --large-step-probability and --sigma are Metropolis parameters: "
@@ -280,6 +291,7 @@ int RenderCommand::run() {
         stats["metropolis"] = {
             {"b", ms.b},
             {"bootstrap_samples", ms.bootstrapSamples},
+            {"pilot_samples", ms.pilotSamples},
             {"chains", ms.chains},
             {"large_step_probability", settings.mltLargeStepProbability},
             {"sigma", settings.mltSigma},
@@ -298,6 +310,7 @@ int RenderCommand::run() {
         for (size_t d = 0; d < ms.depths.size(); ++d) {
             nlohmann::json e = {{"depth", d}, {"share", ms.depths[d].share}};
             if (ms.multiplexed) {
+                e["choice_probability"] = ms.depths[d].chosen;
                 e["proposals"] = ms.depths[d].proposed;
                 e["acceptance_rate"] = MetropolisStats::rate(ms.depths[d].accepted, ms.depths[d].proposed);
             }
@@ -331,6 +344,8 @@ int RenderCommand::run() {
             std::printf("metropolis: b relative error %.3g | per depth: share", ms.bRelativeError);
             for (const MetropolisStats::Depth& d : ms.depths) std::printf(" %.3f", d.share);
             if (ms.multiplexed) {
+                std::printf(" | chosen");
+                for (const MetropolisStats::Depth& d : ms.depths) std::printf(" %.3f", d.chosen);
                 std::printf(" | acceptance");
                 for (const MetropolisStats::Depth& d : ms.depths)
                     std::printf(" %.3f", MetropolisStats::rate(d.accepted, d.proposed));

@@ -33,6 +33,7 @@ private:
     int chains_ = -1;
     int bootstrap_ = -1;
     double largeStepProbability_ = -1;
+    double strategyPilot_ = -1;
     double sigma_ = -1;  // --max-memory SIZE, checked by parseByteSize
     bool quiet_ = false;
 };

@@ -20,6 +20,8 @@ public:
     // Discrete sample: bin index with probability weight/sum.
     int sampleDiscrete(float u, float* pmf = nullptr, float* uRemapped = nullptr) const;
     float pmf(int i) const { return cdf_[i + 1] - cdf_[i]; }
+    // Where bin i starts in [0,1): sampleDiscrete(u) is i for u in [cdf(i), cdf(i + 1)).
+    float cdf(int i) const { return cdf_[i]; }
     // Density at x in [0,1).
     float pdf(float x) const;
 

@@ -80,10 +80,10 @@ double PrimarySampleSampler::read(int stream, size_t index) {
     return x.value;
 }
 
-void PrimarySampleSampler::stratify(int stream, int index, int k, int count) {
+void PrimarySampleSampler::set(int stream, int index, double value) {
     stream = stream < params_.streamCount ? stream : 0;
-    double v = (double(k) + read(stream, size_t(index))) / double(count);
-    streams_[size_t(stream)][size_t(index)].value = v < 1.0 ? v : 0x1.fffffffffffffp-1;
+    read(stream, size_t(index));  // marks it as the proposal's, with its backup
+    streams_[size_t(stream)][size_t(index)].value = std::clamp(value, 0.0, 0x1.fffffffffffffp-1);
 }
 
 float PrimarySampleSampler::get1D() {

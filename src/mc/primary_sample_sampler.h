@@ -53,10 +53,9 @@ public:
     // at its first value.
     void startStream(int stream) override { stream_ = stream < params_.streamCount ? stream : 0; }
     void seekDimension(int index) override { streamIndex_[size_t(stream_)] = index >= 0 ? index : 0; }
-    // Confines the value of `stream` at `index` in the proposal under way to stratum k of
-    // `count` equal strata of [0,1), uniform within it (a bootstrap that stratifies one
-    // dimension; replayed by the same call).
-    void stratify(int stream, int index, int k, int count);
+    // Sets the value of `stream` at `index` in the proposal under way (in [0,1)): a state
+    // placed by the caller, restored by a rejection like any other value.
+    void set(int stream, int index, double value);
     // A new random stream for the mutations from here on; the stored values stay. A chain
     // started from a replayed bootstrap sample takes its own stream this way.
     void reseed(uint64_t chainSeed);
@@ -65,6 +64,9 @@ public:
     Vec2 get2D() override;
     // Ignored (a chain has no pixels): every stream restarts at its first value.
     void startPixelSample(int, int, int) override { restartStreams(); }
+    // Every stream back to its first value within the proposal under way: a second
+    // evaluation of the same proposal reads the same values.
+    void restartStreams();
     std::unique_ptr<Sampler> clone() const override { return std::make_unique<PrimarySampleSampler>(*this); }
 
     // The state, for tests: the stored values and the iteration at which each was last
@@ -80,7 +82,6 @@ public:
 
 private:
     double read(int stream, size_t index);
-    void restartStreams();
     double small(double v, int64_t steps);
 
     PrimarySampleParams params_;

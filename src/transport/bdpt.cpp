@@ -288,18 +288,22 @@ Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
 // Produces every strategy's contribution of one camera and one light subpath: deposit(s, t, c)
 // receives each that is not black (t = 1: landing at c.pRaster; else on the camera ray's
 // film position). The subpaths and the connections draw from their own dimension streams.
+// onlyDepth >= 0: the subpaths stop at the lengths that depth needs, and only its
+// strategies are connected.
 template <typename S, typename Deposit>
 void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats,
-                             const SampleContext* splatTo, Deposit&& deposit) const {
-    PathVertex* camera = allocPath(scratch, paths_.maxCameraVertices());
-    PathVertex* light = allocPath(scratch, paths_.maxLightVertices());
+                             const SampleContext* splatTo, Deposit&& deposit, int onlyDepth) const {
+    const int cameraVertices = onlyDepth >= 0 ? onlyDepth + 2 : paths_.maxCameraVertices();
+    const int lightVertices = onlyDepth >= 0 ? onlyDepth + 1 : paths_.maxLightVertices();
+    PathVertex* camera = allocPath(scratch, cameraVertices);
+    PathVertex* light = allocPath(scratch, lightVertices);
     // The light subpath's origin first: its sampling then overlaps the camera walk.
     sampler.startStream(kLightStream);
     const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, stats, light);
     sampler.startStream(kCameraStream);
-    int nCamera = paths_.cameraSubpath(ray, sampler, scratch, stats, camera);
+    int nCamera = paths_.cameraSubpath(ray, sampler, scratch, stats, camera, cameraVertices);
     sampler.startStream(kLightStream);
-    int nLight = paths_.continueLightSubpath(origin, sampler, scratch, stats, light);
+    int nLight = paths_.continueLightSubpath(origin, sampler, scratch, stats, light, lightVertices);
     sampler.startStream(kConnectionStream);
     const MisPrefixes prefixes = misPrefixes(light, nLight, camera, nCamera, scratch);
 
@@ -313,7 +317,7 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
             int depth = s + t - 2;
             // (1,1) would see a light through the lens by sampling both ends; the camera
             // ray finding the light (0,2) covers those paths with weight 1.
-            if ((s == 1 && t == 1) || depth < 0 || depth > maxDepth) continue;
+            if ((s == 1 && t == 1) || depth < 0 || depth > maxDepth || (onlyDepth >= 0 && depth != onlyDepth)) continue;
             // Most camera vertices emit nothing: skip the call for the s = 0 strategy.
             if (s == 0 && !camera[t - 1].isLight()) continue;
             sampler.seekDimension(connectionDimension(s, t));
@@ -352,12 +356,16 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
 }
 
 void BDPTIntegrator::contributions(const Ray& ray, Vec2 pFilm, PrimarySampleSampler& sampler, ScratchBuffer& scratch,
-                                   PathStats& stats, std::vector<PathContribution>& out) const {
+                                   PathStats& stats, std::vector<PathContribution>& out, int onlyDepth) const {
     out.clear();
-    produce(ray, sampler, scratch, stats, nullptr, [&](int s, int t, const Connection& c) {
-        if (c.weight == 0) return;
-        out.push_back({t == 1 ? c.pRaster : pFilm, c.L * c.weight, s, t});
-    });
+    if (onlyDepth > paths_.maxDepth()) return;
+    produce(
+        ray, sampler, scratch, stats, nullptr,
+        [&](int s, int t, const Connection& c) {
+            if (c.weight == 0) return;
+            out.push_back({t == 1 ? c.pRaster : pFilm, c.L * c.weight, s, t});
+        },
+        onlyDepth);
 }
 
 bool BDPTIntegrator::strategyContribution(const Ray& ray, Vec2 pFilm, int s, int t, PrimarySampleSampler& sampler,

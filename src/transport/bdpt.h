@@ -85,8 +85,10 @@ public:
     // Every strategy's weighted contribution of the camera subpath along `ray` (generated
     // at film position pFilm) and one light subpath, without depositing them: what a Markov
     // chain over primary samples (transport/mlt/) needs to know before it accepts a sample.
+    // onlyDepth >= 0: the strategies of that path depth alone, from subpaths just long
+    // enough for it, bit for bit what strategyContribution gives for each of them.
     void contributions(const Ray& ray, Vec2 pFilm, PrimarySampleSampler& sampler, ScratchBuffer& scratch,
-                       PathStats& stats, std::vector<PathContribution>& out) const;
+                       PathStats& stats, std::vector<PathContribution>& out, int onlyDepth = -1) const;
     // Strategy (s, t) alone (multiplexed Metropolis): subpaths of exactly s light and t
     // camera vertices and their connection, MIS-weighted. False if the subpaths end
     // earlier or the connection carries nothing.
@@ -104,7 +106,7 @@ public:
 private:
     template <typename S, typename Deposit>
     void produce(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats, const SampleContext* splatTo,
-                 Deposit&& deposit) const;
+                 Deposit&& deposit, int onlyDepth = -1) const;
     template <typename S>
     Spectrum estimate(const Ray& ray, S& sampler, SampleContext& ctx) const;
 

@@ -22,7 +22,8 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
         if (name == "light") return std::make_unique<LightTracer>(scene, maxDepth);
         if (name == "pssmlt" || name == "mmlt") {
             const RenderSettings& st = scene.settings();
-            MetropolisParams mp{st.mltBootstrapSamples, st.mltChains, st.mltLargeStepProbability, st.mltSigma};
+            MetropolisParams mp{st.mltBootstrapSamples, st.mltChains, st.mltLargeStepProbability, st.mltSigma,
+                                st.mltStrategyPilot};
             if (name == "mmlt") return std::make_unique<MMLTIntegrator>(scene, maxDepth, mp, heuristic);
             return std::make_unique<PSSMLTIntegrator>(scene, maxDepth, mp, heuristic);
         }

@@ -32,14 +32,16 @@ struct MetropolisStats {
     double b = 0;  // the integral of the target function over primary sample space
     int chains = 0;
     long long bootstrapSamples = 0, mutations = 0;
+    long long pilotSamples = 0;  // multiplexed MLT: samples that learned the strategy choice
     long long proposedLarge = 0, acceptedLarge = 0, proposedSmall = 0, acceptedSmall = 0;
     long long invalidProposals = 0;  // zero, negative or non-finite target: rejected, never splatted
     double bRelativeError = 0;      // standard error of b from the bootstrap, relative to b
     bool multiplexed = false;       // the chains choose the path depth (proposals per depth)
     // Per path depth: its share of the image's luminance (sums to 1 over depths) and, when
-    // the chains choose the depth, the proposals of that depth and how many were accepted.
+    // the chains choose the depth, the proposals of that depth and how many were accepted,
+    // and the probability with which a large step chooses it (the learned choice).
     struct Depth {
-        double share = 0;
+        double share = 0, chosen = 0;
         long long proposed = 0, accepted = 0;
     };
     std::vector<Depth> depths;

@@ -375,14 +375,18 @@ TEST_F(Cli, PbrtMltIntegratorIsMultiplexedMLT) {
     EXPECT_EQ(j["integrator"], "mmlt");
     EXPECT_EQ(j["spp_target"], 2);
     EXPECT_EQ(j["metropolis"]["chains"], 7);
-    EXPECT_EQ(j["metropolis"]["bootstrap_samples"], 300 * 4);  // per depth
+    // Per depth; a quarter of them (the default --strategy-pilot) learn the strategy choice.
+    EXPECT_EQ(j["metropolis"]["pilot_samples"], 75 * 4);
+    EXPECT_EQ(j["metropolis"]["bootstrap_samples"], 225 * 4);
     ASSERT_EQ(j["metropolis"]["depths"].size(), 4u);
-    double share = 0;
+    double share = 0, chosen = 0;
     for (const auto& d : j["metropolis"]["depths"]) {
         share += d["share"].get<double>();
+        chosen += d["choice_probability"].get<double>();
         EXPECT_TRUE(d.contains("acceptance_rate"));
     }
     EXPECT_NEAR(share, 1.0, 1e-9);
+    EXPECT_NEAR(chosen, 1.0, 1e-5);
     // The command line overrides the scene's parameters.
     Result o = run("render --quiet --chains 5 --spp 1 " + scene + " -o " + (dir / "m.pfm").string() + " --stats " +
                    json.string());
@@ -390,4 +394,21 @@ TEST_F(Cli, PbrtMltIntegratorIsMultiplexedMLT) {
     j = nlohmann::json::parse(std::ifstream(json));
     EXPECT_EQ(j["metropolis"]["chains"], 5);
     EXPECT_EQ(j["spp_target"], 1);
+    // Without a pilot every bootstrap sample is the bootstrap's, and each depth is chosen
+    // equally often.
+    Result u = run("render --quiet --strategy-pilot 0 --spp 1 " + scene + " -o " + (dir / "m.pfm").string() +
+                   " --stats " + json.string());
+    ASSERT_EQ(u.status, 0) << u.out;
+    j = nlohmann::json::parse(std::ifstream(json));
+    EXPECT_EQ(j["metropolis"]["pilot_samples"], 0);
+    EXPECT_EQ(j["metropolis"]["bootstrap_samples"], 300 * 4);
+    for (const auto& d : j["metropolis"]["depths"]) EXPECT_NEAR(d["choice_probability"].get<double>(), 0.25, 1e-6);
+    // The pilot cannot take the whole bootstrap, and belongs to mmlt alone.
+    Result whole = run("render --quiet --strategy-pilot 1 " + scene + " -o " + (dir / "m.pfm").string());
+    EXPECT_NE(whole.status, 0);
+    EXPECT_NE(whole.out.find("--strategy-pilot must be below 1"), std::string::npos) << whole.out;
+    Result other = run("render --quiet --strategy-pilot 0.5 --integrator bdpt " + scene + " -o " +
+                       (dir / "m.pfm").string());
+    EXPECT_NE(other.status, 0);
+    EXPECT_NE(other.out.find("needs --integrator mmlt"), std::string::npos) << other.out;
 }

@@ -53,6 +53,11 @@ using PathContribution = BDPTIntegrator::PathContribution;
 uint64_t bootstrapSeed(uint64_t seed, int64_t i) { return mixWithKey(mix64(seed ^ 0x6a09e667f3bcc908ULL), uint64_t(i)); }
 uint64_t chainSeed(uint64_t seed, int chain) { return mixWithKey(mix64(seed ^ 0xbb67ae8584caa73bULL), uint64_t(chain)); }
 
+// The share of the default in a learned strategy choice: large enough that a strategy the
+// pilot missed is still proposed now and then, small enough to leave most proposals to the
+// strategies that carry the image.
+constexpr double kDefaultChoiceShare = 0.25;
+
 struct ChainCounts {
     long long proposedLarge = 0, acceptedLarge = 0, proposedSmall = 0, acceptedSmall = 0, invalid = 0, done = 0;
     // Per path depth: proposals and acceptances (by the proposal's depth, when the chain
@@ -87,6 +92,13 @@ void record(const ChainState& x, double w, int chain, Film& film, std::vector<st
 
 }  // namespace
 
+void MetropolisIntegrator::bootstrapSample(PrimarySampleSampler& sampler, int64_t, const StrategyChoice& choice,
+                                           ChainEvaluator& ev, std::vector<BootstrapState>& out) const {
+    out.clear();
+    evaluate(sampler, choice, ev, ev.sample);
+    if (ev.sample.f > 0) out.push_back({ev.sample.strategy, ev.sample.f, ev.sample.f});
+}
+
 RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& integrator, const RenderOptions& options) {
     const std::string name = integrator.name();
     if (!scene.camera().hasImportance())
@@ -109,7 +121,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
 
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     tbb::enumerable_thread_specific<ChainEvaluator> evaluators;
-    tbb::enumerable_thread_specific<ChainState> states;
+    tbb::enumerable_thread_specific<ChainState> proposals;
 
     RenderResult result;
     MetropolisStats& ms = result.metropolis;
@@ -119,21 +131,76 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     // Bootstrap: b and the weights of the candidate initial states. It counts against the
     // time budget, and a cancellation during it leaves a black image (b unknown).
     const auto startTime = std::chrono::steady_clock::now();
-    const int64_t nBoot = std::max<int64_t>(1, integrator.bootstrapCount());
-    std::vector<double> weights(size_t(nBoot), 0.0);
     std::atomic<bool> bootstrapCancelled{false};
-    arena.execute([&] {
-        tbb::parallel_for(int64_t(0), nBoot, [&](int64_t i) {
-            if ((i & 1023) == 0 && options.cancel && options.cancel->load()) bootstrapCancelled = true;
-            if (bootstrapCancelled.load(std::memory_order_relaxed)) return;
-            PrimarySampleSampler sampler(bootstrapSeed(options.seed, i), pss);
-            sampler.startIteration();
-            integrator.prepareBootstrap(sampler, i);
-            ChainState& st = states.local();
-            integrator.evaluate(sampler, evaluators.local(), st);
-            weights[size_t(i)] = st.f;
+    // Independent samples first .. first + count - 1: each one's total weight and, if
+    // `parts` is given, the sum of the weights of each strategy. Blocks of samples are summed
+    // in order, so the sums do not depend on the thread count.
+    auto sampleIndependently = [&](int64_t first, int64_t count, const StrategyChoice& choice,
+                                   std::vector<double>& weight, std::vector<double>* parts) {
+        constexpr int64_t kBlock = 1024;
+        const int64_t blocks = (count + kBlock - 1) / kBlock;
+        const size_t strategies = size_t(choice.size());
+        std::vector<double> blockParts(parts ? size_t(blocks) * strategies : 0, 0.0);
+        weight.assign(size_t(count), 0.0);
+        tbb::enumerable_thread_specific<std::vector<BootstrapState>> found;
+        arena.execute([&] {
+            tbb::parallel_for(int64_t(0), blocks, [&](int64_t block) {
+                if (options.cancel && options.cancel->load()) bootstrapCancelled = true;
+                if (bootstrapCancelled.load(std::memory_order_relaxed)) return;
+                std::vector<BootstrapState>& out = found.local();
+                for (int64_t j = block * kBlock; j < std::min(count, (block + 1) * kBlock); ++j) {
+                    PrimarySampleSampler sampler(bootstrapSeed(options.seed, first + j), pss);
+                    sampler.startIteration();
+                    integrator.bootstrapSample(sampler, first + j, choice, evaluators.local(), out);
+                    double w = 0;
+                    for (const BootstrapState& st : out) {
+                        w += st.weight;
+                        if (parts && st.strategy >= 0 && size_t(st.strategy) < strategies)
+                            blockParts[size_t(block) * strategies + size_t(st.strategy)] += st.weight;
+                    }
+                    weight[size_t(j)] = w;
+                }
+            });
         });
-    });
+        if (parts) {
+            parts->assign(strategies, 0.0);
+            for (int64_t block = 0; block < blocks; ++block)
+                for (size_t k = 0; k < strategies; ++k) (*parts)[k] += blockParts[size_t(block) * strategies + k];
+        }
+    };
+    // A target that chooses among strategies first learns how often to choose each: a
+    // pilot estimates each strategy's part of b, and the choice becomes those parts mixed
+    // with the default (so that no strategy's probability is 0: every path the target can
+    // reach stays reachable by a large step). The pilot's samples are used for nothing else,
+    // so the choice does not depend on the bootstrap proper, from which b and the initial
+    // states come, and the argument against start-up bias holds as it is.
+    StrategyChoice choice = integrator.defaultChoice();
+    const std::vector<float> defaultWeights = choice.weights();
+    const int64_t nAll = std::max<int64_t>(1, integrator.bootstrapCount());
+    int64_t nPilot = 0;
+    if (!defaultWeights.empty() && mp.strategyPilot > 0) {
+        // Whole rounds of the depths (bootstrap sample i has depth i mod depths), so that
+        // the bootstrap proper keeps whole rounds too.
+        const int64_t perDepth = nAll / depths, pilotPerDepth = int64_t(double(perDepth) * mp.strategyPilot);
+        if (nAll % depths == 0 && pilotPerDepth > 0 && pilotPerDepth < perDepth) nPilot = pilotPerDepth * depths;
+    }
+    std::vector<double> weights;
+    if (nPilot > 0) {
+        std::vector<double> parts;
+        sampleIndependently(0, nPilot, choice, weights, &parts);
+        double total = 0, defaultTotal = 0;
+        for (double p : parts) total += p;
+        for (float w : defaultWeights) defaultTotal += w;
+        if (total > 0) {
+            std::vector<float> learned(parts.size());
+            for (size_t k = 0; k < parts.size(); ++k)
+                learned[k] = float((1 - kDefaultChoiceShare) * parts[k] / total +
+                                   kDefaultChoiceShare * defaultWeights[k] / defaultTotal);
+            choice = choice.withWeights(learned);
+        }
+    }
+    const int64_t nBoot = nAll - nPilot;
+    sampleIndependently(nPilot, nBoot, choice, weights, nullptr);
     std::vector<double> cumulative(weights.size());
     double sum = 0, sumSquares = 0;
     for (size_t i = 0; i < weights.size(); ++i) {
@@ -141,6 +208,10 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
         sumSquares += weights[i] * weights[i];
     }
     ms.bootstrapSamples = nBoot;
+    ms.pilotSamples = nPilot;
+    ms.depths.assign(size_t(depths), {});
+    for (int k = 0; k < choice.size(); ++k)
+        if (const int d = choice.groupOf(k); d < depths) ms.depths[size_t(d)].chosen += choice.pmf(k);
     ms.b = sum / double(nBoot);
     // b scales the whole image: its own error, which the chains' half-buffers cannot see.
     const double varianceB = std::max(0.0, sumSquares / double(nBoot) - ms.b * ms.b) / double(nBoot);
@@ -184,17 +255,36 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                 cc.acceptedAt.assign(size_t(depths), 0);
                 cc.shareAt.assign(size_t(depths), 0.0);
                 ch.rng = Rng(chainSeed(options.seed, c), 0x3c6ef372fe94f82bULL);
-                // The initial state in proportion to its bootstrap value, replayed.
+                // The initial state in proportion to its bootstrap weight: a bootstrap sample
+                // in proportion to its total, then one of its states, replayed.
                 double pick = ch.rng.uniformDouble() * sum;
                 int64_t i = std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin();
                 i = std::min<int64_t>(i, nBoot - 1);
                 while (i > 0 && weights[size_t(i)] == 0) --i;  // a rounding at the end: the last positive one
-                ch.sampler = std::make_unique<PrimarySampleSampler>(bootstrapSeed(options.seed, i), pss);
+                ch.sampler = std::make_unique<PrimarySampleSampler>(bootstrapSeed(options.seed, nPilot + i), pss);
                 ch.sampler->startIteration();
-                integrator.prepareBootstrap(*ch.sampler, i);
-                integrator.evaluate(*ch.sampler, evaluators.local(), ch.x);
+                ChainEvaluator& ev = evaluators.local();
+                std::vector<BootstrapState> found;
+                integrator.bootstrapSample(*ch.sampler, nPilot + i, choice, ev, found);
+                double w = 0;
+                for (const BootstrapState& st : found) w += st.weight;
+                pick = ch.rng.uniformDouble() * w;
+                size_t j = 0;
+                for (double below = found.empty() ? 0 : found[0].weight; j + 1 < found.size() && below <= pick;)
+                    below += found[++j].weight;
+                if (w != weights[size_t(i)] || found.empty()) {
+                    replayMismatch = true;
+                    return;
+                }
+                ch.sampler->restartStreams();
+                const double u1 = ch.rng.uniformDouble();
+                integrator.chooseStrategy(*ch.sampler, found[j].strategy, choice, u1, ch.rng.uniformDouble());
+                integrator.evaluate(*ch.sampler, choice, ev, ch.x);
                 ch.sampler->accept();
-                if (ch.x.f != weights[size_t(i)]) replayMismatch = true;
+                // The state's own evaluation may take another code path than the bootstrap's
+                // (multiplexed MLT: one strategy's subpaths, not a depth's), which the
+                // compiler may round differently (fused multiply-adds): equal to 1e-5.
+                if (!(std::abs(ch.x.f - found[j].f) <= 1e-5 * found[j].f)) replayMismatch = true;
                 ch.sampler->reseed(chainSeed(options.seed, c));
                 ch.remaining = total / chains + (c < total % chains ? 1 : 0);
             });
@@ -208,13 +298,13 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                     Chain& ch = all[size_t(c)];
                     const long long n = std::min(ch.remaining, kPass);
                     ChainEvaluator& ev = evaluators.local();
-                    ChainState& y = states.local();
+                    ChainState& y = proposals.local();
                     ChainCounts& cc = counts[size_t(c)];
                     PrimarySampleSampler& sampler = *ch.sampler;
                     for (long long k = 0; k < n; ++k) {
                         sampler.startIteration();
                         const bool large = sampler.largeStep();
-                        integrator.evaluate(sampler, ev, y);
+                        integrator.evaluate(sampler, choice, ev, y);
                         const double a = acceptanceProbability(ch.x.f, y.f);
                         if (!(y.f > 0)) ++cc.invalid;
                         // Expected values: the state with 1 - a, the proposal with a.
@@ -243,7 +333,6 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     if (replayFailed)
         throw std::logic_error(name + ": a bootstrap sample replayed with a different contribution");
 
-    ms.depths.assign(size_t(depths), {});
     for (const ChainCounts& cc : counts) {
         ms.proposedLarge += cc.proposedLarge;
         ms.acceptedLarge += cc.acceptedLarge;

@@ -22,6 +22,7 @@
 #include "mc/primary_sample_sampler.h"
 #include "transport/bdpt.h"
 #include "transport/integrator.h"
+#include "transport/mlt/strategy_choice.h"
 #include "transport/renderer.h"
 
 namespace ps {
@@ -31,6 +32,9 @@ struct MetropolisParams {
     int chains = 1000;
     double largeStepProbability = 0.3;
     double sigma = 0.01;
+    // Multiplexed MLT: the fraction of the bootstrap samples spent first on learning how
+    // often to choose each (depth, strategy) pair; 0 keeps the uniform choice.
+    double strategyPilot = 0.25;
     // For tests: also record the image of each path depth (RenderResult::depthImages).
     bool depthImages = false;
 };
@@ -40,13 +44,24 @@ struct MetropolisParams {
 struct ChainState {
     std::vector<BDPTIntegrator::PathContribution> splats;
     double f = 0;
-    int depth = -1;  // the path depth the sample chose (multiplexed MLT), else -1
+    int depth = -1;     // the path depth the sample chose (multiplexed MLT), else -1
+    int strategy = -1;  // the strategy it chose (an index of the integrator's choice), else -1
+};
+
+// One of the states a bootstrap sample stands for: the strategy it chose (-1: the target
+// chooses none), its weight (a chain starts from it in proportion; a sample's weights sum
+// to its estimate of b) and its target value.
+struct BootstrapState {
+    int strategy = -1;
+    double weight = 0, f = 0;
 };
 
 // One thread's tools for evaluating the sample a sampler holds.
 struct ChainEvaluator {
     ScratchBuffer scratch;
     PathStats stats;
+    ChainState sample;  // a bootstrap sample's own state
+    std::vector<BDPTIntegrator::PathContribution> contributions;
 };
 
 class MetropolisIntegrator : public Integrator {
@@ -56,15 +71,29 @@ public:
     Spectrum Li(const Ray& ray, SampleContext& ctx) const final;
     bool splats() const final { return true; }
     virtual const char* name() const = 0;
-    // The sample the sampler holds (its iteration started): splats and target value.
-    virtual void evaluate(PrimarySampleSampler& sampler, ChainEvaluator& ev, ChainState& out) const = 0;
+    // The sample the sampler holds (its iteration started): splats and target value. A
+    // target that chooses among strategies chooses with the probabilities of `choice`.
+    virtual void evaluate(PrimarySampleSampler& sampler, const StrategyChoice& choice, ChainEvaluator& ev,
+                          ChainState& out) const = 0;
+    // The target's discrete choice among strategies with its default probabilities, which
+    // the driver may replace by learned ones (its groups are the path depths); empty if the
+    // target makes no such choice.
+    virtual StrategyChoice defaultChoice() const { return {}; }
     // Dimension streams the target reads.
     virtual int streamCount() const { return BDPTIntegrator::kStreamCount; }
-    // Bootstrap samples for the parameter's count (multiplexed MLT: per path depth).
+    // Bootstrap samples for the parameter's count (multiplexed MLT: per path depth; the
+    // pilot that learns the strategy choice included).
     virtual int64_t bootstrapCount() const { return params_.bootstrapSamples; }
-    // Called before bootstrap sample i is evaluated, and again before it is replayed: may
-    // stratify its first values over the bootstrap (sample i of bootstrapCount()).
-    virtual void prepareBootstrap(PrimarySampleSampler&, int64_t) const {}
+    // Bootstrap sample i of bootstrapCount() (the sampler's first iteration under way): the
+    // states with positive weight it stands for. By default the sample itself, weighted by
+    // its target value. A chain started from one of them replays this call, then
+    // chooseStrategy and evaluate in the same iteration.
+    virtual void bootstrapSample(PrimarySampleSampler& sampler, int64_t i, const StrategyChoice& choice,
+                                 ChainEvaluator& ev, std::vector<BootstrapState>& out) const;
+    // Places the values that make evaluate choose `strategy`: at (u1, u2) in [0,1)^2 within
+    // their intervals of `choice`.
+    virtual void chooseStrategy(PrimarySampleSampler&, int /*strategy*/, const StrategyChoice&, double /*u1*/,
+                                double /*u2*/) const {}
     // Whether the chain itself chooses a path depth (per-depth acceptance statistics).
     virtual bool choosesDepth() const { return false; }
 

@@ -1,40 +1,77 @@
 #include "transport/mlt/mmlt.h"
 
-#include <algorithm>
 #include <cmath>
 
 namespace ps {
+
+namespace {
+// Depth 0 (an emitter seen directly) has one strategy, the camera ray finding it (its BDPT
+// weight is 1); depth d > 0 has d + 2 (s = 0 .. d + 1).
+int strategiesOfDepth(int depth) { return depth == 0 ? 1 : depth + 2; }
+}  // namespace
 
 MMLTIntegrator::MMLTIntegrator(const Scene& scene, int maxDepth, const MetropolisParams& params,
                                MisHeuristic heuristic)
     : MetropolisIntegrator(scene, maxDepth, params, heuristic) {
     // The chain chooses each subpath's length: roulette would only add zeros to the target.
     bdpt_.setRoulette(false);
+    for (int d = 0; d <= this->maxDepth(); ++d) {
+        firstOfDepth_.push_back(int(strategies_.size()));
+        for (int s = 0; s < strategiesOfDepth(d); ++s) strategies_.emplace_back(d, s);
+    }
 }
 
-void MMLTIntegrator::prepareBootstrap(PrimarySampleSampler& sampler, int64_t i) const {
+StrategyChoice MMLTIntegrator::defaultChoice() const {
+    std::vector<float> w;
+    for (const auto& [d, s] : strategies_) w.push_back(1.0f / float(strategiesOfDepth(d)));
+    return {w, firstOfDepth_};
+}
+
+void MMLTIntegrator::bootstrapSample(PrimarySampleSampler& sampler, int64_t i, const StrategyChoice& choice,
+                                     ChainEvaluator& ev, std::vector<BootstrapState>& out) const {
+    out.clear();
     const int depths = maxDepth() + 1;
-    sampler.stratify(kStrategyStream, 0, int(i % depths), depths);
+    const int depth = int(i % depths);
+    CameraSample cs = filmSample(sampler);
+    Ray ray = scene_.camera().generateRay(cs);
+    bdpt_.contributions(ray, cs.pFilm, sampler, ev.scratch, ev.stats, ev.contributions, depth);
+    ev.scratch.reset();
+    for (BDPTIntegrator::PathContribution& c : ev.contributions) {
+        const int k = firstOfDepth_[size_t(depth)] + c.s;
+        const double weight = double(depths) * c.L.luminance();
+        c.L /= choice.pmf(k);  // as evaluate scales it
+        const double f = c.L.luminance();
+        if (std::isfinite(weight) && weight > 0 && std::isfinite(f) && f > 0) out.push_back({k, weight, f});
+    }
 }
 
-void MMLTIntegrator::evaluate(PrimarySampleSampler& sampler, ChainEvaluator& ev, ChainState& out) const {
+void MMLTIntegrator::chooseStrategy(PrimarySampleSampler& sampler, int strategy, const StrategyChoice& choice,
+                                    double u1, double u2) const {
+    if (strategy < 0 || strategy >= choice.size()) return;
+    double v1, v2;
+    choice.place(strategy, u1, u2, v1, v2);
+    sampler.set(kStrategyStream, 0, v1);
+    sampler.set(kStrategyStream, 1, v2);
+}
+
+void MMLTIntegrator::evaluate(PrimarySampleSampler& sampler, const StrategyChoice& choice, ChainEvaluator& ev,
+                              ChainState& out) const {
     out.splats.clear();
     out.f = 0;
     sampler.startStream(kStrategyStream);
-    const int depths = maxDepth() + 1;
-    const int depth = std::min(int(sampler.get1D() * float(depths)), depths - 1);
-    // Depth 0 (an emitter seen directly) has one strategy: the camera ray finds it (its
-    // BDPT weight is 1).
-    const int strategies = depth == 0 ? 1 : depth + 2;
-    const int s = depth == 0 ? 0 : std::min(int(sampler.get1D() * float(strategies)), strategies - 1);
+    float pmf = 0;
+    const float u1 = sampler.get1D();
+    const int k = choice.sample(u1, sampler.get1D(), &pmf);
+    const auto [depth, s] = strategies_[size_t(k)];
     const int t = depth + 2 - s;
     out.depth = depth;
+    out.strategy = k;
 
     CameraSample cs = filmSample(sampler);
     Ray ray = scene_.camera().generateRay(cs);
     BDPTIntegrator::PathContribution c;
-    if (bdpt_.strategyContribution(ray, cs.pFilm, s, t, sampler, ev.scratch, ev.stats, c)) {
-        c.L *= float(strategies) * float(depths);
+    if (pmf > 0 && bdpt_.strategyContribution(ray, cs.pFilm, s, t, sampler, ev.scratch, ev.stats, c)) {
+        c.L /= pmf;
         double f = c.L.luminance();
         if (std::isfinite(f) && f > 0) {
             out.f = f;

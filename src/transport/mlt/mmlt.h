@@ -1,17 +1,25 @@
 // Multiplexed Metropolis light transport (Hachisuka et al. 2014) over BDPT: the chain's
 // state also chooses the path depth and one (s, t) strategy of that depth, and the target
-// is the luminance of that strategy's MIS-weighted contribution times the number of ways
-// to choose it (strategies of its depth times depths). A sample then costs one connection
-// and subpaths of exactly the lengths it needs, and the chain spends its time on the
-// strategies that carry the light.
+// is the luminance of that strategy's MIS-weighted contribution divided by the probability
+// of choosing it. A sample then costs one connection and subpaths of exactly the lengths
+// it needs, and the chain spends its time on the strategies that carry the light.
 //
-// The depth is a coordinate of the chain (its own dimension, perturbed by small steps and
+// The depth is a coordinate of the chain (part of the choice, perturbed by small steps and
 // redrawn by large ones), not fixed per chain: the chains move between depths, so each
 // depth's share of the image converges to its true value as the render goes on, whatever
 // the bootstrap estimated. Fixing the depth per chain instead freezes each depth's share
 // at the bootstrap's estimate (the chains are split between depths once), a bias in the
 // image's balance that no number of mutations removes.
+//
+// How often the choice picks each (depth, s) pair does not change what the chain converges
+// to (the target's marginal over the pairs is each pair's share of the image, whatever the
+// probabilities), only how well large steps and the bootstrap sample it: the driver learns
+// probabilities close to those shares from a pilot (renderMetropolis), where the default
+// (each depth equally, then each of its strategies equally) wastes most large steps on
+// depths and strategies that carry almost nothing.
 #pragma once
+#include <utility>
+#include <vector>
 #include "transport/mlt/metropolis.h"
 
 namespace ps {
@@ -21,17 +29,31 @@ public:
     MMLTIntegrator(const Scene& scene, int maxDepth, const MetropolisParams& params = {},
                    MisHeuristic heuristic = MisHeuristic::Power);
     const char* name() const override { return "mmlt"; }
-    void evaluate(PrimarySampleSampler& sampler, ChainEvaluator& ev, ChainState& out) const override;
+    void evaluate(PrimarySampleSampler& sampler, const StrategyChoice& choice, ChainEvaluator& ev,
+                  ChainState& out) const override;
+    // Each depth equally, then each strategy of that depth equally.
+    StrategyChoice defaultChoice() const override;
+    // The (depth, s) pair of each strategy index, depth-major.
+    const std::vector<std::pair<int, int>>& strategies() const { return strategies_; }
     // The depth and strategy are drawn from a stream of their own.
     static constexpr int kStrategyStream = BDPTIntegrator::kStreamCount;
     int streamCount() const override { return BDPTIntegrator::kStreamCount + 1; }
     // As the bootstrap of a chain per depth would: the parameter's count per depth.
     int64_t bootstrapCount() const override { return int64_t(params_.bootstrapSamples) * (maxDepth() + 1); }
     bool choosesDepth() const override { return true; }
-    // The bootstrap takes each depth equally often (sample i has depth i mod depths), as
-    // many samples per depth as the parameter says: b's error then has no part from the
-    // random choice of depths, whose images differ by orders of magnitude.
-    void prepareBootstrap(PrimarySampleSampler& sampler, int64_t i) const override;
+    // Bootstrap sample i takes depth i mod depths (each depth equally often) and stands for
+    // every strategy of that depth, from one camera and one light subpath just long enough:
+    // b's estimate is then BDPT's for that depth, not one strategy's, and has no part from
+    // a random choice of depths, whose images differ by orders of magnitude. Each state is
+    // weighted by its luminance times depths, whatever the choice's probabilities.
+    void bootstrapSample(PrimarySampleSampler& sampler, int64_t i, const StrategyChoice& choice, ChainEvaluator& ev,
+                         std::vector<BootstrapState>& out) const override;
+    void chooseStrategy(PrimarySampleSampler& sampler, int strategy, const StrategyChoice& choice, double u1,
+                        double u2) const override;
+
+private:
+    std::vector<std::pair<int, int>> strategies_;
+    std::vector<int> firstOfDepth_;  // the index of (depth, s = 0)
 };
 
 }  // namespace ps

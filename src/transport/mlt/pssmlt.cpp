@@ -5,7 +5,8 @@
 namespace ps {
 
 // The target is the luminance of the sum of every strategy's contribution.
-void PSSMLTIntegrator::evaluate(PrimarySampleSampler& sampler, ChainEvaluator& ev, ChainState& out) const {
+void PSSMLTIntegrator::evaluate(PrimarySampleSampler& sampler, const StrategyChoice&, ChainEvaluator& ev,
+                                ChainState& out) const {
     CameraSample cs = filmSample(sampler);
     Ray ray = scene_.camera().generateRay(cs);
     bdpt_.contributions(ray, cs.pFilm, sampler, ev.scratch, ev.stats, out.splats);

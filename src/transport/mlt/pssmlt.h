@@ -13,7 +13,8 @@ public:
                      MisHeuristic heuristic = MisHeuristic::Power)
         : MetropolisIntegrator(scene, maxDepth, params, heuristic) {}
     const char* name() const override { return "pssmlt"; }
-    void evaluate(PrimarySampleSampler& sampler, ChainEvaluator& ev, ChainState& out) const override;
+    void evaluate(PrimarySampleSampler& sampler, const StrategyChoice& choice, ChainEvaluator& ev,
+                  ChainState& out) const override;
 };
 
 }  // namespace ps
