@@ -196,22 +196,22 @@ RTCGeometry Curve::buildGeometry(RTCDevice device) const {
         rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, cpNormal_.data(), 0,
                                    3 * sizeof(float), nVertices);
     if (type_ == CurveType::Flat) rtcSetGeometryTessellationRate(g, float(tessellationRate()));
-    installHitFilter(g);  // always: see isSelfHit
+    if (type_ == CurveType::Flat)
+        installHitFilter(g);  // self hits, see isSelfHit
+    else
+        installAlphaFilter(g);
     rtcCommitGeometry(g);
     return g;
 }
 
-// A ray leaving a curve must not find the same curve where it starts. Flat curves turn to
-// face every ray, so a ray starting on one finds it again near its origin (anywhere along the
-// curve where the ray passes within the radius of the centre line: a ray leaving at a grazing
-// angle does so far from its origin), and ribbons and tubes are found again within Embree's
-// tolerance; the offset of spawned rays is far smaller than a hair's width. So a segment's
-// hits are rejected when the ray starts on that segment: within the radius of its centre line
-// for the zero-thickness flat curves and ribbons; at the radius, heading outwards, for a tube
-// (rays refracted into a tube still find its far wall). Like a tube, a flat curve or a ribbon
-// that curls back within one segment does not shadow itself.
-bool Curve::isSelfHit(Vec3 o, Vec3 d, float t, int seg, float u) const {
-    (void)t;
+// A ray leaving a flat curve must not find it again where it starts: the curve turns to face
+// every ray, so a ray starting on it (spawned a hair's breadth off it) can pass within the
+// radius of the centre line near its own origin, or further along when it leaves at a grazing
+// angle (measured: 0.5% of the rays leaving a straight flat curve without this test; ribbons
+// and tubes, real surfaces, are not found again). So a flat segment's hits are rejected when
+// the ray starts within the radius of its centre line; like a tube, a flat curve that curls
+// back within one segment does not shadow itself.
+bool Curve::isSelfHit(Vec3 o, int seg, float u) const {
     const float* q = &cp_[16 * size_t(seg)];
     const float tolAbs = 4e-5f * (1 + std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z)}));
     float reach = std::max(std::max(q[3], q[7]), std::max(q[11], q[15])) * 1.01f + tolAbs;
@@ -229,14 +229,11 @@ bool Curve::isSelfHit(Vec3 o, Vec3 d, float t, int seg, float u) const {
         uo = clampf(uo - dot(c - o, dcdu) / h, 0, 1);
         c = centre(seg, uo, &dcdu, &r);
     }
-    Vec3 off = o - c;
-    const float dist = length(off), tol = 0.01f * r + tolAbs;
-    if (type_ != CurveType::Cylinder) return dist <= r + tol;
-    return std::fabs(dist - r) <= tol && dot(off, d) >= 0;
+    return length(o - c) <= r * 1.01f + tolAbs;
 }
 
 bool Curve::acceptsHit(const Ray& r, float t, int embreePrim, float u, float v) const {
-    return !isSelfHit(r.o, r.d, t, embreePrim, u) && keepsHit(r, t, embreePrim, u, v);
+    return !(type_ == CurveType::Flat && isSelfHit(r.o, embreePrim, u)) && keepsHit(r, t, embreePrim, u, v);
 }
 
 // pbrt-v4's hit data: u along the segment; v across it from 0 to 1, increasing towards

@@ -53,9 +53,7 @@ public:
     // Never called: area lights on curves are rejected when the scene is built.
     ShapeSample sampleArea(int prim, Vec2 u) const override;
 
-    // Hits Embree reports that belong to the surface the ray starts on (see curve.cpp).
-    bool isSelfHit(Vec3 o, Vec3 d, float t, int seg, float u) const;
-    // Embree's filters reject self hits and cut-outs.
+    // Embree's filters reject cut-outs and, on flat curves, hits on the curve the ray starts on.
     bool acceptsHit(const Ray& r, float t, int embreePrim, float u, float v) const override;
     CurveType type() const { return type_; }
 
@@ -64,6 +62,8 @@ private:
     Vec3 centre(int seg, float u, Vec3* dcdu, float* radius) const;
     Vec3 ribbonNormal(int seg, float u) const;  // pbrt-v4's spherical interpolation of the end normals
     int tessellationRate() const;
+    // Whether a ray from o starts on flat segment seg that Embree reports hit at u (curve.cpp).
+    bool isSelfHit(Vec3 o, int seg, float u) const;
 
     CurveType type_;
     bool flip_;                   // ReverseOrientation XOR the transform swaps handedness

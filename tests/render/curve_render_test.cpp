@@ -56,7 +56,7 @@ TEST(CurveRender, BlackCurvesHideTheFractionTheyCover) {
             Material "diffuse" "rgb reflectance" [ 0 0 0 ]
         )";
         for (int i = 0; i < n; ++i) scene += verticalCurve(type, -1 + (i + 0.5f) * pixel, 0.4f * pixel);
-        RenderResult r = renderString(scene, 64);
+        RenderResult r = renderString(scene, 256);
         expectMean(wholeImage(r.image), 0.6, std::string(type));
     }
 }
