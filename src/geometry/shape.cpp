@@ -8,7 +8,7 @@ namespace {
 // Embree calls this for each candidate hit before accepting it; clearing valid rejects it and
 // traversal goes on. The ray is in the geometry's space (an instance's, inside instances) and
 // its tfar is the candidate's distance.
-void alphaFilter(const RTCFilterFunctionNArguments* args) {
+void hitFilter(const RTCFilterFunctionNArguments* args) {
     auto* shape = static_cast<const Shape*>(args->geometryUserPtr);
     const unsigned n = args->N;
     for (unsigned i = 0; i < n; ++i) {
@@ -16,7 +16,7 @@ void alphaFilter(const RTCFilterFunctionNArguments* args) {
         Ray r{{RTCRayN_org_x(args->ray, n, i), RTCRayN_org_y(args->ray, n, i), RTCRayN_org_z(args->ray, n, i)},
               {RTCRayN_dir_x(args->ray, n, i), RTCRayN_dir_y(args->ray, n, i), RTCRayN_dir_z(args->ray, n, i)}};
         float t = RTCRayN_tfar(args->ray, n, i);
-        if (!shape->keepsHit(r, t, int(RTCHitN_primID(args->hit, n, i)), RTCHitN_u(args->hit, n, i),
+        if (!shape->acceptsHit(r, t, int(RTCHitN_primID(args->hit, n, i)), RTCHitN_u(args->hit, n, i),
                              RTCHitN_v(args->hit, n, i)))
             args->valid[i] = 0;
     }
@@ -24,10 +24,13 @@ void alphaFilter(const RTCFilterFunctionNArguments* args) {
 }  // namespace
 
 void Shape::installAlphaFilter(RTCGeometry g) const {
-    if (!alpha) return;
+    if (alpha) installHitFilter(g);
+}
+
+void Shape::installHitFilter(RTCGeometry g) const {
     rtcSetGeometryUserData(g, const_cast<Shape*>(this));
-    rtcSetGeometryIntersectFilterFunction(g, alphaFilter);
-    rtcSetGeometryOccludedFilterFunction(g, alphaFilter);
+    rtcSetGeometryIntersectFilterFunction(g, hitFilter);
+    rtcSetGeometryOccludedFilterFunction(g, hitFilter);
 }
 
 std::optional<ShapeSample> Shape::sampleToward(int prim, Vec3 ref, Vec2 u) const {

@@ -59,10 +59,18 @@ public:
     std::vector<const Light*> areaLights;
 
 protected:
-    // For Embree's own primitives (triangles, quads): with alpha, installs intersection and
-    // occlusion filters that apply keepsHit, so closest hits and shadow rays (also inside
+    // For Embree's own primitives (triangles, quads, curves): with alpha, installs intersection
+    // and occlusion filters that apply acceptsHit, so closest hits and shadow rays (also inside
     // instances) skip cut-out hits. Without alpha it installs nothing.
     void installAlphaFilter(RTCGeometry g) const;
+    // Installs those filters unconditionally (a shape that rejects hits for other reasons).
+    void installHitFilter(RTCGeometry g) const;
+
+public:
+    // What the filters ask of each candidate hit: by default the alpha test.
+    virtual bool acceptsHit(const Ray& r, float t, int embreePrim, float u, float v) const {
+        return keepsHit(r, t, embreePrim, u, v);
+    }
 };
 
 }  // namespace ps

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "geometry/alpha_mask.h"
+#include "geometry/curve.h"
 #include "geometry/loop_subdivision.h"
 #include "geometry/quadric.h"
 #include "geometry/triangle_mesh.h"
@@ -149,6 +150,56 @@ std::unique_ptr<Shape> createLoopSubdiv(const ShapeEntity& e, const Transform& t
     }
 }
 
+// pbrt-v4's "curve": what pbrt-v4 reports as an error and then skips is a warning here and
+// the curve is ignored, as there; an area light on a curve is an error (pbrt-v4 cannot
+// sample points on curves and stops when it tries).
+std::unique_ptr<Shape> createCurve(const ShapeEntity& e, const Transform& toScene) {
+    const ParamSet& ps = e.params;
+    CurveInput in;
+    in.P = ps.getPoint3s("P");
+    in.N = ps.getNormals("N");
+    in.degree = ps.getInt("degree", 3);
+    const float width = ps.getFloat("width", 1);
+    in.width0 = ps.getFloat("width0", width);
+    in.width1 = ps.getFloat("width1", width);
+    const std::string basis = ps.getString("basis", "bezier");
+    const std::string type = ps.getString("type", "flat");
+    ps.getInt("splitdepth", 3);  // pbrt-v4 splits segments for its own intersector; Embree needs no split
+    if (e.areaLight >= 0)
+        throw InputError(e.loc, "curve: area lights on curves are not supported (pbrt-v4 cannot sample them either)");
+    if (type == "flat") {
+        in.type = CurveType::Flat;
+    } else if (type == "ribbon") {
+        in.type = CurveType::Ribbon;
+    } else if (type == "cylinder") {
+        in.type = CurveType::Cylinder;
+    } else {
+        warning(e.loc, "curve: unknown \"type\" " + quoteForMessage(type) + "; using \"cylinder\"");
+        in.type = CurveType::Cylinder;
+    }
+    if (basis != "bezier" && basis != "bspline") {
+        warning(e.loc, "curve: invalid \"basis\" " + quoteForMessage(basis) +
+                           ": only \"bezier\" and \"bspline\" are supported; the curve is ignored");
+        return nullptr;
+    }
+    in.bspline = basis == "bspline";
+    if (!in.N.empty() && in.type != CurveType::Ribbon) {
+        warning(e.loc, "curve: normals \"N\" are only used by \"ribbon\" curves; ignored");
+        in.N.clear();
+    }
+    if (in.width0 < 0 || in.width1 < 0) {
+        warning(e.loc, "curve: negative width; the curve is ignored");
+        return nullptr;
+    }
+    CurveSegments segments;
+    std::string err = makeSegments(in, segments);
+    if (!err.empty()) {
+        warning(e.loc, "curve: " + err + "; the curve is ignored");
+        return nullptr;
+    }
+    return std::make_unique<Curve>(segments, in.type, toScene, e.reverseOrientation);
+}
+
 // "float alpha" or "texture alpha"; null (opaque, no filter) for a constant alpha >= 1, the default.
 // A "constant" texture is a constant alpha, as pbrt-v4 takes it: constant 0 is an invisible
 // shape and, on an emitter, pbrt-v4's invisible light.
@@ -192,6 +243,9 @@ std::unique_ptr<Shape> createShape(const ShapeEntity& e, const Transform& toScen
         if (!(r > 0)) throw InputError(e.loc, "cylinder: \"radius\" must be positive");
         shape = std::make_unique<Cylinder>(toScene, e.reverseOrientation, r, ps.getFloat("zmin", -1), ps.getFloat("zmax", 1),
                                            ps.getFloat("phimax", 360));
+    } else if (e.type == "curve") {
+        shape = createCurve(e, toScene);
+        if (!shape) return nullptr;
     } else {
         warning(e.loc, "Shape \"" + e.type + "\" is not supported; it is ignored");
         return nullptr;
