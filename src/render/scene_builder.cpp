@@ -109,6 +109,7 @@ void SceneBuilder::addAreaLights(const ShapeEntity& e, Shape& shape) {
     ps.reportUnused("AreaLightSource \"diffuse\"");
     // pbrt-v4 divides "power" by the image's mean luminance (a uniform L keeps its RGB factor).
     float powerDivisor = image ? image->meanLuminance() : 1.0f;
+    shape.emissionNeedsUV = image != nullptr;
     shape.prepareSampling();
     int n = shape.primitiveCount();
     shape.areaLights.resize(n);
