@@ -12,12 +12,8 @@ namespace ps {
 class LightDirections {
 public:
     explicit LightDirections(const Transform& worldFromLight)
-        : worldFromLight_(worldFromLight), lightFromWorld_(worldFromLight.inverse()) {
-        const auto& a = worldFromLight.matrix().m;
-        absDet_ = std::fabs(a[0][0] * (double(a[1][1]) * a[2][2] - double(a[1][2]) * a[2][1]) -
-                            a[0][1] * (double(a[1][0]) * a[2][2] - double(a[1][2]) * a[2][0]) +
-                            a[0][2] * (double(a[1][0]) * a[2][1] - double(a[1][1]) * a[2][0]));
-    }
+        : worldFromLight_(worldFromLight), lightFromWorld_(worldFromLight.inverse()),
+          absDet_(std::fabs(worldFromLight.linearDeterminant())) {}
     Vec3 position() const { return worldFromLight_.point({0, 0, 0}); }
     // Unit light-space direction of unit world direction w, and back.
     Vec3 toLight(Vec3 w) const { return normalize(lightFromWorld_.vector(w)); }
