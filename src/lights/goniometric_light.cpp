@@ -29,13 +29,7 @@ Spectrum GoniometricLight::intensityLight(Vec3 wLight) const {
 }
 
 std::optional<LightLiSample> GoniometricLight::sampleLi(const LightSampleContext& ctx, Vec2) const {
-    Vec3 d = pos_ - ctx.p;
-    float d2 = lengthSquared(d);
-    if (!(d2 > 0)) return std::nullopt;
-    Vec3 wi = d / std::sqrt(d2);
-    Spectrum I = intensity(-wi);
-    if (I.isBlack()) return std::nullopt;
-    return LightLiSample{I / d2, wi, 1.0f, pos_, {}};
+    return pointLightLi(pos_, ctx, [&](Vec3 w) { return intensity(w); });
 }
 
 std::optional<LightLeSample> GoniometricLight::sampleLe(Vec2, Vec2 uDir) const {

@@ -60,13 +60,7 @@ Spectrum ProjectionLight::intensityLight(Vec3 wl) const {
 }
 
 std::optional<LightLiSample> ProjectionLight::sampleLi(const LightSampleContext& ctx, Vec2) const {
-    Vec3 d = pos_ - ctx.p;
-    float d2 = lengthSquared(d);
-    if (!(d2 > 0)) return std::nullopt;
-    Vec3 wi = d / std::sqrt(d2);
-    Spectrum I = intensity(-wi);
-    if (I.isBlack()) return std::nullopt;
-    return LightLiSample{I / d2, wi, 1.0f, pos_, {}};
+    return pointLightLi(pos_, ctx, [&](Vec3 w) { return intensity(w); });
 }
 
 // A texel by the distribution, a uniform point in it, the direction through that point:
