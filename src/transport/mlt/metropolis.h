@@ -3,10 +3,11 @@
 //
 // A chain is not a per-camera-ray estimate, so these integrators have their own driver,
 // renderMetropolis, which render() hands them to:
-//  - bootstrap: N independent samples estimate b, the integral of the target over primary
-//    sample space, and the chains' initial states are drawn from them in proportion to
-//    their target values (no start-up bias, thesis ch. 11); each drawn state is replayed and
-//    must reproduce its bootstrap value bit for bit;
+//  - bootstrap (bootstrap.h): N independent samples estimate b, the integral of the target
+//    over primary sample space, and the chains' initial states are drawn from them in
+//    proportion to their weights (no start-up bias, thesis ch. 11); each drawn sample is
+//    replayed and must reproduce its weights bit for bit, and the state drawn from it its
+//    target value (to 1e-5 where the state's own evaluation takes another code path);
 //  - expected values: every iteration splats the current state with weight 1 - a and the
 //    proposal with weight a, each contribution divided by its sample's target value;
 //  - the image is scaled by b / (mutations made per film pixel), so an interrupted render

@@ -14,7 +14,7 @@
 // How often the choice picks each (depth, s) pair does not change what the chain converges
 // to (the target's marginal over the pairs is each pair's share of the image, whatever the
 // probabilities), only how well large steps and the bootstrap sample it: the driver learns
-// probabilities close to those shares from a pilot (renderMetropolis), where the default
+// probabilities close to those shares from a pilot (bootstrap.h), where the default
 // (each depth equally, then each of its strategies equally) wastes most large steps on
 // depths and strategies that carry almost nothing.
 #pragma once
