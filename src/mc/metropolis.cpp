@@ -11,6 +11,18 @@ double standardNormal(Rng& rng) {
     return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * rng.uniformDouble());
 }
 
+double NormalPairs::next(Rng& rng) {
+    if (haveSpare_) {
+        haveSpare_ = false;
+        return spare_;
+    }
+    const double r = std::sqrt(-2.0 * std::log(1.0 - rng.uniformDouble()));
+    const double phi = 2.0 * std::numbers::pi * rng.uniformDouble();
+    spare_ = r * std::sin(phi);
+    haveSpare_ = true;
+    return r * std::cos(phi);
+}
+
 void RandomWalkProposal::propose(std::span<const double> x, std::span<double> y, Rng& rng) {
     for (size_t d = 0; d < x.size(); ++d) {
         double v = x[d] + sigma_ * standardNormal(rng);

@@ -70,4 +70,17 @@ MetropolisChain runMetropolis(const std::function<double(std::span<const double>
 // A standard normal deviate (Box-Muller), for random-walk steps.
 double standardNormal(Rng& rng);
 
+// Standard normal deviates two at a time: Box-Muller gives an independent pair for one
+// logarithm and one sine-cosine, half standardNormal's cost per deviate (the small steps of
+// primary-sample-space Metropolis draw one per value read).
+class NormalPairs {
+public:
+    double next(Rng& rng);
+    void reset() { haveSpare_ = false; }
+
+private:
+    double spare_ = 0;
+    bool haveSpare_ = false;
+};
+
 }  // namespace ps

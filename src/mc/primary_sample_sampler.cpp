@@ -15,7 +15,10 @@ PrimarySampleSampler::PrimarySampleSampler(uint64_t chainSeed, const PrimarySamp
     reseed(chainSeed);
 }
 
-void PrimarySampleSampler::reseed(uint64_t chainSeed) { rng_.seed(mix64(chainSeed), chainSeed ^ 0x2545f4914f6cdd1dULL); }
+void PrimarySampleSampler::reseed(uint64_t chainSeed) {
+    rng_.seed(mix64(chainSeed), chainSeed ^ 0x2545f4914f6cdd1dULL);
+    normals_.reset();
+}
 
 void PrimarySampleSampler::restartStreams() {
     stream_ = 0;
@@ -50,7 +53,7 @@ void PrimarySampleSampler::reject() {
 
 // A small step of n iterations at once: a normal deviate of sigma * sqrt(n), wrapped.
 double PrimarySampleSampler::small(double v, int64_t steps) {
-    v += params_.sigma * std::sqrt(double(steps)) * standardNormal(rng_);
+    v += params_.sigma * std::sqrt(double(steps)) * normals_.next(rng_);
     v -= std::floor(v);
     return v < 1.0 ? v : 0.0;  // v just below 0 can round up to 1
 }

@@ -19,6 +19,7 @@
 #include <memory>
 #include <vector>
 
+#include "mc/metropolis.h"
 #include "mc/rng.h"
 #include "mc/sampler.h"
 
@@ -86,6 +87,7 @@ private:
 
     PrimarySampleParams params_;
     Rng rng_;
+    NormalPairs normals_;
     std::vector<std::vector<Value>> streams_;  // per stream, its values by index
     int64_t iteration_ = 0;        // the proposal's iteration number (accepted ones + 1)
     int64_t lastLargeStep_ = 0;    // iteration of the last accepted large step

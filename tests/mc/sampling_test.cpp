@@ -1,4 +1,5 @@
-// Sampling random variables: rejection sampling, Metropolis-Hastings, autocorrelation.
+// Sampling random variables: rejection sampling, Metropolis-Hastings, normal deviates,
+// autocorrelation.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -126,6 +127,28 @@ TEST(Metropolis, IndependenceProposalNeedsItsTransitionRatio) {
     MetropolisChain bad = runMetropolis(f, wrong, start, 100000, 100, rng);
     std::vector<double> ys = bad.coordinate(0);
     EXPECT_GT(ksDistance(ys, [](double v) { return v * v * v; }), ksCritical(integratedAutocorrelation(ys).ess));
+}
+
+// Box-Muller's pairs: each deviate standard normal (KS, both members of the pairs apart)
+// and the two members of a pair uncorrelated (|r| < 4 / sqrt(n)).
+TEST(NormalPairs, DeviatesAreStandardNormalAndThePairsIndependent) {
+    Rng rng(7, 11);
+    NormalPairs normals;
+    const int n = 100000;
+    std::vector<double> first(n), second(n);
+    double sxy = 0;
+    for (int i = 0; i < n; ++i) {
+        first[size_t(i)] = normals.next(rng);
+        second[size_t(i)] = normals.next(rng);
+        sxy += first[size_t(i)] * second[size_t(i)];
+    }
+    auto phi = [](double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); };
+    const double d1 = ksDistance(first, phi), d2 = ksDistance(second, phi), r = sxy / n;
+    std::printf("KS %.4f and %.4f (critical %.4f); correlation within pairs %.4f (bound %.4f)\n", d1, d2,
+                ksCritical(n), r, 4 / std::sqrt(double(n)));
+    EXPECT_LT(d1, ksCritical(n));
+    EXPECT_LT(d2, ksCritical(n));
+    EXPECT_LT(std::abs(r), 4 / std::sqrt(double(n)));
 }
 
 TEST(Autocorrelation, MatchesAnAr1ProcessAndIndependentSamples) {
