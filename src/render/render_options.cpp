@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "render/scene_builder.h"
+#include "scene/color_space.h"
 
 namespace ps {
 
@@ -126,6 +127,8 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
     s.filmLoc = desc.film.loc;
     s.outputFile = film.getString("filename", "pbrt.exr");
     scene.setPixelBounds(computeBounds(film, desc.film.loc, xRes, yRes));
+    if (film.colorSpace && film.colorSpace != &srgbColorSpace())
+        s.outputColorMatrix = outputFromRenderingSpace(*film.colorSpace);
     float iso = film.getFloat("iso", 100);
     s.imagingRatio = iso / 100;
     film.getBool("savefp16", true);  // we always write float32 EXR

@@ -1,6 +1,8 @@
 // The renderable scene: Embree BVH over shapes and instances, materials, lights with a
 // power-proportional light chooser, the camera and the render settings from the file.
 #pragma once
+#include <optional>
+#include <array>
 #include <embree3/rtcore.h>
 #include <limits>
 #include <memory>
@@ -35,6 +37,9 @@ struct RenderSettings {
     float mltSigma = 0.01f;                // "sigma"
     float mltStrategyPilot = 0.1f;         // mmlt: the bootstrap's share spent on its pilot
     SourceLoc filmLoc;       // the Film directive, for errors found when the film is made
+    // The film's ColorSpace, when not sRGB: the image's RGB from the rendering space's
+    // (row-major). The variance image stays the rendering space's luminance variance.
+    std::optional<std::array<float, 9>> outputColorMatrix;
 };
 
 class Scene {

@@ -1,4 +1,5 @@
 #include "scene/directives.h"
+#include "scene/color_space.h"
 
 #include <algorithm>
 #include <cctype>
@@ -181,8 +182,12 @@ void DescriptionBuilder::worldBegin(const Token& d) {
 // ---- anywhere ----
 
 void DescriptionBuilder::colorSpace(const Token& d, const std::string& name) {
-    if (toLower(name) != "srgb")
-        warning(d.loc(), "ColorSpace " + quote(name) + " is not supported; RGB values are interpreted as sRGB");
+    // pbrt-v4 reports an unknown space and keeps the current one.
+    if (const RGBColorSpace* s = namedColorSpace(name))
+        gs_.colorSpace = s;
+    else
+        warning(d.loc(), "ColorSpace " + quote(name) +
+                             " is unknown (srgb, rec2020, dci-p3, aces2065-1); the current colour space stays");
 }
 
 void DescriptionBuilder::option(const Token& d, const std::string& name, const Token& value) {

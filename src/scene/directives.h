@@ -43,6 +43,8 @@ public:
 
     // Anywhere.
     void colorSpace(const Token& d, const std::string& name);
+    // The colour space of RGB values written here.
+    const RGBColorSpace* currentColorSpace() const { return gs_.colorSpace; }
     void option(const Token& d, const std::string& name, const Token& value);
     void attribute(const Token& d, const std::string& target, ParamSet ps);
     void makeNamedMedium(const Token& d, const std::string& name, ParamSet ps);

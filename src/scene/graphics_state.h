@@ -25,6 +25,8 @@ struct GraphicsState {
     // The directive (and where) that made the CTM singular or non-finite, for the error if
     // a shape is then placed under it.
     std::string singularSince;
+    // The ColorSpace directive's space for RGB values parsed from here on (null: sRGB).
+    const RGBColorSpace* colorSpace = nullptr;
 
     // Attribute defaults per target, shared between copies so that AttributeBegin is O(1)
     // however long the lists are; copied on write.

@@ -2,6 +2,7 @@
 // name and type; a parameter of another type is left unused (and reported later), while a
 // matching one with the wrong number of values is an error.
 #include "scene/params.h"
+#include "scene/color_space.h"
 
 #include "scene/spectra.h"
 #include "util/path.h"
@@ -39,14 +40,14 @@ std::vector<Vec3> triples(const Param& p) {
     return out;
 }
 
-Spectrum rgbValue(const Param& p, SpectrumKind kind) {
+Spectrum rgbValue(const Param& p, SpectrumKind kind, const RGBColorSpace* space) {
     expectCount(p, 3, p.numbers.size());
     Spectrum s(float(p.numbers[0]), float(p.numbers[1]), float(p.numbers[2]));
     if (s.r < 0 || s.g < 0 || s.b < 0) throw InputError(p.loc, "parameter " + describe(p) + " has a negative component");
     // pbrt-v4 refuses RGB reflectances above 1 rather than clamping them (§6).
     if (kind == SpectrumKind::Albedo && s.maxComponent() > 1)
         throw InputError(p.loc, "parameter " + describe(p) + " is a reflectance and has a component > 1 (pbrt-v4 requires [0, 1])");
-    return s;
+    return toRenderingSpace(s, space, kind);
 }
 
 Spectrum blackbodyValue(const Param& p, SpectrumKind kind) {
@@ -200,7 +201,7 @@ std::optional<Spectrum> ParamSet::getSpectrum(const std::string& name, SpectrumK
     const Param* p = find(name);
     if (!p) return std::nullopt;
     switch (p->type) {
-        case ParamType::RGB: p->used = true; return rgbValue(*p, kind);
+        case ParamType::RGB: p->used = true; return rgbValue(*p, kind, colorSpace);
         case ParamType::Blackbody: p->used = true; return blackbodyValue(*p, kind);
         case ParamType::Spectrum: p->used = true; return spectrumValue(*p, kind, baseDirectory);
         default: return std::nullopt;  // another type: unused, reported later

@@ -17,6 +17,8 @@ enum class ParamType { Float, Integer, Bool, String, Point2, Vector2, Point3, Ve
 // `spectrum`/`blackbody` are normalised to luminance 1; RGB illuminants keep their magnitude.
 enum class SpectrumKind { Albedo, Unbounded, Illuminant };
 
+struct RGBColorSpace;
+
 struct Param {
     ParamType type = ParamType::Float;
     std::string typeName, name;
@@ -69,6 +71,9 @@ public:
 
     SourceLoc loc;               // the directive's location
     std::string baseDirectory;   // for resolving relative file names (spectrum files)
+    // The ColorSpace in effect where the parameters were written (null: sRGB): their RGB
+    // values are in it.
+    const RGBColorSpace* colorSpace = nullptr;
     std::vector<Param> params;
 };
 

@@ -248,6 +248,7 @@ ParamSet parseParams(ParseContext& ctx, TokenStream& ts, const Token& d) {
     ParamSet ps;
     ps.loc = d.loc();
     ps.baseDirectory = ctx.desc.baseDirectory;
+    ps.colorSpace = ctx.builder.currentColorSpace();
     while (true) {
         const auto& t = ts.peek();
         if (!t || !t->isString()) break;

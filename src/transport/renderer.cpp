@@ -52,9 +52,17 @@ void requireFilmMemory(const Scene& scene, const Integrator& integrator, const R
 
 }  // namespace
 
-void filmResults(const Film& film, double lightPaths, RenderResult& result) {
+void filmResults(const Film& film, double lightPaths, const RenderSettings& settings, RenderResult& result) {
     result.lightPaths = lightPaths;
     result.image = film.image(lightPaths);
+    if (const auto& m = settings.outputColorMatrix)
+        for (int y = 0; y < result.image.height; ++y)
+            for (int x = 0; x < result.image.width; ++x) {
+                const Spectrum v = result.image.get(x, y);
+                result.image.set(x, y, {(*m)[0] * v.r + (*m)[1] * v.g + (*m)[2] * v.b,
+                                        (*m)[3] * v.r + (*m)[4] * v.g + (*m)[5] * v.b,
+                                        (*m)[6] * v.r + (*m)[7] * v.g + (*m)[8] * v.b});
+            }
     result.variance = film.varianceImage(lightPaths);
     result.rejectedSamples = film.rejectedSamples();
     result.error = film.errorEstimate(lightPaths);
@@ -96,7 +104,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     result.meanSpp = double(passes.samplesDone()) / double(bounds.area());
     result.pixelSamples = film.sampleCounts();
     result.stoppedEarly = !complete;
-    filmResults(film, lightPaths, result);
+    filmResults(film, lightPaths, scene.settings(), result);
     return result;
 }
 

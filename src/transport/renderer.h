@@ -68,9 +68,10 @@ struct RenderResult {
     std::vector<Image> depthImages;  // per path depth, if a Metropolis render was asked to record them
 };
 
-// What a finished film gives every driver's result: the image, variance image, rejected
-// samples, error estimate and efficiency (result.seconds set), splats normalised by lightPaths.
-void filmResults(const Film& film, double lightPaths, RenderResult& result);
+// What a finished film gives every driver's result: the image (in the film's colour space),
+// variance image, rejected samples, error estimate and efficiency (result.seconds set), splats
+// normalised by lightPaths.
+void filmResults(const Film& film, double lightPaths, const RenderSettings& settings, RenderResult& result);
 
 // Throws InputError before anything is allocated if the film would exceed the memory limit
 // (util/memory_limit.h), naming the scene's Film directive.

@@ -255,7 +255,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     result.meanSpp = double(ms.mutations) / double(bounds.area());
     result.stoppedEarly = bootstrapCancelled || (ms.mutations < total && ms.b > 0);
     result.pixelSamples.assign(size_t(bounds.area()), 0);
-    filmResults(film, lightPaths, result);
+    filmResults(film, lightPaths, scene.settings(), result);
     for (const auto& f : depthFilms) result.depthImages.push_back(f->image(lightPaths));
     return result;
 }
