@@ -15,6 +15,7 @@
 #include "app/exit_codes.h"
 #include "image/image.h"
 #include "mc/sampler.h"
+#include "render/distributed.h"
 #include "render/scene_builder.h"
 #include "scene/parser.h"
 #include "transport/bdpt.h"
@@ -212,7 +213,10 @@ int RenderCommand::run() {
     }
     std::vector<std::string> outputs = outputs_;
     if (outputs.empty()) outputs.push_back(std::filesystem::path(settings.outputFile).filename().string());
-    for (const std::string& o : outputs) checkWritable(o);
+    // Rank 0 writes every output (the others need not see its file system).
+    const bool root = distributed::isRoot();
+    if (root)
+        for (const std::string& o : outputs) checkWritable(o);
     const bool writeVariance = std::find(aovs_.begin(), aovs_.end(), "variance") != aovs_.end();
     std::unique_ptr<Integrator> integrator = createIntegrator(settings.integrator, *scene, mis_);
     const AdaptiveMode adaptive = parseAdaptiveMode(adaptive_);
@@ -221,6 +225,9 @@ int RenderCommand::run() {
                          "splat paths anywhere on the film, so a pixel's samples do not make its value");
     BDPTIntegrator* bdpt = nullptr;
     if (!strategiesDir_.empty()) {
+        if (distributed::size() > 1)
+            throw InputError("--bdpt-strategies does not yet run over several processes: render it with one "
+                             "(without mpirun, or -n 1)");
         bdpt = dynamic_cast<BDPTIntegrator*>(integrator.get());
         if (!bdpt) throw InputError("--bdpt-strategies needs --integrator bdpt (the scene asks for \"" +
                                     settings.integrator + "\")");
@@ -244,6 +251,9 @@ int RenderCommand::run() {
     opts.cancel = &gInterrupt;
     opts.adaptive = adaptive;
     RenderResult r = render(*scene, *integrator, opts);
+    // A signal to any process interrupted them all (each stops at the same pass boundary).
+    const bool interrupted = distributed::anyOf(gInterrupt.load());
+    if (!root) return interrupted ? kExitInterrupted : kExitOk;
 
     for (const std::string& o : outputs) {
         writeImage(o, r.image);
@@ -264,13 +274,18 @@ int RenderCommand::run() {
         {"resolution", {scene->camera().params().xRes, scene->camera().params().yRes}},
         {"pixels", scene->pixelBounds().area()},
         {"threads", threads_},
+        {"ranks", r.distributed.ranks},
+        {"rank_samples", r.distributed.rankSamples},
+        {"rank_seconds", r.distributed.rankSeconds},
+        {"reduction_bytes", r.distributed.reductionBytes},
+        {"reduction_seconds", r.distributed.reductionSeconds},
         {"seed", settings.seed},
         {"maxdepth", settings.maxDepth},
         {"wall_time_s", r.seconds},
         {"spp_target", r.targetSpp},
         {"spp_mean", r.meanSpp},
         {"stopped_early", r.stoppedEarly},
-        {"interrupted", gInterrupt.load()},
+        {"interrupted", interrupted},
         {"camera_paths", r.stats.cameraPaths},
         {"camera_paths_per_s", double(r.stats.cameraPaths) / secs},
         {"light_paths", r.stats.lightPaths},
@@ -334,6 +349,9 @@ int RenderCommand::run() {
                     (unsigned long long)r.stats.guarded, r.rejectedSamples);
         std::printf("estimated error: mean relative variance %.3g, efficiency 1/(V T) %.3g\n", r.error.meanRelativeVariance,
                     r.efficiency);
+        if (r.distributed.ranks > 1)
+            std::printf("%d processes (MPI) | film reduction %.3g MB per process in %.3f s\n", r.distributed.ranks,
+                        r.distributed.reductionBytes / 1e6, r.distributed.reductionSeconds);
         if (ms.present)
             std::printf("metropolis: b %.4g | %d chains | %lld mutations | acceptance %.3f (large steps %.3f, small "
                         "steps %.3f) | %lld invalid proposals\n",
@@ -352,9 +370,9 @@ int RenderCommand::run() {
             }
             std::printf("\n");
         }
-        if (r.stoppedEarly) std::printf("stopped early: %s\n", gInterrupt.load() ? "interrupted" : "time budget reached");
+        if (r.stoppedEarly) std::printf("stopped early: %s\n", interrupted ? "interrupted" : "time budget reached");
     }
-    return gInterrupt.load() ? kExitInterrupted : kExitOk;
+    return interrupted ? kExitInterrupted : kExitOk;
 }
 
 }  // namespace ps

@@ -49,6 +49,15 @@ struct MetropolisStats {
     double acceptanceRate() const { return rate(acceptedLarge + acceptedSmall, proposedLarge + proposedSmall); }
 };
 
+// A render over several processes (render/distributed.h), as rank 0 reports it.
+struct DistributedStats {
+    int ranks = 1;
+    std::vector<long long> rankSamples;  // per rank: camera samples taken
+    std::vector<double> rankSeconds;     // per rank: render seconds
+    double reductionBytes = 0;    // the film's sums, as each rank sends them to rank 0
+    double reductionSeconds = 0;  // rank 0's time in the reductions
+};
+
 struct RenderResult {
     Image image;                 // the crop region, weighted mean per pixel
     Image variance;              // per pixel, the estimated variance of its mean luminance (Film::varianceImage)
@@ -65,6 +74,7 @@ struct RenderResult {
     double efficiency = 0;
     MetropolisStats metropolis;
     std::vector<Image> depthImages;  // per path depth, if a Metropolis render was asked to record them
+    DistributedStats distributed;
 };
 
 // What a finished film gives every driver's result: the image, variance image, rejected
@@ -73,6 +83,9 @@ void filmResults(const Film& film, double lightPaths, RenderResult& result);
 
 // Throws InputError before anything is allocated if the film would exceed the memory limit
 // (util/memory_limit.h), naming the scene's Film directive.
+// Over several processes (render/distributed.h; path, light and bdpt, uniform sampling) every
+// process calls it; each takes its share of the samples, and rank 0's result holds the whole
+// render, the same image as one process's; the others' results hold only their statistics.
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options);
 
 }  // namespace ps
