@@ -69,6 +69,8 @@ int main(int argc, char** argv) {
     app.add_option("--large-step-probability", largeStep, "Metropolis: large-step probability (default: the scene's)");
     app.add_option("--sigma", sigma, "Metropolis: small-step sigma (default: the scene's)");
     double strategyPilot = -1;
+    std::string savePrefix;
+    app.add_option("--save", savePrefix, "Also write each render as PREFIX-INTEGRATOR-SEED.pfm (and the reference as PREFIX-ref.pfm)");
     app.add_option("--strategy-pilot", strategyPilot, "mmlt: the bootstrap's share that learns the strategy choice");
     std::vector<std::string> external;
     app.add_option("--compare", external,
@@ -89,6 +91,7 @@ int main(int argc, char** argv) {
         if (sigma > 0) st.mltSigma = float(sigma);
         if (strategyPilot >= 0) st.mltStrategyPilot = float(strategyPilot);
         const double refMean = imageMean(ref);
+        if (!savePrefix.empty()) writeImage(savePrefix + "-ref.pfm", ref);
         nlohmann::json rows = nlohmann::json::array();
         std::printf("%-8s %5s %10s %8s %10s %10s %10s %11s  %s\n", "integ", "seed", "spp", "seconds", "rel RMSE",
                     "relMSE", "mean/ref", "acceptance", "relMSE ratio to first");
@@ -107,6 +110,7 @@ int main(int argc, char** argv) {
                 RenderResult r = render(*scene, *integrator, o);
                 if (r.image.width != ref.width || r.image.height != ref.height)
                     throw InputError("the reference's resolution differs from the scene's");
+                if (!savePrefix.empty()) writeImage(savePrefix + "-" + name + "-" + std::to_string(k) + ".pfm", r.image);
                 double e = rmse(r.image, ref);
                 double rel = relativeMse(r.image, ref, refVariancePath.empty() ? nullptr : &refVariance);
                 double meanRatio = imageMean(r.image) / refMean;

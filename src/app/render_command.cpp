@@ -168,8 +168,9 @@ void RenderCommand::attach(CLI::App& app) {
                      "number (overrides \"sigma\"; default 0.01)")
         ->check(numberCheck(false));
     cmd_->add_option("--strategy-pilot", strategyPilot_,
-                     "mmlt only: fraction in [0, 1) of the bootstrap samples spent first on learning how often to choose "
-                     "each path depth and strategy (default 0.25; 0 chooses every depth equally often)")
+                     "mmlt only: fraction in [0, 1) of the bootstrap samples spent first on a pilot that learns how often "
+                     "to choose each path depth and strategy and how to split the bootstrap among the depths (default 0.1; "
+                     "0: no pilot, every depth and strategy equally)")
         ->check(probabilityCheck());
     cmd_->add_flag("--quiet", quiet_, "No progress bar or statistics on the terminal");
 }
@@ -326,6 +327,7 @@ int RenderCommand::run() {
             nlohmann::json e = {{"depth", d}, {"share", ms.depths[d].share}};
             if (ms.multiplexed) {
                 e["choice_probability"] = ms.depths[d].chosen;
+                e["bootstrap_samples"] = ms.depths[d].bootstrapSamples;
                 e["proposals"] = ms.depths[d].proposed;
                 e["acceptance_rate"] = MetropolisStats::rate(ms.depths[d].accepted, ms.depths[d].proposed);
             }

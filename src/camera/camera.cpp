@@ -102,6 +102,11 @@ std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, Vec2 u) const {
 }
 
 Ray Camera::generateRay(const CameraSample& s) const {
+    const Transform& T = params_.worldFromCamera;
+    if (params_.projection == Projection::Spherical) {
+        Vec2 uv(s.pFilm.x / params_.xRes, s.pFilm.y / params_.yRes);
+        return Ray{T.point({0, 0, 0}), normalize(T.vector(sphericalCameraDirection(params_.mapping, uv)))};
+    }
     // Raster -> screen: row 0 is the top, at ymax.
     float sx = sx0_ + s.pFilm.x / params_.xRes * (sx1_ - sx0_);
     float sy = sy1_ - s.pFilm.y / params_.yRes * (sy1_ - sy0_);
@@ -120,7 +125,6 @@ Ray Camera::generateRay(const CameraSample& s) const {
         o = {o.x + lens.x, o.y + lens.y, 0};
         d = pFocus - o;
     }
-    const Transform& T = params_.worldFromCamera;
     return Ray{T.point(o), normalize(T.vector(d))};
 }
 

@@ -1,7 +1,9 @@
 // Projective cameras with pbrt-v4's conventions (PBRT-CONVENTIONS §1): raster y points
-// down, fov spans the shorter image axis, focus on the plane z = focaldistance.
+// down, fov spans the shorter image axis, focus on the plane z = focaldistance. Also the
+// spherical camera (a pinhole seeing every direction; see spherical_mapping.h).
 #pragma once
 #include <optional>
+#include "camera/spherical_mapping.h"
 #include "geometry/ray.h"
 #include "math/transform.h"
 
@@ -25,14 +27,15 @@ struct CameraWiSample {
 
 class Camera {
 public:
-    enum class Projection { Perspective, Orthographic };
+    enum class Projection { Perspective, Orthographic, Spherical };
     struct Params {
         Projection projection = Projection::Perspective;
         Transform worldFromCamera;
         int xRes = 1280, yRes = 720;
         float fovDeg = 90;
         float screenWindow[4] = {0, 0, 0, 0};  // xmin xmax ymin ymax; all zero = default
-        float lensRadius = 0, focalDistance = 1e6f;
+        float lensRadius = 0, focalDistance = 1e6f;  // projective cameras only
+        SphericalMapping mapping = SphericalMapping::EqualArea;  // spherical only
     };
     explicit Camera(const Params& p);
 
@@ -43,7 +46,8 @@ public:
 
     // Importance (thesis §8.1.1 / pbrt-v4's PerspectiveCamera): W_e = 1 / (A lensArea cos^4)
     // over the film area A at unit distance, so that it integrates to one over the whole
-    // film; zero outside it. Only perspective cameras have a non-delta importance.
+    // film; zero outside it. Only perspective cameras have a non-delta importance (none is
+    // implemented for the spherical camera, so light paths cannot reach its film).
     bool hasImportance() const { return params_.projection == Projection::Perspective; }
     // W_e for the world-space ray leaving the lens; *pRaster receives the film point.
     float We(const Ray& r, Vec2* pRaster = nullptr) const;

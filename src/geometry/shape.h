@@ -57,6 +57,8 @@ public:
     std::shared_ptr<const AlphaMask> alpha;  // null: opaque (no filter, no cost)
     // Per-primitive emitters (empty when the shape does not emit).
     std::vector<const Light*> areaLights;
+    // An emitter whose radiance varies over uv (an emission image): sampled points need uv.
+    bool emissionNeedsUV = false;
 
 protected:
     // For Embree's own primitives (triangles, quads, curves): with alpha, installs intersection

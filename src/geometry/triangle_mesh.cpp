@@ -231,7 +231,7 @@ namespace ps {
 std::optional<ShapeSample> TriangleMesh::sampleToward(int prim, Vec3 ref, Vec2 u) const {
     if (sampling_.empty()) return Shape::sampleToward(prim, ref, u);
     const SamplingData& t = sampling_[prim];
-    if (t.normalsMayFlip || alpha) return Shape::sampleToward(prim, ref, u);  // alpha needs uv
+    if (t.normalsMayFlip || alpha || emissionNeedsUV) return Shape::sampleToward(prim, ref, u);  // these need uv
     Vec2 b = sampleUniformTriangle(u);  // weights of vertices 0 and 1
     ShapeSample s;
     // p = b0 p0 + b1 p1 + b2 p2 = p0 + b1 e1 + b2 e2.
@@ -246,7 +246,7 @@ std::optional<ShapeSample> TriangleMesh::sampleToward(int prim, Vec3 ref, Vec2 u
     s.pdf = dist2 / (cosLight * t.area);
     s.pdfArea = 1 / t.area;
     if (!std::isfinite(s.pdf)) return std::nullopt;
-    return s;  // uv is not needed by uniform emitters
+    return s;  // uv is not needed by uniform, unmasked emitters
 }
 
 }  // namespace ps

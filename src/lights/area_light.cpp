@@ -39,7 +39,7 @@ std::optional<LightLeSample> DiffuseAreaLight::sampleLe(Vec2 uPos, Vec2 uDir) co
     if (!(wLocal.z > 0)) return std::nullopt;
     Vec3 w = Frame::fromNormal(n).toWorld(wLocal);
     LightLeSample ls;
-    ls.L = Lemit_;
+    ls.L = L(s.p, s.n, s.uv, w);
     ls.ray = spawnRay(s.p, s.n, w);
     ls.ray.o = s.p;  // the vertex is on the light; callers offset when they trace
     ls.n = s.n;

@@ -4,8 +4,11 @@
 // Shape::keepsHit), so a point emits for light sampling exactly when rays see it. A constant
 // alpha 0 is pbrt-v4's invisible light: rays never hit it, it emits unmasked, and, like a
 // point light, it is reached by light sampling only (no MIS with strategies that hit it).
+// With an emission image (pbrt-v4's "filename") the radiance varies over the primitive's uv.
 #pragma once
+#include <memory>
 #include "geometry/shape.h"
+#include "lights/emission_image.h"
 #include "lights/light.h"
 #include "math/warp.h"
 
@@ -13,10 +16,12 @@ namespace ps {
 
 class DiffuseAreaLight final : public Light {
 public:
-    DiffuseAreaLight(const Shape* shape, int prim, Spectrum Lemit, bool twoSided)
+    // Lemit: the radiance, or with an image the factor (scale) that multiplies its values.
+    DiffuseAreaLight(const Shape* shape, int prim, Spectrum Lemit, bool twoSided,
+                     std::shared_ptr<const EmissionImage> image = nullptr)
         : Light(shape->alpha && shape->alpha->alwaysMasked() ? LightType::DeltaPosition : LightType::Area),
           shape_(shape), prim_(prim), Lemit_(Lemit), twoSided_(twoSided),
-          alpha_(type() == LightType::Area ? shape->alpha.get() : nullptr) {}
+          alpha_(type() == LightType::Area ? shape->alpha.get() : nullptr), image_(std::move(image)) {}
 
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
     float pdfLi(const LightSampleContext& ctx, Vec3 wi, const SurfaceInteraction* hit) const override;
@@ -25,9 +30,12 @@ public:
     Spectrum L(Vec3 p, Vec3 n, Vec2 uv, Vec3 w) const override {
         if (!twoSided_ && dot(n, w) < 0) return {};
         if (alpha_ && !alpha_->keepsPoint(p, n, uv)) return {};
-        return Lemit_;
+        return image_ ? Lemit_ * image_->at(uv) : Lemit_;
     }
-    Spectrum phi() const override { return Lemit_ * (kPi * (twoSided_ ? 2.0f : 1.0f) * shape_->area(prim_)); }
+    // With an image, its mean radiance (pbrt-v4's, which ignores how uv stretches).
+    Spectrum phi() const override {
+        return (image_ ? Lemit_ * image_->mean() : Lemit_) * (kPi * (twoSided_ ? 2.0f : 1.0f) * shape_->area(prim_));
+    }
 
 private:
     // sampleLe's solid-angle density of a direction at cosine c to the oriented normal.
@@ -40,6 +48,7 @@ private:
     Spectrum Lemit_;
     bool twoSided_;
     const AlphaMask* alpha_;  // the shape's, or null
+    std::shared_ptr<const EmissionImage> image_;  // null: uniform radiance
 };
 
 }  // namespace ps

@@ -6,10 +6,7 @@
 namespace ps {
 
 std::optional<LightLiSample> PointLight::sampleLi(const LightSampleContext& ctx, Vec2) const {
-    Vec3 d = pos_ - ctx.p;
-    float d2 = lengthSquared(d);
-    if (!(d2 > 0)) return std::nullopt;
-    return LightLiSample{I_ / d2, d / std::sqrt(d2), 1.0f, pos_, {}};
+    return pointLightLi(pos_, ctx, [&](Vec3) { return I_; });
 }
 
 std::optional<LightLeSample> PointLight::sampleLe(Vec2, Vec2 uDir) const {
@@ -34,13 +31,7 @@ Spectrum SpotLight::intensity(Vec3 w) const {
 }
 
 std::optional<LightLiSample> SpotLight::sampleLi(const LightSampleContext& ctx, Vec2) const {
-    Vec3 d = pos_ - ctx.p;
-    float d2 = lengthSquared(d);
-    if (!(d2 > 0)) return std::nullopt;
-    Vec3 wi = d / std::sqrt(d2);
-    Spectrum I = intensity(-wi);
-    if (I.isBlack()) return std::nullopt;
-    return LightLiSample{I / d2, wi, 1.0f, pos_, {}};
+    return pointLightLi(pos_, ctx, [&](Vec3 w) { return intensity(w); });
 }
 
 // Directions uniform in the whole cone; the falloff weights the intensity.

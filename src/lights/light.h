@@ -1,6 +1,7 @@
 // Emitters. Integrators sample incident radiance at a point (next-event estimation) and
 // ask for the density of the same choice to weight BSDF-sampled hits (thesis ch. 9, MIS).
 #pragma once
+#include <cmath>
 #include <optional>
 #include "geometry/interaction.h"
 #include "geometry/ray.h"
@@ -78,5 +79,18 @@ public:
 private:
     LightType type_;
 };
+
+// The incident light at ctx from a point light at pos whose intensity towards world
+// direction w is intensity(w): I / d^2 from the light's direction (a delta in solid angle).
+template <typename Intensity>
+std::optional<LightLiSample> pointLightLi(Vec3 pos, const LightSampleContext& ctx, Intensity&& intensity) {
+    Vec3 d = pos - ctx.p;
+    float d2 = lengthSquared(d);
+    if (!(d2 > 0)) return std::nullopt;
+    Vec3 wi = d / std::sqrt(d2);
+    Spectrum I = intensity(-wi);
+    if (I.isBlack()) return std::nullopt;
+    return LightLiSample{I / d2, wi, 1.0f, pos, {}};
+}
 
 }  // namespace ps

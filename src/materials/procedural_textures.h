@@ -64,29 +64,21 @@ private:
     T v00_, v01_, v10_, v11_;
 };
 
-// fbm(q, roughness, octaves) at the texture-space point q.
-class FBmTexture final : public FloatTexture {
+// A sum of noise octaves, Sum(q, roughness, octaves), at the texture-space point q: fbm
+// ("fbm") or turbulence ("wrinkled").
+template <float (*Sum)(Vec3, float, int)>
+class OctaveNoiseTexture final : public FloatTexture {
 public:
-    FBmTexture(TextureMapping3D m, int octaves, float omega) : map_(m), octaves_(octaves), omega_(omega) {}
-    float evaluate(const TextureEvalContext& ctx) const override { return fbm(map_.map(ctx), omega_, octaves_); }
+    OctaveNoiseTexture(TextureMapping3D m, int octaves, float omega) : map_(m), octaves_(octaves), omega_(omega) {}
+    float evaluate(const TextureEvalContext& ctx) const override { return Sum(map_.map(ctx), omega_, octaves_); }
 
 private:
     TextureMapping3D map_;
     int octaves_;
     float omega_;
 };
-
-// turbulence(q, roughness, octaves) at the texture-space point q.
-class WrinkledTexture final : public FloatTexture {
-public:
-    WrinkledTexture(TextureMapping3D m, int octaves, float omega) : map_(m), octaves_(octaves), omega_(omega) {}
-    float evaluate(const TextureEvalContext& ctx) const override { return turbulence(map_.map(ctx), omega_, octaves_); }
-
-private:
-    TextureMapping3D map_;
-    int octaves_;
-    float omega_;
-};
+using FBmTexture = OctaveNoiseTexture<fbm>;
+using WrinkledTexture = OctaveNoiseTexture<turbulence>;
 
 // Waves: |fbm(q / 10, 0.5, 3)| (the wind's strength) times fbm(q, 0.5, 6) (the wave height).
 class WindyTexture final : public FloatTexture {

@@ -37,4 +37,20 @@ Vec2 equalAreaSphereToSquare(Vec3 d) {
     return {clampf((u + 1) * 0.5f, 0, 1), clampf((v + 1) * 0.5f, 0, 1)};
 }
 
+Vec2 wrapEqualAreaSquare(Vec2 p) {
+    // Crossing the left or right edge lands mirrored about the horizontal midline, crossing the
+    // top or bottom edge mirrored about the vertical one; a corner crossing does both.
+    if (p.x < 0) {
+        p = {-p.x, 1 - p.y};
+    } else if (p.x > 1) {
+        p = {2 - p.x, 1 - p.y};
+    }
+    if (p.y < 0) {
+        p = {1 - p.x, -p.y};
+    } else if (p.y > 1) {
+        p = {1 - p.x, 2 - p.y};
+    }
+    return p;
+}
+
 }  // namespace ps

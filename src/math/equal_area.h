@@ -7,5 +7,8 @@ namespace ps {
 
 Vec3 equalAreaSquareToSphere(Vec2 p);
 Vec2 equalAreaSphereToSquare(Vec3 d);
+// A point up to one square beyond an edge, folded back onto the square: the octahedral layout
+// continues across each edge mirrored about that edge's midpoint (pbrt-v4's semantics).
+Vec2 wrapEqualAreaSquare(Vec2 p);
 
 }  // namespace ps

@@ -141,12 +141,11 @@ std::optional<Transform> Transform::lookAt(Vec3 eye, Vec3 target, Vec3 up) {
     return fromMatrix(worldFromCamera);
 }
 
-bool Transform::swapsHandedness() const {
+double Transform::linearDeterminant() const {
     const auto& a = m_.m;
-    double det = a[0][0] * (double(a[1][1]) * a[2][2] - double(a[1][2]) * a[2][1]) -
-                 a[0][1] * (double(a[1][0]) * a[2][2] - double(a[1][2]) * a[2][0]) +
-                 a[0][2] * (double(a[1][0]) * a[2][1] - double(a[1][1]) * a[2][0]);
-    return det < 0;
+    return a[0][0] * (double(a[1][1]) * a[2][2] - double(a[1][2]) * a[2][1]) -
+           a[0][1] * (double(a[1][0]) * a[2][2] - double(a[1][2]) * a[2][0]) +
+           a[0][2] * (double(a[1][0]) * a[2][1] - double(a[1][1]) * a[2][0]);
 }
 
 Vec3 Transform::normal(Vec3 n) const {

@@ -41,7 +41,9 @@ public:
     // Both the matrix and its inverse are finite: false after a singular or non-finite step.
     bool isInvertible() const { return m_.isFinite() && inv_.isFinite(); }
     // True when the transform flips handedness (negative determinant of the 3x3 part).
-    bool swapsHandedness() const;
+    bool swapsHandedness() const { return linearDeterminant() < 0; }
+    // Determinant of the 3x3 (linear) part: how the transform scales volumes.
+    double linearDeterminant() const;
 
     // Inline: on the per-sample paths (camera rays, instances, lens connections).
     Vec3 point(Vec3 p) const {

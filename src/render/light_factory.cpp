@@ -1,7 +1,10 @@
 #include "image/image.h"
 #include "lights/delta_lights.h"
+#include "lights/goniometric_light.h"
 #include "lights/infinite_lights.h"
+#include "lights/projection_light.h"
 #include "math/equal_area.h"
+#include "render/light_image.h"
 #include "render/scene_builder.h"
 
 namespace ps {
@@ -54,6 +57,67 @@ std::unique_ptr<Light> createInfinite(const LightEntity& e, const std::string& b
     return std::make_unique<ImageInfiniteLight>(std::move(img), scale, e.worldFromLight, layout);
 }
 
+// pbrt-v4's semantics: the image's mean of R, G, B per texel; "power" P divides by
+// 4 pi times the mean texel (and keeps the RGB multiplier of I, as for point lights).
+std::unique_ptr<Light> createGoniometric(const LightEntity& e, const std::string& base) {
+    const ParamSet& ps = e.params;
+    Spectrum I = emission(ps, "I");
+    float scale = ps.getFloat("scale", 1);
+    float P = ps.getFloat("power", -1);
+    std::string file = ps.getString("filename", "");
+    std::vector<float> values{1.0f};
+    int res = 1;
+    if (file.empty()) {
+        warning(e.loc, "goniometric light: no \"filename\"; it emits I equally in every direction");
+    } else {
+        auto img = readLightImage(e.loc, base, file, "goniometric light");
+        if (img->width != img->height)
+            throw InputError(e.loc, "goniometric light " + quoteForMessage(file) + ": the image is " +
+                                        std::to_string(img->width) + "x" + std::to_string(img->height) +
+                                        "; it must be square (an equal-area octahedral map)");
+        res = img->width;
+        values.resize(size_t(res) * res);
+        for (int y = 0; y < res; ++y)
+            for (int x = 0; x < res; ++x) {
+                Spectrum c = img->get(x, y);
+                values[size_t(y) * res + x] = (c.r + c.g + c.b) / 3;
+            }
+    }
+    if (P > 0) {
+        double sum = 0;
+        for (float v : values) sum += v;
+        double k = 4 * kPi * sum / double(values.size());
+        if (k > 0) scale *= float(P / k);
+    }
+    return std::make_unique<GoniometricLight>(e.worldFromLight, I * scale, std::move(values), res);
+}
+
+// pbrt-v4's semantics: "filename" is required; "power" P divides by the luminance of the
+// texels times the solid angle each subtends (at its centre).
+std::unique_ptr<Light> createProjection(const LightEntity& e, const std::string& base) {
+    const ParamSet& ps = e.params;
+    float scale = ps.getFloat("scale", 1);
+    float P = ps.getFloat("power", -1);
+    float fov = ps.getFloat("fov", 90);
+    std::string file = ps.getString("filename", "");
+    if (file.empty()) throw InputError(e.loc, "projection light: \"filename\" is required");
+    if (!(fov > 0 && fov < 180)) {
+        const Param* p = ps.find("fov");
+        throw InputError(p ? p->loc : e.loc, "projection light: \"fov\" must be between 0 and 180 degrees");
+    }
+    auto img = readLightImage(e.loc, base, file, "projection light");
+    if (P > 0) {
+        ProjectionLight::Screen screen = ProjectionLight::screenFor(img->width, img->height, fov);
+        double sum = 0;
+        for (int y = 0; y < img->height; ++y)
+            for (int x = 0; x < img->width; ++x)
+                sum += img->get(x, y).luminance() * screen.texelCos3(x, y, img->width, img->height);
+        double k = screen.planeArea() * sum / (double(img->width) * img->height);
+        if (k > 0) scale *= float(P / k);
+    }
+    return std::make_unique<ProjectionLight>(e.worldFromLight, *img, scale, fov);
+}
+
 }  // namespace
 
 std::unique_ptr<Light> createLight(const LightEntity& e, const std::string& base) {
@@ -88,9 +152,10 @@ std::unique_ptr<Light> createLight(const LightEntity& e, const std::string& base
         light = std::make_unique<DistantLight>(normalize(w), L * scale);
     } else if (e.type == "infinite") {
         light = createInfinite(e, base);
-    } else if (e.type == "goniometric" || e.type == "projection") {
-        warning(e.loc, "LightSource \"" + e.type + "\" is not supported; it is ignored");
-        return nullptr;
+    } else if (e.type == "goniometric") {
+        light = createGoniometric(e, base);
+    } else if (e.type == "projection") {
+        light = createProjection(e, base);
     } else {
         // As pbrt-v4: a misspelt type would silently remove the light from the scene.
         throw InputError(e.loc, "LightSource \"" + e.type +

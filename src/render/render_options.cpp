@@ -8,6 +8,15 @@ namespace ps {
 
 namespace {
 
+SphericalMapping sphericalMapping(const ParamSet& ps, const SourceLoc& cameraLoc) {
+    std::string m = ps.getString("mapping", "equalarea");
+    if (m == "equalarea") return SphericalMapping::EqualArea;
+    if (m == "equirectangular") return SphericalMapping::Equirectangular;
+    const Param* p = ps.find("mapping");
+    throw InputError(p ? p->loc : cameraLoc,
+                     "Camera \"spherical\": unknown \"mapping\" \"" + m + "\" (must be \"equalarea\" or \"equirectangular\")");
+}
+
 void applyCamera(const SceneDescription& desc, Scene& scene, int xRes, int yRes) {
     const CameraEntity& c = desc.camera;
     const ParamSet& ps = c.params;
@@ -17,6 +26,9 @@ void applyCamera(const SceneDescription& desc, Scene& scene, int xRes, int yRes)
     p.yRes = yRes;
     if (c.type == "orthographic") {
         p.projection = Camera::Projection::Orthographic;
+    } else if (c.type == "spherical") {
+        p.projection = Camera::Projection::Spherical;
+        p.mapping = sphericalMapping(ps, c.loc);
     } else if (c.type != "perspective") {
         warning(c.loc, "Camera \"" + c.type + "\" is not supported; using \"perspective\"");
     }
@@ -24,8 +36,11 @@ void applyCamera(const SceneDescription& desc, Scene& scene, int xRes, int yRes)
         p.fovDeg = ps.getFloat("fov", 90);
         if (!(p.fovDeg > 0 && p.fovDeg < 180)) throw InputError(c.loc, "Camera: \"fov\" must be in (0, 180) degrees");
     }
+    // The spherical camera accepts the lens and screen parameters and ignores them (a pinhole
+    // seeing the whole sphere), as pbrt-v4 does; its "fov" stays unused and is reported.
     p.lensRadius = ps.getFloat("lensradius", 0);
     p.focalDistance = ps.getFloat("focaldistance", 1e6f);
+    if (p.projection == Camera::Projection::Spherical) p.lensRadius = 0;
     std::vector<float> sw = ps.getFloats("screenwindow");
     if (sw.size() == 4) {
         for (int i = 0; i < 4; ++i) p.screenWindow[i] = sw[i];

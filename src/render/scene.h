@@ -33,7 +33,7 @@ struct RenderSettings {
     int mltChains = 1000;              // "chains"
     float mltLargeStepProbability = 0.3f;  // "largestepprobability"
     float mltSigma = 0.01f;                // "sigma"
-    float mltStrategyPilot = 0.25f;        // mmlt: the bootstrap's share that learns the strategy choice
+    float mltStrategyPilot = 0.1f;         // mmlt: the bootstrap's share spent on its pilot
     SourceLoc filmLoc;       // the Film directive, for errors found when the film is made
 };
 

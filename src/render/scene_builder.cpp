@@ -4,6 +4,7 @@
 
 #include "lights/area_light.h"
 #include "materials/create.h"
+#include "render/light_image.h"
 
 namespace ps {
 
@@ -94,15 +95,21 @@ void SceneBuilder::addAreaLights(const ShapeEntity& e, Shape& shape) {
         warning(al.loc, "AreaLightSource \"" + al.type + "\" is not supported; using \"diffuse\"");
     }
     const ParamSet& ps = al.params;
-    Spectrum L = ps.getSpectrum("L", SpectrumKind::Illuminant).value_or(Spectrum(1.0f));
     float scale = ps.getFloat("scale", 1);
     bool twoSided = ps.getBool("twosided", false);
     float power = ps.getFloat("power", -1);
-    if (ps.has("filename")) {
-        ps.getString("filename", "");
-        warning(al.loc, "AreaLightSource: image \"filename\" is not supported yet; using \"L\"");
+    // An emission image (pbrt-v4's "filename") replaces L: L multiplies its values by scale.
+    std::string file = ps.getString("filename", "");
+    std::shared_ptr<const EmissionImage> image;
+    if (!file.empty()) {
+        if (ps.has("L")) throw InputError(al.loc, "AreaLightSource \"diffuse\": cannot have both \"L\" and \"filename\"");
+        image = std::make_shared<EmissionImage>(readLightImage(al.loc, desc_.baseDirectory, file, "area light"));
     }
+    Spectrum L = image ? Spectrum(1.0f) : ps.getSpectrum("L", SpectrumKind::Illuminant).value_or(Spectrum(1.0f));
     ps.reportUnused("AreaLightSource \"diffuse\"");
+    // pbrt-v4 divides "power" by the image's mean luminance (a uniform L keeps its RGB factor).
+    float powerDivisor = image ? image->meanLuminance() : 1.0f;
+    shape.emissionNeedsUV = image != nullptr;
     shape.prepareSampling();
     int n = shape.primitiveCount();
     shape.areaLights.resize(n);
@@ -111,9 +118,10 @@ void SceneBuilder::addAreaLights(const ShapeEntity& e, Shape& shape) {
         // pbrt-v4: power is per shape, and every triangle of a mesh is a shape.
         if (power > 0) {
             float a = shape.area(i);
-            s *= a > 0 ? power / (kPi * (twoSided ? 2 : 1) * a) : 0.0f;
+            float k = kPi * (twoSided ? 2 : 1) * a * powerDivisor;
+            s *= k > 0 ? power / k : 0.0f;
         }
-        auto light = std::make_unique<DiffuseAreaLight>(&shape, i, L * s, twoSided);
+        auto light = std::make_unique<DiffuseAreaLight>(&shape, i, L * s, twoSided, image);
         shape.areaLights[i] = light.get();
         scene_.lights_.push_back(std::move(light));
     }

@@ -86,7 +86,8 @@ public:
     // at film position pFilm) and one light subpath, without depositing them: what a Markov
     // chain over primary samples (transport/mlt/) needs to know before it accepts a sample.
     // onlyDepth >= 0: the strategies of that path depth alone, from subpaths just long
-    // enough for it, bit for bit what strategyContribution gives for each of them.
+    // enough for it: what strategyContribution gives for each of them (to rounding: the
+    // compiler may fuse multiply-adds differently in the two code paths).
     void contributions(const Ray& ray, Vec2 pFilm, PrimarySampleSampler& sampler, ScratchBuffer& scratch,
                        PathStats& stats, std::vector<PathContribution>& out, int onlyDepth = -1) const;
     // Strategy (s, t) alone (multiplexed Metropolis): subpaths of exactly s light and t

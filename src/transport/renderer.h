@@ -43,6 +43,7 @@ struct MetropolisStats {
     struct Depth {
         double share = 0, chosen = 0;
         long long proposed = 0, accepted = 0;
+        long long bootstrapSamples = 0;  // the bootstrap's samples of this depth (mmlt)
     };
     std::vector<Depth> depths;
     static double rate(long long accepted, long long proposed) { return proposed ? double(accepted) / double(proposed) : 0.0; }

@@ -87,7 +87,7 @@ std::vector<Case> cases() {
         {"parameter_of_wrong_type", kHeader + "Shape \"sphere\" \"string radius\" [ \"big\" ]", {}, 0,
          {":7:", "string radius"}},
         {"binary_bytes_in_a_warning", kHeader + "Shape \"tri\x80\x01mesh\"", {}, 0, {":7:1:", "tri\\x80\\x01mesh"}},
-        {"unsupported_shape", kHeader + "Shape \"curve\" \"point3 P\" [0 0 0 1 1 1 2 2 2 3 3 3]", {}, 0,
+        {"unsupported_shape", kHeader + "Shape \"paraboloid\" \"float radius\" [1]", {}, 0,
          {":7:1:", "not supported"}},
         {"loopsubdiv_inconsistent_winding",
          kHeader + "Shape \"loopsubdiv\" \"point3 P\" [0 0 0 1 0 0 0 1 0 0 0 1] \"integer indices\" [0 1 2 0 1 3]", {}, 2,

@@ -375,18 +375,21 @@ TEST_F(Cli, PbrtMltIntegratorIsMultiplexedMLT) {
     EXPECT_EQ(j["integrator"], "mmlt");
     EXPECT_EQ(j["spp_target"], 2);
     EXPECT_EQ(j["metropolis"]["chains"], 7);
-    // Per depth; a quarter of them (the default --strategy-pilot) learn the strategy choice.
-    EXPECT_EQ(j["metropolis"]["pilot_samples"], 75 * 4);
-    EXPECT_EQ(j["metropolis"]["bootstrap_samples"], 225 * 4);
+    // Per depth; a tenth of them (the default --strategy-pilot) learn the strategy choice and
+    // how to split the rest among the depths.
+    EXPECT_EQ(j["metropolis"]["pilot_samples"], 30 * 4);
+    EXPECT_NEAR(j["metropolis"]["bootstrap_samples"].get<double>(), 270 * 4, 4);
     ASSERT_EQ(j["metropolis"]["depths"].size(), 4u);
-    double share = 0, chosen = 0;
+    double share = 0, chosen = 0, samples = 0;
     for (const auto& d : j["metropolis"]["depths"]) {
         share += d["share"].get<double>();
         chosen += d["choice_probability"].get<double>();
+        samples += d["bootstrap_samples"].get<double>();
         EXPECT_TRUE(d.contains("acceptance_rate"));
     }
     EXPECT_NEAR(share, 1.0, 1e-9);
     EXPECT_NEAR(chosen, 1.0, 1e-5);
+    EXPECT_EQ(samples, j["metropolis"]["bootstrap_samples"].get<double>());
     // The command line overrides the scene's parameters.
     Result o = run("render --quiet --chains 5 --spp 1 " + scene + " -o " + (dir / "m.pfm").string() + " --stats " +
                    json.string());

@@ -13,6 +13,7 @@
 #include "agreement.h"
 #include "image/image.h"
 #include "mc/rng.h"
+#include "temp_images.h"
 
 using namespace ps;
 using namespace ps::test;
@@ -258,4 +259,64 @@ TEST(LightAgreement, DiffuseUnderGlassSeenFromInside) {
         AttributeEnd
     )";
     expectAgreement(AgreementCase{"diffuse under glass", scene, {"path", "light", "bdpt"}, 96});
+}
+
+namespace {
+
+// A w x h image of smoothly varying colours with a few bright texels.
+Image patternImage(int w, int h, uint64_t seed) {
+    Image img(w, h);
+    Rng rng(seed);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            float s = float(x) / w, t = float(y) / h;
+            Spectrum c(0.2f + 0.8f * s, 0.3f + 0.6f * t, 0.9f - 0.6f * s * t);
+            img.set(x, y, rng.uniform() < 0.1f ? c * 6 : c);
+        }
+    return img;
+}
+
+}  // namespace
+
+// Lights defined by images (each a delta position or an emitter with varying radiance):
+// a goniometric light (its image importance-sampled for light subpaths), a projection
+// light aimed down at the ball (directions outside its frustum carry nothing), and a
+// two-sided area light with an emission image, seen from above.
+TEST(LightAgreement, GoniometricLight) {
+    TempImages tmp("agree-gonio");
+    std::string file = tmp.write("gonio.pfm", patternImage(16, 16, 5));
+    std::string scene = header("LookAt 0 2 2.2  0 0.2 0  0 1 0", R"("float fov" [ 40 ])", 4) + R"(
+        AttributeBegin
+          Translate 0.3 1.6 0.4
+          Rotate 150 1 0 0.3
+          LightSource "goniometric" "rgb I" [ 1.5 1.3 1.1 ] "string filename" [ ")" + file + R"(" ]
+        AttributeEnd
+    )" + groundAndBall();
+    expectAgreement(AgreementCase{"goniometric", scene, {"path", "light", "bdpt"}, 32, 16, {{"light", 128}}});
+}
+
+TEST(LightAgreement, ProjectionLight) {
+    TempImages tmp("agree-projection");
+    std::string file = tmp.write("slide.pfm", patternImage(8, 6, 6));
+    std::string scene = header("LookAt 0 2 2.2  0 0.2 0  0 1 0", R"("float fov" [ 40 ])", 4) + R"(
+        AttributeBegin
+          Translate 0 2 0.8
+          Rotate 112 1 0 0
+          LightSource "projection" "float fov" [ 40 ] "float scale" [ 4 ] "string filename" [ ")" + file + R"(" ]
+        AttributeEnd
+    )" + groundAndBall();
+    expectAgreement(AgreementCase{"projection", scene, {"path", "light", "bdpt"}, 32});
+}
+
+TEST(LightAgreement, ImageAreaLight) {
+    TempImages tmp("agree-area-image");
+    std::string file = tmp.write("emit.pfm", patternImage(8, 8, 7));
+    std::string scene = header("LookAt 0 2 2.2  0 0.2 0  0 1 0", R"("float fov" [ 40 ])", 4) + R"(
+        AttributeBegin
+          AreaLightSource "diffuse" "string filename" [ ")" + file + R"(" ] "float scale" [ 1.5 ] "bool twosided" [ true ]
+          Material "diffuse" "rgb reflectance" [ 0.2 0.2 0.2 ]
+          )" + quad({-0.7f, 1.1f, -0.9f}, {0.5f, 1.1f, -0.9f}, {-0.7f, 1.3f, -0.1f}, {0.5f, 1.3f, -0.1f}) + R"(
+        AttributeEnd
+    )" + groundAndBall();
+    expectAgreement(AgreementCase{"image area light", scene, {"path", "light", "bdpt"}, 32, 16, {{"light", 256}}});
 }

@@ -72,17 +72,14 @@ std::string box(const std::string& light, const std::string& left, const std::st
     )";
 }
 
-// Every test runs for both variants: the parameter is the integrator's name. A multiplexed
-// sample evaluates one strategy of one depth: it costs a fraction of a BDPT sample, and its
-// target varies more, so b's estimate from the same bootstrap spreads more (its per-sample
-// relative deviation is about 5x BDPT's in these scenes). mmlt runs 2-16 times the
-// mutations and its image means are held to 1.5x the detectable bias of pssmlt's (still under 2% where
-// pssmlt's is 1%, 3% where it is 2%).
+// Every test runs for both variants: the parameter is the integrator's name. Both are held
+// to the same detectable bias. A multiplexed sample evaluates one strategy of one depth:
+// it costs a fraction of a BDPT sample and varies more, so mmlt runs two to four times the
+// mutations.
 class Metropolis : public ::testing::TestWithParam<std::string> {
 protected:
     bool multiplexed() const { return GetParam() == "mmlt"; }
     int mutations(int n, int multiplexedFactor = 2) const { return multiplexed() ? multiplexedFactor * n : n; }
-    double detectable(double bias) const { return multiplexed() ? 1.5 * bias : bias; }
 };
 
 }  // namespace
@@ -105,7 +102,7 @@ TEST_P(Metropolis, ClosedFurnaceIsExact) {
     std::printf("[ %-8s ] furnace: %.5f +- %.5f, exact %.5f (%.2f sigma; 4 sigma = %.2f%%)\n", GetParam().c_str(), means.mean(),
                 means.standardError(), kFurnaceExact, z, 400 * means.standardError() / kFurnaceExact);
     EXPECT_LT(std::fabs(z), 4.0);
-    EXPECT_LT(4 * means.standardError(), detectable(0.01) * kFurnaceExact) << "too noisy";
+    EXPECT_LT(4 * means.standardError(), 0.01 * kFurnaceExact) << "too noisy";
 }
 
 // A point light of intensity I at the centre of a closed diffuse sphere of radius R and
@@ -135,15 +132,15 @@ TEST_P(Metropolis, PointLightInADiffuseSphereIsExact) {
     std::printf("[ %-8s ] point light in a sphere: %.5f +- %.5f, exact %.5f (%.2f sigma; 4 sigma = %.2f%%)\n",
                 GetParam().c_str(), means.mean(), means.standardError(), exact, z, 400 * means.standardError() / exact);
     EXPECT_LT(std::fabs(z), 4.0);
-    EXPECT_LT(4 * means.standardError(), detectable(0.01) * exact) << "too noisy";
+    EXPECT_LT(4 * means.standardError(), 0.01 * exact) << "too noisy";
 }
 
 // A diffuse box: block means and the image mean against BDPT's (the image mean to within a
 // detectable 2%: each render's bootstrap costs as much as its chains).
 TEST_P(Metropolis, AgreesWithBDPTOnADiffuseBox) {
     expectAgreement(AgreementCase{"diffuse box", box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), {"bdpt", GetParam()}, 16,
-                                  16, {{GetParam(), mutations(64, 4)}},
-                                  detectable(0.02)});
+                                  16, {{GetParam(), mutations(64)}},
+                                  0.02});
 }
 
 // Saturated colours: red and blue walls under a blue light. The target is luminance, the
@@ -167,7 +164,7 @@ TEST_P(Metropolis, AgreesWithBDPTOnASaturatedBoxPerChannel) {
         std::printf("[ %-8s ] saturated box, channel %d: bdpt %.5f, mlt %.5f +- %.5f (%.2f sigma; 4 sigma = %.2f%%)\n",
                     GetParam().c_str(), c, bdpt[c].mean(), mlt[c].mean(), se, z, 400 * se / bdpt[c].mean());
         EXPECT_LT(std::fabs(z), 4.0) << "channel " << c;
-        EXPECT_LT(4 * se, detectable(0.02) * bdpt[c].mean()) << "channel " << c << ": too noisy";
+        EXPECT_LT(4 * se, 0.02 * bdpt[c].mean()) << "channel " << c << ": too noisy";
     }
 }
 
@@ -282,8 +279,8 @@ TEST_P(Metropolis, AgreesWithBDPTOnAGlassCaustic) {
           Shape "sphere" "float radius" [ 0.5 ]
         AttributeEnd
     )";
-    expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", GetParam()}, 128, 16, {{GetParam(), mutations(64, 4)}},
-                                  detectable(0.02)});
+    expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", GetParam()}, 128, 16, {{GetParam(), mutations(64)}},
+                                  0.02});
 }
 
 // An area light the camera sees only in a smooth mirror (behind the camera, facing the
@@ -309,7 +306,7 @@ TEST_P(Metropolis, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
         Shape "bilinearmesh" "point3 P" [ -1 0 -1   1 0 -1   -1 2 -1   1 2 -1 ]
     )";
     expectAgreement(AgreementCase{"light seen in a mirror", scene, {"bdpt", GetParam()}, 32, 16,
-                                  {{GetParam(), mutations(32, 4)}}, detectable(0.02)});
+                                  {{GetParam(), mutations(32, 4)}}, 0.02});
 }
 
 namespace {

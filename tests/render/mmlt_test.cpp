@@ -123,7 +123,7 @@ TEST(MMLTBootstrap, EachStateIsItsStrategyAlone) {
     for (int64_t i = 0; i < 3000; ++i) {
         PrimarySampleSampler sampler(1000 + uint64_t(i), pss);
         sampler.startIteration();
-        mmlt.bootstrapSample(sampler, i, choice, ev, found);
+        mmlt.bootstrapSample(sampler, int(i % depths), 1.0, choice, ev, found);
         std::set<int> reported;
         for (const BootstrapState& st : found) {
             sampler.restartStreams();
@@ -157,15 +157,16 @@ TEST(MMLTBootstrap, EachStateIsItsStrategyAlone) {
 
 // The pilot learns how often to choose each depth: close to each depth's share of the
 // image (as the chains measured it), mixed with a quarter of the default (each depth
-// equally); the pilot's 1000 samples per depth leave it a few percent off. Without a pilot
+// equally); the pilot's 400 samples per depth leave it a few percent off. Without a pilot
 // the choice is the default.
 TEST(MMLTChoice, LearnedFromThePilotAsEachDepthsShare) {
     ASSERT_EQ(diffuseBox().find("dielectric"), std::string::npos);
     RenderResult learned = renderString(diffuseBox(), 256, 3, 0, "mmlt");
     const MetropolisStats& ms = learned.metropolis;
     const int depths = int(ms.depths.size());
-    EXPECT_EQ(ms.pilotSamples, 1000 * depths);
-    EXPECT_EQ(ms.bootstrapSamples, 3000 * depths);
+    // A tenth of the bootstrap (the default), each depth equally; the rest split by depth.
+    EXPECT_EQ(ms.pilotSamples, 400 * depths);
+    EXPECT_NEAR(double(ms.bootstrapSamples), 3600.0 * depths, depths);
     double sum = 0;
     for (int d = 0; d < depths; ++d) {
         const double expected = 0.75 * ms.depths[size_t(d)].share + 0.25 / depths;

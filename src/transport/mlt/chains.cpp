@@ -1,4 +1,5 @@
 #include "transport/mlt/metropolis.h"
+#include "transport/mlt/bootstrap.h"
 
 #include <algorithm>
 #include <atomic>
@@ -46,17 +47,9 @@ namespace {
 
 using PathContribution = BDPTIntegrator::PathContribution;
 
-// Keys of the random streams, per bootstrap sample and per chain. The seed is mixed before
-// the index enters: keyed on seed ^ constant directly, nearby seeds would give largely the
-// same set of keys over a range of indices (shifted), and renders with different seeds would
-// share most of their bootstrap samples.
-uint64_t bootstrapSeed(uint64_t seed, int64_t i) { return mixWithKey(mix64(seed ^ 0x6a09e667f3bcc908ULL), uint64_t(i)); }
+// The key of a chain's random streams (its mutations; see bootstrapSeed for why the seed is
+// mixed first).
 uint64_t chainSeed(uint64_t seed, int chain) { return mixWithKey(mix64(seed ^ 0xbb67ae8584caa73bULL), uint64_t(chain)); }
-
-// The share of the default in a learned strategy choice: large enough that a strategy the
-// pilot missed is still proposed now and then, small enough to leave most proposals to the
-// strategies that carry the image.
-constexpr double kDefaultChoiceShare = 0.25;
 
 struct ChainCounts {
     long long proposedLarge = 0, acceptedLarge = 0, proposedSmall = 0, acceptedSmall = 0, invalid = 0, done = 0;
@@ -92,11 +85,12 @@ void record(const ChainState& x, double w, int chain, Film& film, std::vector<st
 
 }  // namespace
 
-void MetropolisIntegrator::bootstrapSample(PrimarySampleSampler& sampler, int64_t, const StrategyChoice& choice,
-                                           ChainEvaluator& ev, std::vector<BootstrapState>& out) const {
+void MetropolisIntegrator::bootstrapSample(PrimarySampleSampler& sampler, int, double scale,
+                                           const StrategyChoice& choice, ChainEvaluator& ev,
+                                           std::vector<BootstrapState>& out) const {
     out.clear();
     evaluate(sampler, choice, ev, ev.sample);
-    if (ev.sample.f > 0) out.push_back({ev.sample.strategy, ev.sample.f, ev.sample.f});
+    if (ev.sample.f > 0) out.push_back({ev.sample.strategy, scale * ev.sample.f, ev.sample.f});
 }
 
 RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& integrator, const RenderOptions& options) {
@@ -128,94 +122,24 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     ms.present = true;
     ms.multiplexed = integrator.choosesDepth();
 
-    // Bootstrap: b and the weights of the candidate initial states. It counts against the
-    // time budget, and a cancellation during it leaves a black image (b unknown).
+    // Bootstrap: b, the strategy choice and the weights of the candidate initial states. It
+    // counts against the time budget, and a cancellation during it leaves a black image (b
+    // unknown).
     const auto startTime = std::chrono::steady_clock::now();
-    std::atomic<bool> bootstrapCancelled{false};
-    // Independent samples first .. first + count - 1: each one's total weight and, if
-    // `parts` is given, the sum of the weights of each strategy. Blocks of samples are summed
-    // in order, so the sums do not depend on the thread count.
-    auto sampleIndependently = [&](int64_t first, int64_t count, const StrategyChoice& choice,
-                                   std::vector<double>& weight, std::vector<double>* parts) {
-        constexpr int64_t kBlock = 1024;
-        const int64_t blocks = (count + kBlock - 1) / kBlock;
-        const size_t strategies = size_t(choice.size());
-        std::vector<double> blockParts(parts ? size_t(blocks) * strategies : 0, 0.0);
-        weight.assign(size_t(count), 0.0);
-        tbb::enumerable_thread_specific<std::vector<BootstrapState>> found;
-        arena.execute([&] {
-            tbb::parallel_for(int64_t(0), blocks, [&](int64_t block) {
-                if (options.cancel && options.cancel->load()) bootstrapCancelled = true;
-                if (bootstrapCancelled.load(std::memory_order_relaxed)) return;
-                std::vector<BootstrapState>& out = found.local();
-                for (int64_t j = block * kBlock; j < std::min(count, (block + 1) * kBlock); ++j) {
-                    PrimarySampleSampler sampler(bootstrapSeed(options.seed, first + j), pss);
-                    sampler.startIteration();
-                    integrator.bootstrapSample(sampler, first + j, choice, evaluators.local(), out);
-                    double w = 0;
-                    for (const BootstrapState& st : out) {
-                        w += st.weight;
-                        if (parts && st.strategy >= 0 && size_t(st.strategy) < strategies)
-                            blockParts[size_t(block) * strategies + size_t(st.strategy)] += st.weight;
-                    }
-                    weight[size_t(j)] = w;
-                }
-            });
-        });
-        if (parts) {
-            parts->assign(strategies, 0.0);
-            for (int64_t block = 0; block < blocks; ++block)
-                for (size_t k = 0; k < strategies; ++k) (*parts)[k] += blockParts[size_t(block) * strategies + k];
-        }
-    };
-    // A target that chooses among strategies first learns how often to choose each: a
-    // pilot estimates each strategy's part of b, and the choice becomes those parts mixed
-    // with the default (so that no strategy's probability is 0: every path the target can
-    // reach stays reachable by a large step). The pilot's samples are used for nothing else,
-    // so the choice does not depend on the bootstrap proper, from which b and the initial
-    // states come, and the argument against start-up bias holds as it is.
-    StrategyChoice choice = integrator.defaultChoice();
-    const std::vector<float> defaultWeights = choice.weights();
-    const int64_t nAll = std::max<int64_t>(1, integrator.bootstrapCount());
-    int64_t nPilot = 0;
-    if (!defaultWeights.empty() && mp.strategyPilot > 0) {
-        // Whole rounds of the depths (bootstrap sample i has depth i mod depths), so that
-        // the bootstrap proper keeps whole rounds too.
-        const int64_t perDepth = nAll / depths, pilotPerDepth = int64_t(double(perDepth) * mp.strategyPilot);
-        if (nAll % depths == 0 && pilotPerDepth > 0 && pilotPerDepth < perDepth) nPilot = pilotPerDepth * depths;
-    }
-    std::vector<double> weights;
-    if (nPilot > 0) {
-        std::vector<double> parts;
-        sampleIndependently(0, nPilot, choice, weights, &parts);
-        double total = 0, defaultTotal = 0;
-        for (double p : parts) total += p;
-        for (float w : defaultWeights) defaultTotal += w;
-        if (total > 0) {
-            std::vector<float> learned(parts.size());
-            for (size_t k = 0; k < parts.size(); ++k)
-                learned[k] = float((1 - kDefaultChoiceShare) * parts[k] / total +
-                                   kDefaultChoiceShare * defaultWeights[k] / defaultTotal);
-            choice = choice.withWeights(learned);
-        }
-    }
-    const int64_t nBoot = nAll - nPilot;
-    sampleIndependently(nPilot, nBoot, choice, weights, nullptr);
-    std::vector<double> cumulative(weights.size());
-    double sum = 0, sumSquares = 0;
-    for (size_t i = 0; i < weights.size(); ++i) {
-        cumulative[i] = (sum += weights[i]);
-        sumSquares += weights[i] * weights[i];
-    }
+    const BootstrapContext bctx{integrator, pss, options.seed, options.cancel, arena, evaluators};
+    const Bootstrap boot = runBootstrap(bctx);
+    const StrategyChoice& choice = boot.choice;
+    const bool bootstrapCancelled = boot.cancelled;
+    const int64_t nBoot = int64_t(boot.weights.size());
     ms.bootstrapSamples = nBoot;
-    ms.pilotSamples = nPilot;
+    ms.pilotSamples = boot.pilotSamples;
+    ms.b = boot.b;
+    ms.bRelativeError = boot.bRelativeError;
     ms.depths.assign(size_t(depths), {});
     for (int k = 0; k < choice.size(); ++k)
         if (const int d = choice.groupOf(k); d < depths) ms.depths[size_t(d)].chosen += choice.pmf(k);
-    ms.b = sum / double(nBoot);
-    // b scales the whole image: its own error, which the chains' half-buffers cannot see.
-    const double varianceB = std::max(0.0, sumSquares / double(nBoot) - ms.b * ms.b) / double(nBoot);
-    ms.bRelativeError = ms.b > 0 ? std::sqrt(varianceB) / ms.b : 0.0;
+    if (integrator.bootstrapGroups() == depths)
+        for (int d = 0; d < depths; ++d) ms.depths[size_t(d)].bootstrapSamples = boot.groups.count[size_t(d)];
 
     const long long total = std::max(1LL, (long long)std::max(1, options.spp) * bounds.area());
     const int chains = int(std::min<long long>(std::max(1, mp.chains), total));
@@ -255,36 +179,10 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                 cc.acceptedAt.assign(size_t(depths), 0);
                 cc.shareAt.assign(size_t(depths), 0.0);
                 ch.rng = Rng(chainSeed(options.seed, c), 0x3c6ef372fe94f82bULL);
-                // The initial state in proportion to its bootstrap weight: a bootstrap sample
-                // in proportion to its total, then one of its states, replayed.
-                double pick = ch.rng.uniformDouble() * sum;
-                int64_t i = std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin();
-                i = std::min<int64_t>(i, nBoot - 1);
-                while (i > 0 && weights[size_t(i)] == 0) --i;  // a rounding at the end: the last positive one
-                ch.sampler = std::make_unique<PrimarySampleSampler>(bootstrapSeed(options.seed, nPilot + i), pss);
-                ch.sampler->startIteration();
-                ChainEvaluator& ev = evaluators.local();
-                std::vector<BootstrapState> found;
-                integrator.bootstrapSample(*ch.sampler, nPilot + i, choice, ev, found);
-                double w = 0;
-                for (const BootstrapState& st : found) w += st.weight;
-                pick = ch.rng.uniformDouble() * w;
-                size_t j = 0;
-                for (double below = found.empty() ? 0 : found[0].weight; j + 1 < found.size() && below <= pick;)
-                    below += found[++j].weight;
-                if (w != weights[size_t(i)] || found.empty()) {
+                if (!startChain(bctx, boot, ch.rng, ch.sampler, ch.x)) {
                     replayMismatch = true;
                     return;
                 }
-                ch.sampler->restartStreams();
-                const double u1 = ch.rng.uniformDouble();
-                integrator.chooseStrategy(*ch.sampler, found[j].strategy, choice, u1, ch.rng.uniformDouble());
-                integrator.evaluate(*ch.sampler, choice, ev, ch.x);
-                ch.sampler->accept();
-                // The state's own evaluation may take another code path than the bootstrap's
-                // (multiplexed MLT: one strategy's subpaths, not a depth's), which the
-                // compiler may round differently (fused multiply-adds): equal to 1e-5.
-                if (!(std::abs(ch.x.f - found[j].f) <= 1e-5 * found[j].f)) replayMismatch = true;
                 ch.sampler->reseed(chainSeed(options.seed, c));
                 ch.remaining = total / chains + (c < total % chains ? 1 : 0);
             });

@@ -3,10 +3,11 @@
 //
 // A chain is not a per-camera-ray estimate, so these integrators have their own driver,
 // renderMetropolis, which render() hands them to:
-//  - bootstrap: N independent samples estimate b, the integral of the target over primary
-//    sample space, and the chains' initial states are drawn from them in proportion to
-//    their target values (no start-up bias, thesis ch. 11); each drawn state is replayed and
-//    must reproduce its bootstrap value bit for bit;
+//  - bootstrap (bootstrap.h): N independent samples estimate b, the integral of the target
+//    over primary sample space, and the chains' initial states are drawn from them in
+//    proportion to their weights (no start-up bias, thesis ch. 11); each drawn sample is
+//    replayed and must reproduce its weights bit for bit, and the state drawn from it its
+//    target value (to 1e-5 where the state's own evaluation takes another code path);
 //  - expected values: every iteration splats the current state with weight 1 - a and the
 //    proposal with weight a, each contribution divided by its sample's target value;
 //  - the image is scaled by b / (mutations made per film pixel), so an interrupted render
@@ -32,9 +33,10 @@ struct MetropolisParams {
     int chains = 1000;
     double largeStepProbability = 0.3;
     double sigma = 0.01;
-    // Multiplexed MLT: the fraction of the bootstrap samples spent first on learning how
-    // often to choose each (depth, strategy) pair; 0 keeps the uniform choice.
-    double strategyPilot = 0.25;
+    // Multiplexed MLT: the fraction of the bootstrap samples spent first on a pilot that
+    // learns how often to choose each (depth, strategy) pair and how many of the bootstrap's
+    // samples each depth gets; 0: no pilot (each depth and strategy equally).
+    double strategyPilot = 0.1;
     // For tests: also record the image of each path depth (RenderResult::depthImages).
     bool depthImages = false;
 };
@@ -84,11 +86,16 @@ public:
     // Bootstrap samples for the parameter's count (multiplexed MLT: per path depth; the
     // pilot that learns the strategy choice included).
     virtual int64_t bootstrapCount() const { return params_.bootstrapSamples; }
-    // Bootstrap sample i of bootstrapCount() (the sampler's first iteration under way): the
-    // states with positive weight it stands for. By default the sample itself, weighted by
-    // its target value. A chain started from one of them replays this call, then
-    // chooseStrategy and evaluate in the same iteration.
-    virtual void bootstrapSample(PrimarySampleSampler& sampler, int64_t i, const StrategyChoice& choice,
+    // Groups of bootstrap samples (multiplexed MLT: the path depths) and the relative cost
+    // of a sample of each: the bootstrap learns how many samples each group gets.
+    virtual int bootstrapGroups() const { return 1; }
+    virtual double groupCost(int) const { return 1; }
+    // A bootstrap sample of `group` (the sampler's first iteration under way): the states
+    // with positive weight it stands for, each weighted by `scale` times its part of the
+    // target's integral. By default the sample itself, weighted by scale times its target
+    // value. A chain started from one of the states replays this call, then chooseStrategy
+    // and evaluate in the same iteration.
+    virtual void bootstrapSample(PrimarySampleSampler& sampler, int group, double scale, const StrategyChoice& choice,
                                  ChainEvaluator& ev, std::vector<BootstrapState>& out) const;
     // Places the values that make evaluate choose `strategy`: at (u1, u2) in [0,1)^2 within
     // their intervals of `choice`.

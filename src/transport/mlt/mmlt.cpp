@@ -27,18 +27,17 @@ StrategyChoice MMLTIntegrator::defaultChoice() const {
     return {w, firstOfDepth_};
 }
 
-void MMLTIntegrator::bootstrapSample(PrimarySampleSampler& sampler, int64_t i, const StrategyChoice& choice,
-                                     ChainEvaluator& ev, std::vector<BootstrapState>& out) const {
+void MMLTIntegrator::bootstrapSample(PrimarySampleSampler& sampler, int depth, double scale,
+                                     const StrategyChoice& choice, ChainEvaluator& ev,
+                                     std::vector<BootstrapState>& out) const {
     out.clear();
-    const int depths = maxDepth() + 1;
-    const int depth = int(i % depths);
     CameraSample cs = filmSample(sampler);
     Ray ray = scene_.camera().generateRay(cs);
     bdpt_.contributions(ray, cs.pFilm, sampler, ev.scratch, ev.stats, ev.contributions, depth);
     ev.scratch.reset();
     for (BDPTIntegrator::PathContribution& c : ev.contributions) {
         const int k = firstOfDepth_[size_t(depth)] + c.s;
-        const double weight = double(depths) * c.L.luminance();
+        const double weight = scale * c.L.luminance();
         c.L /= choice.pmf(k);  // as evaluate scales it
         const double f = c.L.luminance();
         if (std::isfinite(weight) && weight > 0 && std::isfinite(f) && f > 0) out.push_back({k, weight, f});

@@ -14,7 +14,7 @@
 // How often the choice picks each (depth, s) pair does not change what the chain converges
 // to (the target's marginal over the pairs is each pair's share of the image, whatever the
 // probabilities), only how well large steps and the bootstrap sample it: the driver learns
-// probabilities close to those shares from a pilot (renderMetropolis), where the default
+// probabilities close to those shares from a pilot (bootstrap.h), where the default
 // (each depth equally, then each of its strategies equally) wastes most large steps on
 // depths and strategies that carry almost nothing.
 #pragma once
@@ -41,13 +41,15 @@ public:
     // As the bootstrap of a chain per depth would: the parameter's count per depth.
     int64_t bootstrapCount() const override { return int64_t(params_.bootstrapSamples) * (maxDepth() + 1); }
     bool choosesDepth() const override { return true; }
-    // Bootstrap sample i takes depth i mod depths (each depth equally often) and stands for
-    // every strategy of that depth, from one camera and one light subpath just long enough:
-    // b's estimate is then BDPT's for that depth, not one strategy's, and has no part from
-    // a random choice of depths, whose images differ by orders of magnitude. Each state is
-    // weighted by its luminance times depths, whatever the choice's probabilities.
-    void bootstrapSample(PrimarySampleSampler& sampler, int64_t i, const StrategyChoice& choice, ChainEvaluator& ev,
-                         std::vector<BootstrapState>& out) const override;
+    // A bootstrap sample of a depth stands for every strategy of that depth, from one
+    // camera and one light subpath just long enough: b's estimate is then BDPT's for that
+    // depth, not one strategy's. Each state is weighted by scale times its luminance,
+    // whatever the choice's probabilities.
+    int bootstrapGroups() const override { return maxDepth() + 1; }
+    // Rays per sample: about d + 2 camera, d + 1 light and d + 2 connection rays.
+    double groupCost(int depth) const override { return 3.0 * depth + 5; }
+    void bootstrapSample(PrimarySampleSampler& sampler, int depth, double scale, const StrategyChoice& choice,
+                         ChainEvaluator& ev, std::vector<BootstrapState>& out) const override;
     void chooseStrategy(PrimarySampleSampler& sampler, int strategy, const StrategyChoice& choice, double u1,
                         double u2) const override;
 
