@@ -164,8 +164,18 @@ private:
     // by more than that; |value| < kMaxSampleValue per sample keeps 2^23 samples from overflow.
     static constexpr double kFixedUnit = 0x1p64, kFixedSquareUnit = 0x1p32;
     static constexpr double kMaxSampleValue = 0x1p40;
-    static Fixed toFixed(double v) { return Fixed(v * kFixedUnit); }
-    static Fixed toFixedSquare(double v) { return Fixed(v * kFixedSquareUnit); }
+    static Fixed toFixed(double v) { return truncateToFixed(v * kFixedUnit); }
+    static Fixed toFixedSquare(double v) { return truncateToFixed(v * kFixedSquareUnit); }
+    // Fixed(x) (truncation toward zero, |x| < 2^127) without the library call a compiler makes
+    // of a double-to-128-bit conversion (__fixdfti; the film alone took 8x as long as with
+    // double sums, bench/README.md). |x| = h 2^64 + l exactly: h 2^64 is exact and within a
+    // factor 2 of |x| when h > 0, so the subtraction is exact (Sterbenz), and l < 2^64.
+    static Fixed truncateToFixed(double x) {
+        const double a = std::fabs(x);
+        const double h = std::floor(a * 0x1p-64);
+        const Fixed f = Fixed(uint64_t(h)) << 64 | Fixed(uint64_t(a - h * 0x1p64));
+        return x < 0 ? -f : f;
+    }
     static double fromFixed(Fixed f) { return double(f) / kFixedUnit; }
     static double fromFixedSquare(Fixed f) { return double(f) / kFixedSquareUnit; }
     struct Pixel {
