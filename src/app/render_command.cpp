@@ -19,6 +19,7 @@
 #include "render/scene_builder.h"
 #include "scene/parser.h"
 #include "transport/bdpt.h"
+#include "transport/checkpoint.h"
 #include "transport/renderer.h"
 #include "util/error.h"
 #include "util/memory_limit.h"
@@ -144,6 +145,17 @@ void RenderCommand::attach(CLI::App& app) {
         ->expected(4)
         ->allow_extra_args(false);
     cmd_->add_option("--stats", statsFile_, "Write render statistics as JSON to this file");
+    cmd_->add_option("--checkpoint", checkpoint_,
+                     "Write the film's exact sums to this file after a whole pass, every --checkpoint-every seconds "
+                     "(atomically: a temporary file, flushed, renamed over it), to continue with --resume (path, "
+                     "light and bdpt with uniform sampling)");
+    cmd_->add_option("--checkpoint-every", checkpointEvery_,
+                     "Seconds between checkpoints (default 60; 0: after every pass)")
+        ->check(numberCheck(true));
+    cmd_->add_option("--resume", resume_,
+                     "Continue the render whose checkpoint this is (same scene file and settings, any number of "
+                     "processes and threads): the image is the one an uninterrupted render gives")
+        ->check(CLI::ExistingFile);
     cmd_->add_option("--max-memory", maxMemory_,
                      "Memory limit for the film, images, meshes and strategy images, e.g. 512M, 8G, 1.5GiB "
                      "(binary units; default: 80% of physical memory, here " + formatBytes(memoryLimit()) +
@@ -239,6 +251,47 @@ int RenderCommand::run() {
         bdpt->recordStrategies(std::min(settings.maxDepth, 5));  // checks their memory (use --crop if too much)
     }
 
+    // Checkpoints: what must match to resume (the scene file's bytes and the options that shape
+    // the image; not threads, processes or time), then the checkpoint resumed from, checked
+    // before anything is rendered or written.
+    if (checkpointEvery_ >= 0 && checkpoint_.empty()) throw InputError("--checkpoint-every needs --checkpoint FILE");
+    if ((!checkpoint_.empty() || !resume_.empty()) &&
+        (adaptive != AdaptiveMode::None || settings.integrator == "pssmlt" || settings.integrator == "mmlt" || bdpt))
+        throw InputError(std::string(adaptive != AdaptiveMode::None ? "adaptive sampling (--adaptive)"
+                                     : bdpt                         ? "--bdpt-strategies"
+                                                                    : "Metropolis (pssmlt, mmlt)") +
+                         " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling do");
+    const PixelBounds& bounds = scene->pixelBounds();
+    const nlohmann::json checkpointSettings = {
+        {"scene_file_hash", checkpoint_.empty() && resume_.empty() ? "" : fileHash(scene_)},
+        {"integrator", settings.integrator},
+        {"spp", settings.spp},
+        {"seed", settings.seed},
+        {"sampler", settings.sampler},
+        {"maxdepth", settings.maxDepth},
+        {"mis", mis_},
+        {"resolution", {scene->camera().params().xRes, scene->camera().params().yRes}},
+        {"pixels", {bounds.x0, bounds.x1, bounds.y0, bounds.y1}}};
+    CheckpointState resumed;
+    if (!resume_.empty()) {
+        // Rank 0 reads it (the others need not see its file system) and says where it stands.
+        std::vector<int64_t> where{0, 1};
+        if (root) {
+            resumed = readCheckpoint(resume_, checkpointSettings);
+            where = {resumed.samplesPerPixel, resumed.passSize};
+        }
+        distributed::broadcastFromRoot(where);
+        resumed.samplesPerPixel = int(where[0]);
+        resumed.passSize = int(where[1]);
+    }
+    if (!checkpoint_.empty() && root) {
+        const std::string probe = checkpoint_ + ".tmp";
+        std::FILE* f = std::fopen(probe.c_str(), "wb");
+        if (!f) throw InputError("--checkpoint \"" + checkpoint_ + "\": cannot write \"" + probe + "\"");
+        std::fclose(f);
+        std::filesystem::remove(probe);
+    }
+
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
 
@@ -251,6 +304,11 @@ int RenderCommand::run() {
     opts.progress = !quiet_;
     opts.cancel = &gInterrupt;
     opts.adaptive = adaptive;
+    if (!resume_.empty()) opts.resume = &resumed;
+    if (!checkpoint_.empty()) {
+        opts.checkpointEvery = checkpointEvery_ >= 0 ? checkpointEvery_ : 60;
+        opts.checkpoint = [&](const CheckpointState& s) { writeCheckpoint(checkpoint_, checkpointSettings, s); };
+    }
     RenderResult r = render(*scene, *integrator, opts);
     // A signal to any process interrupted them all (each stops at the same pass boundary).
     const bool interrupted = distributed::anyOf(gInterrupt.load());
@@ -287,6 +345,8 @@ int RenderCommand::run() {
         {"spp_mean", r.meanSpp},
         {"stopped_early", r.stoppedEarly},
         {"interrupted", interrupted},
+        {"resumed_spp", r.resumedSpp},
+        {"checkpoints", r.checkpoints},
         {"camera_paths", r.stats.cameraPaths},
         {"camera_paths_per_s", double(r.stats.cameraPaths) / secs},
         {"light_paths", r.stats.lightPaths},
@@ -372,6 +432,9 @@ int RenderCommand::run() {
             }
             std::printf("\n");
         }
+        if (r.resumedSpp > 0) std::printf("resumed from %s at %d spp\n", resume_.c_str(), r.resumedSpp);
+        if (r.checkpoints > 0)
+            std::printf("%d checkpoint(s) written to %s (the last after whole passes)\n", r.checkpoints, checkpoint_.c_str());
         if (r.stoppedEarly) std::printf("stopped early: %s\n", interrupted ? "interrupted" : "time budget reached");
     }
     return interrupted ? kExitInterrupted : kExitOk;

@@ -159,6 +159,14 @@ void sumToRoot(std::vector<__int128>& v) {
 #endif
 }
 
+void broadcastFromRoot(std::vector<int64_t>& v) {
+#if PATHSPACE_HAVE_MPI
+    if (gSize > 1) check(MPI_Bcast(v.data(), int(v.size()), MPI_INT64_T, 0, MPI_COMM_WORLD), "broadcast");
+#else
+    (void)v;
+#endif
+}
+
 std::vector<double> gatherToRoot(double x) {
 #if PATHSPACE_HAVE_MPI
     if (gSize > 1) {

@@ -29,6 +29,8 @@ bool anyOf(bool local);
 // are left unspecified). Integer sums, so the result does not depend on the order.
 void sumToRoot(std::vector<int64_t>& v);
 void sumToRoot(std::vector<__int128>& v);
+// Rank 0's values on every process (same length everywhere).
+void broadcastFromRoot(std::vector<int64_t>& v);
 // Every process's value, in rank order, on rank 0 (elsewhere: empty).
 std::vector<double> gatherToRoot(double x);
 

@@ -3,6 +3,7 @@
 #pragma once
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 #include "film/film.h"
@@ -12,6 +13,8 @@
 #include "transport/integrator.h"
 
 namespace ps {
+
+struct CheckpointState;  // transport/checkpoint.h
 
 struct RenderOptions {
     int spp = 16;
@@ -24,6 +27,13 @@ struct RenderOptions {
     // Per-pixel sample counts (see transport/adaptive.h); spp is then the average. Not for
     // splatting integrators (light, bdpt): render() throws InputError.
     AdaptiveMode adaptive = AdaptiveMode::None;
+    // Checkpoints (transport/checkpoint.h; uniform sampling, not Metropolis): continue from
+    // `resume` (on rank 0 its sums; on every process where it stands), and after a whole pass,
+    // once `checkpointEvery` seconds (>= 0) have passed since the last, sum the films on rank 0
+    // and hand them to `checkpoint` there.
+    const CheckpointState* resume = nullptr;
+    double checkpointEvery = -1;
+    std::function<void(const CheckpointState&)> checkpoint;
 };
 
 // What a Markov-chain render (transport/mlt/) adds to the statistics.
@@ -76,6 +86,8 @@ struct RenderResult {
     MetropolisStats metropolis;
     std::vector<Image> depthImages;  // per path depth, if a Metropolis render was asked to record them
     DistributedStats distributed;
+    int resumedSpp = 0;   // samples per pixel the render resumed from (RenderOptions::resume)
+    int checkpoints = 0;  // checkpoints written
 };
 
 // What a finished film gives every driver's result: the image, variance image, rejected
