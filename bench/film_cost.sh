@@ -18,8 +18,8 @@ rm -rf "$dir/src" "$dir/include" "$dir/CMakeLists.txt"
 mkdir -p "$dir"
 git archive HEAD | tar -x -C "$dir"
 git show e4e9bca:src/film/film.cpp >"$dir/src/film/film.cpp"
-git show e4e9bca:src/film/film.h | sed '/^class Film {/{n;a\
-    struct Accumulators { std::vector<__int128> fixed; std::vector<int64_t> counts; };\
+git show e4e9bca:src/film/film.h | sed '/^class Film {/i using Fixed = __int128;' | sed '/^class Film {/{n;a\
+    struct Accumulators { std::vector<Fixed> fixed; std::vector<int64_t> counts; };\
     Accumulators accumulators() const { return {}; }\
     void setAccumulators(const Accumulators&) {}
 }' >"$dir/src/film/film.h"
