@@ -6,6 +6,7 @@ packages=(
   libembree-dev libtbb-dev libopenexr-dev libstb-dev zlib1g-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
   clang-14 libclang-rt-14-dev llvm-14  # sanitizer and fuzz builds (llvm-14: symbolized reports)
+  libopenmpi-dev openmpi-bin  # rendering across machines (mpirun -n K pathspace render ...)
 )
 missing=()
 for p in "${packages[@]}"; do

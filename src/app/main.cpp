@@ -1,16 +1,39 @@
 // The pathspace command line.
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <thread>
 
 #include "app/exit_codes.h"
 #include "app/mc_command.h"
 #include "app/render_command.h"
+#include "render/distributed.h"
 #include "util/error.h"
 
+namespace {
+
+// Says what went wrong. In a job of several processes a failure ends the job (finish), and an
+// input error is usually the same on every process: rank 0 reports at once; another rank
+// first waits a moment, in which rank 0's report of the same error ends the job, so only a
+// failure of its own is reported (with its rank).
+void waitForRootsReport() {
+    if (ps::distributed::rank() != 0) std::this_thread::sleep_for(std::chrono::seconds(2));
+}
+
+void report(const char* prefix, const char* what) {
+    const int rank = ps::distributed::rank();
+    waitForRootsReport();
+    std::string where = rank != 0 ? "rank " + std::to_string(rank) + ": " : "";
+    std::fprintf(stderr, "%s%s%s\n", where.c_str(), prefix, ps::printableMessage(what).c_str());
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+    ps::distributed::start(argc, argv);
     CLI::App app{"pathspace: a physically based renderer (Veach's robust Monte Carlo light transport).\n"
                  "Exit status: 0 success, 1 internal error, 2 bad input, 130 interrupted (image so far written)."};
     app.require_subcommand(1);
@@ -21,16 +44,19 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
+        waitForRootsReport();
         int code = app.exit(e);
-        return code == 0 ? ps::kExitOk : ps::kExitBadInput;
+        return ps::distributed::finish(code == 0 ? ps::kExitOk : ps::kExitBadInput);
     }
     try {
-        return mc.parsed() ? mc.run() : render.run();
+        if (mc.parsed() && ps::distributed::size() > 1)
+            throw ps::InputError("mc runs in one process: start it without mpirun");
+        return ps::distributed::finish(mc.parsed() ? mc.run() : render.run());
     } catch (const ps::InputError& e) {
-        std::fprintf(stderr, "%s\n", ps::printableMessage(e.what()).c_str());
-        return ps::kExitBadInput;
+        report("", e.what());
+        return ps::distributed::finish(ps::kExitBadInput);
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "internal error: %s\n", ps::printableMessage(e.what()).c_str());
-        return ps::kExitInternalError;
+        report("internal error: ", e.what());
+        return ps::distributed::finish(ps::kExitInternalError);
     }
 }

@@ -15,9 +15,11 @@
 #include "app/exit_codes.h"
 #include "image/image.h"
 #include "mc/sampler.h"
+#include "render/distributed.h"
 #include "render/scene_builder.h"
 #include "scene/parser.h"
 #include "transport/bdpt.h"
+#include "transport/checkpoint.h"
 #include "transport/renderer.h"
 #include "util/error.h"
 #include "util/memory_limit.h"
@@ -143,6 +145,17 @@ void RenderCommand::attach(CLI::App& app) {
         ->expected(4)
         ->allow_extra_args(false);
     cmd_->add_option("--stats", statsFile_, "Write render statistics as JSON to this file");
+    cmd_->add_option("--checkpoint", checkpoint_,
+                     "Write the film's exact sums to this file after a whole pass, every --checkpoint-every seconds "
+                     "(atomically: a temporary file, flushed, renamed over it), to continue with --resume (path, "
+                     "light and bdpt with uniform sampling)");
+    cmd_->add_option("--checkpoint-every", checkpointEvery_,
+                     "Seconds between checkpoints (default 60; 0: after every pass)")
+        ->check(numberCheck(true));
+    cmd_->add_option("--resume", resume_,
+                     "Continue the render whose checkpoint this is (same scene file and settings, any number of "
+                     "processes and threads): the image is the one an uninterrupted render gives")
+        ->check(CLI::ExistingFile);
     cmd_->add_option("--max-memory", maxMemory_,
                      "Memory limit for the film, images, meshes and strategy images, e.g. 512M, 8G, 1.5GiB "
                      "(binary units; default: 80% of physical memory, here " + formatBytes(memoryLimit()) +
@@ -213,7 +226,10 @@ int RenderCommand::run() {
     }
     std::vector<std::string> outputs = outputs_;
     if (outputs.empty()) outputs.push_back(std::filesystem::path(settings.outputFile).filename().string());
-    for (const std::string& o : outputs) checkWritable(o);
+    // Rank 0 writes every output (the others need not see its file system).
+    const bool root = distributed::isRoot();
+    if (root)
+        for (const std::string& o : outputs) checkWritable(o);
     const bool writeVariance = std::find(aovs_.begin(), aovs_.end(), "variance") != aovs_.end();
     std::unique_ptr<Integrator> integrator = createIntegrator(settings.integrator, *scene, mis_);
     const AdaptiveMode adaptive = parseAdaptiveMode(adaptive_);
@@ -222,6 +238,9 @@ int RenderCommand::run() {
                          "splat paths anywhere on the film, so a pixel's samples do not make its value");
     BDPTIntegrator* bdpt = nullptr;
     if (!strategiesDir_.empty()) {
+        if (distributed::size() > 1)
+            throw InputError("--bdpt-strategies does not yet run over several processes: render it with one "
+                             "(without mpirun, or -n 1)");
         bdpt = dynamic_cast<BDPTIntegrator*>(integrator.get());
         if (!bdpt) throw InputError("--bdpt-strategies needs --integrator bdpt (the scene asks for \"" +
                                     settings.integrator + "\")");
@@ -230,6 +249,47 @@ int RenderCommand::run() {
         if (ec) throw InputError("--bdpt-strategies: cannot create \"" + strategiesDir_ + "\": " + ec.message());
         checkWritable((std::filesystem::path(strategiesDir_) / "s0_t2.exr").string());
         bdpt->recordStrategies(std::min(settings.maxDepth, 5));  // checks their memory (use --crop if too much)
+    }
+
+    // Checkpoints: what must match to resume (the scene file's bytes and the options that shape
+    // the image; not threads, processes or time), then the checkpoint resumed from, checked
+    // before anything is rendered or written.
+    if (checkpointEvery_ >= 0 && checkpoint_.empty()) throw InputError("--checkpoint-every needs --checkpoint FILE");
+    if ((!checkpoint_.empty() || !resume_.empty()) &&
+        (adaptive != AdaptiveMode::None || settings.integrator == "pssmlt" || settings.integrator == "mmlt" || bdpt))
+        throw InputError(std::string(adaptive != AdaptiveMode::None ? "adaptive sampling (--adaptive)"
+                                     : bdpt                         ? "--bdpt-strategies"
+                                                                    : "Metropolis (pssmlt, mmlt)") +
+                         " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling do");
+    const PixelBounds& bounds = scene->pixelBounds();
+    const nlohmann::json checkpointSettings = {
+        {"scene_file_hash", checkpoint_.empty() && resume_.empty() ? "" : fileHash(scene_)},
+        {"integrator", settings.integrator},
+        {"spp", settings.spp},
+        {"seed", settings.seed},
+        {"sampler", settings.sampler},
+        {"maxdepth", settings.maxDepth},
+        {"mis", mis_},
+        {"resolution", {scene->camera().params().xRes, scene->camera().params().yRes}},
+        {"pixels", {bounds.x0, bounds.x1, bounds.y0, bounds.y1}}};
+    CheckpointState resumed;
+    if (!resume_.empty()) {
+        // Rank 0 reads it (the others need not see its file system) and says where it stands.
+        std::vector<int64_t> where{0, 1};
+        if (root) {
+            resumed = readCheckpoint(resume_, checkpointSettings);
+            where = {resumed.samplesPerPixel, resumed.passSize};
+        }
+        distributed::broadcastFromRoot(where);
+        resumed.samplesPerPixel = int(where[0]);
+        resumed.passSize = int(where[1]);
+    }
+    if (!checkpoint_.empty() && root) {
+        const std::string probe = checkpoint_ + ".tmp";
+        std::FILE* f = std::fopen(probe.c_str(), "wb");
+        if (!f) throw InputError("--checkpoint \"" + checkpoint_ + "\": cannot write \"" + probe + "\"");
+        std::fclose(f);
+        std::filesystem::remove(probe);
     }
 
     std::signal(SIGINT, onSignal);
@@ -244,7 +304,15 @@ int RenderCommand::run() {
     opts.progress = !quiet_;
     opts.cancel = &gInterrupt;
     opts.adaptive = adaptive;
+    if (!resume_.empty()) opts.resume = &resumed;
+    if (!checkpoint_.empty()) {
+        opts.checkpointEvery = checkpointEvery_ >= 0 ? checkpointEvery_ : 60;
+        opts.checkpoint = [&](const CheckpointState& s) { writeCheckpoint(checkpoint_, checkpointSettings, s); };
+    }
     RenderResult r = render(*scene, *integrator, opts);
+    // A signal to any process interrupted them all (each stops at the same pass boundary).
+    const bool interrupted = distributed::anyOf(gInterrupt.load());
+    if (!root) return interrupted ? kExitInterrupted : kExitOk;
 
     for (const std::string& o : outputs) {
         writeImage(o, r.image);
@@ -265,13 +333,20 @@ int RenderCommand::run() {
         {"resolution", {scene->camera().params().xRes, scene->camera().params().yRes}},
         {"pixels", scene->pixelBounds().area()},
         {"threads", threads_},
+        {"ranks", r.distributed.ranks},
+        {"rank_samples", r.distributed.rankSamples},
+        {"rank_seconds", r.distributed.rankSeconds},
+        {"reduction_bytes", r.distributed.reductionBytes},
+        {"reduction_seconds", r.distributed.reductionSeconds},
         {"seed", settings.seed},
         {"maxdepth", settings.maxDepth},
         {"wall_time_s", r.seconds},
         {"spp_target", r.targetSpp},
         {"spp_mean", r.meanSpp},
         {"stopped_early", r.stoppedEarly},
-        {"interrupted", gInterrupt.load()},
+        {"interrupted", interrupted},
+        {"resumed_spp", r.resumedSpp},
+        {"checkpoints", r.checkpoints},
         {"camera_paths", r.stats.cameraPaths},
         {"camera_paths_per_s", double(r.stats.cameraPaths) / secs},
         {"light_paths", r.stats.lightPaths},
@@ -336,6 +411,9 @@ int RenderCommand::run() {
                     (unsigned long long)r.stats.guarded, r.rejectedSamples);
         std::printf("estimated error: mean relative variance %.3g, efficiency 1/(V T) %.3g\n", r.error.meanRelativeVariance,
                     r.efficiency);
+        if (r.distributed.ranks > 1)
+            std::printf("%d processes (MPI) | film reduction %.3g MB per process in %.3f s\n", r.distributed.ranks,
+                        r.distributed.reductionBytes / 1e6, r.distributed.reductionSeconds);
         if (ms.present)
             std::printf("metropolis: b %.4g | %d chains | %lld mutations | acceptance %.3f (large steps %.3f, small "
                         "steps %.3f) | %lld invalid proposals\n",
@@ -354,9 +432,12 @@ int RenderCommand::run() {
             }
             std::printf("\n");
         }
-        if (r.stoppedEarly) std::printf("stopped early: %s\n", gInterrupt.load() ? "interrupted" : "time budget reached");
+        if (r.resumedSpp > 0) std::printf("resumed from %s at %d spp\n", resume_.c_str(), r.resumedSpp);
+        if (r.checkpoints > 0)
+            std::printf("%d checkpoint(s) written to %s (the last after whole passes)\n", r.checkpoints, checkpoint_.c_str());
+        if (r.stoppedEarly) std::printf("stopped early: %s\n", interrupted ? "interrupted" : "time budget reached");
     }
-    return gInterrupt.load() ? kExitInterrupted : kExitOk;
+    return interrupted ? kExitInterrupted : kExitOk;
 }
 
 }  // namespace ps

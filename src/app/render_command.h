@@ -28,6 +28,8 @@ private:
     std::vector<std::string> outputs_;
     std::vector<float> crop_;
     std::string statsFile_;
+    std::string checkpoint_, resume_;  // --checkpoint FILE, --resume FILE
+    double checkpointEvery_ = -1;      // --checkpoint-every SECONDS
     std::string maxMemory_;
     // Metropolis parameters (override the scene's Integrator "pssmlt"/"mlt" ones); unset when < 0.
     int chains_ = -1;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <climits>
 #include <cstring>
+#include <stdexcept>
 
 #include <tbb/task_arena.h>
 
@@ -141,8 +142,10 @@ Image Film::image(double lightPaths) const {
         for (int x = 0; x < bounds_.width(); ++x) {
             const Pixel& p = pixels_[size_t(y) * bounds_.width() + x];
             Spectrum v;
-            if (p.weight != 0)
-                v = Spectrum(float(p.sum[0] / p.weight), float(p.sum[1] / p.weight), float(p.sum[2] / p.weight));
+            if (p.weight != 0) {
+                const double w = fromFixed(p.weight);
+                v = Spectrum(float(fromFixed(p.sum[0]) / w), float(fromFixed(p.sum[1]) / w), float(fromFixed(p.sum[2]) / w));
+            }
             if (splatScale > 0) {
                 size_t i = size_t(y) * bounds_.width() + x;
                 for (int c = 0; c < 3; ++c)
@@ -160,8 +163,8 @@ Film::PixelEstimate Film::pixelEstimate(size_t i) const {
     e.samples = p.samples;
     if (p.samples == 0) return e;
     double n = double(p.samples);
-    e.mean = p.sumY / n;
-    if (p.samples > 1) e.sampleVariance = std::max(0.0, (p.sumY2 - n * e.mean * e.mean) / (n - 1));
+    e.mean = fromFixed(p.sumY) / n;
+    if (p.samples > 1) e.sampleVariance = std::max(0.0, (fromFixedSquare(p.sumY2) - n * e.mean * e.mean) / (n - 1));
     return e;
 }
 
@@ -176,7 +179,7 @@ double Film::pixelVariance(size_t i, double lightPaths, const std::vector<int64_
     const double halfScale = lightPaths > 0 ? 2 * splatPixelCount() / lightPaths : 0.0;
     double h[2];
     for (int k = 0; k < 2; ++k) {
-        h[k] = p.halfWeight[k] != 0 ? p.halfY[k] / p.halfWeight[k] : 0.0;
+        h[k] = p.halfWeight[k] != 0 ? fromFixed(p.halfY[k]) / fromFixed(p.halfWeight[k]) : 0.0;
         Spectrum s(float(splatValue(splats, i, k, 0)), float(splatValue(splats, i, k, 1)),
                    float(splatValue(splats, i, k, 2)));
         h[k] += s.luminance() * halfScale;
@@ -227,6 +230,42 @@ double Film::meanSamplesPerPixel() const {
     long double total = 0;
     for (const Pixel& p : pixels_) total += p.samples;
     return pixels_.empty() ? 0.0 : double(total / pixels_.size());
+}
+
+Film::Accumulators Film::accumulators() const {
+    Accumulators a;
+    a.fixed.reserve(pixels_.size() * kFixedPerPixel);
+    a.counts.reserve(pixels_.size() + (splatFilter_ ? size_t(bounds_.area()) * 6 : 0) + 1);
+    for (const Pixel& p : pixels_) {
+        a.fixed.insert(a.fixed.end(), {p.sum[0], p.sum[1], p.sum[2], p.weight, p.sumY, p.sumY2, p.halfY[0], p.halfY[1],
+                                       p.halfWeight[0], p.halfWeight[1]});
+        a.counts.push_back(p.samples);
+    }
+    const std::vector<int64_t> splats = mergedSplats();
+    a.counts.insert(a.counts.end(), splats.begin(), splats.end());
+    a.counts.push_back(rejected_.load());
+    return a;
+}
+
+void Film::setAccumulators(const Accumulators& a) {
+    const size_t splatCount = splatFilter_ ? size_t(bounds_.area()) * 6 : 0;
+    if (a.fixed.size() != pixels_.size() * kFixedPerPixel || a.counts.size() != pixels_.size() + splatCount + 1)
+        throw std::logic_error("Film::setAccumulators: sums of another film's size");
+    for (size_t i = 0; i < pixels_.size(); ++i) {
+        const Fixed* f = &a.fixed[i * kFixedPerPixel];
+        Pixel& p = pixels_[i];
+        p.sum[0] = f[0], p.sum[1] = f[1], p.sum[2] = f[2], p.weight = f[3], p.sumY = f[4], p.sumY2 = f[5];
+        p.halfY[0] = f[6], p.halfY[1] = f[7], p.halfWeight[0] = f[8], p.halfWeight[1] = f[9];
+        p.samples = a.counts[i];
+    }
+    if (splatFilter_) {
+        // The sums now live in one shared array: the per-thread copies are dropped.
+        perThreadSplats_ = false;
+        threadSplats_.clear();
+        splats_.reset(new std::atomic<int64_t>[splatCount]);
+        for (size_t i = 0; i < splatCount; ++i) splats_[i].store(a.counts[pixels_.size() + i], std::memory_order_relaxed);
+    }
+    rejected_.store(a.counts.back());
 }
 
 }  // namespace ps

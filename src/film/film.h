@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 #include <memory>
@@ -13,6 +14,8 @@
 #include "math/spectrum.h"
 
 namespace ps {
+
+using Fixed = __int128;  // the film's fixed-point sums (see Film::Pixel)
 
 struct PixelBounds {
     int x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // half-open [x0,x1) x [y0,y1) in full-resolution raster
@@ -62,26 +65,29 @@ public:
     const PixelBounds& bounds() const { return bounds_; }
 
     // Not thread-safe per pixel: callers own disjoint pixels (tiles). A non-finite L
-    // counts as a black sample with its weight (as pbrt-v4 does) and is tallied.
+    // counts as a black sample with its weight (as pbrt-v4 does) and is tallied, as is one
+    // too large for the fixed-point sums (kMaxSampleValue).
     void addSample(int px, int py, Spectrum L, float weight, int sampleIndex = 0) {
         size_t i = index(px, py);
-        if (!L.isFinite()) {
+        L = clampMaxComponent(L, maxComponent_);
+        double y = L.luminance();
+        if (!L.isFinite() || !(std::fabs(y) < kMaxSampleValue) ||
+            !(std::max(std::fabs(L.r), std::max(std::fabs(L.g), std::fabs(L.b))) * std::fabs(weight) < kMaxSampleValue)) {
             L = Spectrum();
+            y = 0;
             rejected_.fetch_add(1, std::memory_order_relaxed);
         }
-        L = clampMaxComponent(L, maxComponent_);
         Pixel& p = pixels_[i];
-        p.sum[0] += double(L.r) * weight;
-        p.sum[1] += double(L.g) * weight;
-        p.sum[2] += double(L.b) * weight;
-        p.weight += weight;
+        p.sum[0] += toFixed(double(L.r) * weight);
+        p.sum[1] += toFixed(double(L.g) * weight);
+        p.sum[2] += toFixed(double(L.b) * weight);
+        p.weight += toFixed(weight);
         p.samples += 1;
-        double y = L.luminance();
-        p.sumY += y;
-        p.sumY2 += y * y;
+        p.sumY += toFixed(y);
+        p.sumY2 += toFixedSquare(y * y);
         if (splatFilter_) {
-            p.halfY[sampleIndex & 1] += y * weight;
-            p.halfWeight[sampleIndex & 1] += weight;
+            p.halfY[sampleIndex & 1] += toFixed(y * weight);
+            p.halfWeight[sampleIndex & 1] += toFixed(weight);
         }
     }
 
@@ -138,16 +144,48 @@ public:
     // Mean number of samples per pixel so far.
     double meanSamplesPerPixel() const;
 
-private:
-    struct Pixel {
-        double sum[3] = {0, 0, 0};
-        double weight = 0;
-        long long samples = 0;
-        // Luminance moments in double precision: no division on the per-sample path, and no
-        // cancellation problem at the magnitudes and counts a render has.
-        double sumY = 0, sumY2 = 0;
-        double halfY[2] = {0, 0}, halfWeight[2] = {0, 0};  // splatting films only
+    // Every sum the film holds, as exact integers: films of the same scene that took disjoint
+    // sets of samples (processes of one render, distributed.h) add up, element by element, to
+    // the film that took them all, bit for bit. `fixed`: the per-pixel sums; `counts`: the
+    // per-pixel sample counts, the splat sums (splatting films) and the rejected samples.
+    struct Accumulators {
+        std::vector<Fixed> fixed;
+        std::vector<int64_t> counts;
     };
+    Accumulators accumulators() const;
+    // Replaces every sum with `a` (as accumulators() gives them, for a film of the same bounds).
+    void setAccumulators(const Accumulators& a);
+
+private:
+    // Every sum is a 128-bit fixed-point integer, exact and so independent of the order in
+    // which samples arrive: the image does not depend on the thread schedule or on how the
+    // samples were split over processes (see accumulators()). Each sample's value is
+    // truncated to a multiple of 2^-64 (squares: 2^-32), which a float's product never misses
+    // by more than that; |value| < kMaxSampleValue per sample keeps 2^23 samples from overflow.
+    static constexpr double kFixedUnit = 0x1p64, kFixedSquareUnit = 0x1p32;
+    static constexpr double kMaxSampleValue = 0x1p40;
+    static Fixed toFixed(double v) { return truncateToFixed(v * kFixedUnit); }
+    static Fixed toFixedSquare(double v) { return truncateToFixed(v * kFixedSquareUnit); }
+    // Fixed(x) (truncation toward zero, |x| < 2^127) without the library call a compiler makes
+    // of a double-to-128-bit conversion (__fixdfti; the film alone took 8x as long as with
+    // double sums, bench/README.md). |x| = h 2^64 + l exactly: h 2^64 is exact and within a
+    // factor 2 of |x| when h > 0, so the subtraction is exact (Sterbenz), and l < 2^64.
+    static Fixed truncateToFixed(double x) {
+        const double a = std::fabs(x);
+        const double h = std::floor(a * 0x1p-64);
+        const Fixed f = Fixed(uint64_t(h)) << 64 | Fixed(uint64_t(a - h * 0x1p64));
+        return x < 0 ? -f : f;
+    }
+    static double fromFixed(Fixed f) { return double(f) / kFixedUnit; }
+    static double fromFixedSquare(Fixed f) { return double(f) / kFixedSquareUnit; }
+    struct Pixel {
+        Fixed sum[3] = {0, 0, 0};
+        Fixed weight = 0;
+        long long samples = 0;
+        Fixed sumY = 0, sumY2 = 0;  // luminance moments
+        Fixed halfY[2] = {0, 0}, halfWeight[2] = {0, 0};  // splatting films only
+    };
+    static constexpr size_t kFixedPerPixel = 10;  // Pixel's Fixed members, in accumulators()'s order
     // Variance of pixel i's mean luminance and that mean (the half-buffer estimate when splatting).
     double pixelVariance(size_t i, double lightPaths, const std::vector<int64_t>& splats, double& mean) const;
     static constexpr double kSplatFixedPoint = 268435456.0;  // 2^28 units per radiance unit

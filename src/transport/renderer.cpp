@@ -1,11 +1,15 @@
 #include "transport/renderer.h"
 
 #include <algorithm>
+#include <chrono>
+#include <numeric>
 
 #include <tbb/task_arena.h>
 
 #include "mc/estimator.h"
+#include "transport/checkpoint.h"
 #include "mc/sampler.h"
+#include "render/distributed.h"
 
 #include "util/error.h"
 #include "util/memory_limit.h"
@@ -19,14 +23,39 @@ namespace ps {
 namespace {
 
 // Passes of growing size: an early stop leaves every pixel with a similar count, and each
-// pixel is normalised by its own weights, so the image stays unbiased.
-bool renderUniform(SamplePasses& passes, Film& film, int spp) {
-    int s0 = 0, pass = 1;
+// pixel is normalised by its own weights, so the image stays unbiased. Processes of one
+// render agree after every pass whether to go on. A resumed render starts at (s0, pass);
+// afterPass(s1, next pass) runs after every whole pass but the last.
+bool renderUniform(SamplePasses& passes, Film& film, int spp, int s0, int pass,
+                   const std::function<void(int, int)>& afterPass) {
     while (s0 < spp) {
         int s1 = std::min(spp, s0 + pass);
-        if (!passes.run(film, [&](size_t) { return SampleSpan{s0, s1}; })) return false;
+        if (distributed::anyOf(!passes.run(film, [&](size_t) { return SampleSpan{s0, s1}; }))) return false;
         s0 = s1;
         pass = std::min(pass * 2, 64);
+        if (s0 < spp) afterPass(s0, pass);
+    }
+    return true;
+}
+
+// The sums of every process's film into `sums` on rank 0 (false elsewhere), plus the resumed
+// render's: a checkpoint's, or the finished render's. `samples` and `stats`: this process's.
+bool sumAllToRoot(Film::Accumulators& sums, long long& samples, PathStats& stats, const CheckpointState* resume) {
+    std::vector<int64_t> n{samples, int64_t(stats.cameraPaths), int64_t(stats.lightPaths), int64_t(stats.rays),
+                           int64_t(stats.shadowRays), int64_t(stats.guarded)};
+    distributed::sumToRoot(sums.fixed);
+    distributed::sumToRoot(sums.counts);
+    distributed::sumToRoot(n);
+    if (!distributed::isRoot()) return false;
+    samples = n[0];
+    stats = {uint64_t(n[1]), uint64_t(n[2]), uint64_t(n[3]), uint64_t(n[4]), uint64_t(n[5])};
+    if (resume) {
+        if (resume->sums.fixed.size() != sums.fixed.size() || resume->sums.counts.size() != sums.counts.size())
+            throw InputError("--resume: the checkpoint's film has another size than this render's");
+        for (size_t i = 0; i < sums.fixed.size(); ++i) sums.fixed[i] += resume->sums.fixed[i];
+        for (size_t i = 0; i < sums.counts.size(); ++i) sums.counts[i] += resume->sums.counts[i];
+        samples += resume->samples;
+        stats += resume->stats;
     }
     return true;
 }
@@ -48,6 +77,25 @@ void requireFilmMemory(const Scene& scene, const Integrator& integrator, const R
         what += " (crop " + std::to_string(b.width()) + "x" + std::to_string(b.height()) + ")";
     if (integrator.splats()) what += " with splat buffers for " + std::to_string(threads) + " thread(s)";
     requireMemory(scene.settings().filmLoc, what, bytes);
+}
+
+// Sums every process's film and statistics, and a resumed render's, into rank 0's (exact
+// integer sums: the same bits as one process taking every sample). False on the other ranks,
+// whose film is then partial.
+bool reduceToRoot(Film& film, const SamplePasses& passes, RenderResult& result, const CheckpointState* resume) {
+    DistributedStats& d = result.distributed;
+    d.ranks = distributed::size();
+    for (double n : distributed::gatherToRoot(double(passes.samplesDone()))) d.rankSamples.push_back((long long)n);
+    d.rankSeconds = distributed::gatherToRoot(result.seconds);
+    if (d.ranks == 1 && !resume) return true;
+    const distributed::Traffic before = distributed::traffic();
+    Film::Accumulators sums = film.accumulators();
+    long long samples = passes.samplesDone();
+    const bool root = sumAllToRoot(sums, samples, result.stats, resume);
+    d.reductionBytes = distributed::traffic().bytes - before.bytes;
+    d.reductionSeconds = distributed::traffic().seconds - before.seconds;
+    if (root) film.setAccumulators(sums);
+    return root;
 }
 
 }  // namespace
@@ -73,9 +121,17 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     if (options.adaptive != AdaptiveMode::None && integrator.splats())
         throw InputError("adaptive sampling needs an integrator whose pixels come from their own samples "
                          "(path); light tracing, BDPT and Metropolis splat onto the whole film");
+    auto* mlt = dynamic_cast<const MetropolisIntegrator*>(&integrator);
+    if (distributed::size() > 1 && (mlt || options.adaptive != AdaptiveMode::None))
+        throw InputError(std::string(mlt ? "Metropolis (pssmlt, mmlt)" : "adaptive sampling (--adaptive)") +
+                         " does not yet run over several processes: render it with one (without mpirun, or -n 1); "
+                         "path, light and bdpt with uniform sampling do");
+    if ((options.resume || options.checkpoint) && (mlt || options.adaptive != AdaptiveMode::None))
+        throw InputError(std::string(mlt ? "Metropolis (pssmlt, mmlt)" : "adaptive sampling (--adaptive)") +
+                         " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling do");
     requireFilmMemory(scene, integrator, options);
     // Markov chains have their own driver: a chain is not a per-camera-ray estimate.
-    if (auto* mlt = dynamic_cast<const MetropolisIntegrator*>(&integrator)) return renderMetropolis(scene, *mlt, options);
+    if (mlt) return renderMetropolis(scene, *mlt, options);
     const PixelBounds& bounds = scene.pixelBounds();
     Film film(scene.camera().params().xRes, scene.camera().params().yRes, bounds,
               integrator.splats() ? &scene.filter() : nullptr);
@@ -88,20 +144,50 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     RenderResult result;
     result.targetSpp = spp;
     bool complete = false;
+    // Where a resumed render stands (its sums join the film on rank 0 at the end).
+    const CheckpointState* resume = options.resume;
+    const int s0 = resume ? std::min(resume->samplesPerPixel, spp) : 0;
+    result.resumedSpp = s0;
+    // After a whole pass, once checkpointEvery seconds have passed (the processes agree): the
+    // films' sums, with the resumed ones, to rank 0, which writes them.
+    auto lastCheckpoint = std::chrono::steady_clock::now();
+    auto afterPass = [&](int s1, int nextPass) {
+        if (options.checkpointEvery < 0 || !options.checkpoint) return;
+        const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - lastCheckpoint).count();
+        if (!distributed::anyOf(since >= options.checkpointEvery)) return;
+        CheckpointState state;
+        state.samplesPerPixel = s1;
+        state.passSize = nextPass;
+        state.sums = film.accumulators();
+        state.samples = passes.samplesDone();
+        state.stats = passes.stats();
+        if (sumAllToRoot(state.sums, state.samples, state.stats, resume)) options.checkpoint(state);
+        ++result.checkpoints;
+        lastCheckpoint = std::chrono::steady_clock::now();
+    };
+    // One progress bar, rank 0's, over its share; the clocks of all processes start together.
+    const int ranks = distributed::size();
+    distributed::barrier();
     {
-        Monitor monitor(options.progress, options.timeLimit, options.cancel, stop, samplesDone, bounds.area() * spp);
+        Monitor monitor(options.progress && distributed::isRoot(), options.timeLimit, options.cancel, stop, samplesDone,
+                        (bounds.area() * (spp - s0) + ranks - 1) / ranks);
         switch (options.adaptive) {
-            case AdaptiveMode::None: complete = renderUniform(passes, film, spp); break;
+            case AdaptiveMode::None:
+                complete = renderUniform(passes, film, spp, s0, resume ? resume->passSize : 1, afterPass);
+                break;
             case AdaptiveMode::Sequential: complete = renderSequential(passes, film, monitor, spp); break;
             case AdaptiveMode::TwoStage: complete = renderTwoStage(passes, film, monitor, spp); break;
         }
         result.seconds = monitor.elapsed();
     }
     result.stats = passes.stats();
+    if (!reduceToRoot(film, passes, result, resume)) return result;
     // Every camera sample traced one light path; the imaging ratio scales splats as well.
     const float imagingRatio = scene.settings().imagingRatio;
     const double lightPaths = imagingRatio > 0 ? film.meanSamplesPerPixel() * double(bounds.area()) / imagingRatio : 0.0;
-    result.meanSpp = double(passes.samplesDone()) / double(bounds.area());
+    result.meanSpp = (double(std::accumulate(result.distributed.rankSamples.begin(), result.distributed.rankSamples.end(), 0LL)) +
+                      double(resume ? resume->samples : 0)) /
+                     double(bounds.area());
     result.pixelSamples = film.sampleCounts();
     result.stoppedEarly = !complete;
     filmResults(film, lightPaths, scene.settings(), result);

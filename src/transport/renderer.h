@@ -3,6 +3,7 @@
 #pragma once
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 #include "film/film.h"
@@ -12,6 +13,8 @@
 #include "transport/integrator.h"
 
 namespace ps {
+
+struct CheckpointState;  // transport/checkpoint.h
 
 struct RenderOptions {
     int spp = 16;
@@ -24,6 +27,13 @@ struct RenderOptions {
     // Per-pixel sample counts (see transport/adaptive.h); spp is then the average. Not for
     // splatting integrators (light, bdpt): render() throws InputError.
     AdaptiveMode adaptive = AdaptiveMode::None;
+    // Checkpoints (transport/checkpoint.h; uniform sampling, not Metropolis): continue from
+    // `resume` (on rank 0 its sums; on every process where it stands), and after a whole pass,
+    // once `checkpointEvery` seconds (>= 0) have passed since the last, sum the films on rank 0
+    // and hand them to `checkpoint` there.
+    const CheckpointState* resume = nullptr;
+    double checkpointEvery = -1;
+    std::function<void(const CheckpointState&)> checkpoint;
 };
 
 // What a Markov-chain render (transport/mlt/) adds to the statistics.
@@ -50,6 +60,15 @@ struct MetropolisStats {
     double acceptanceRate() const { return rate(acceptedLarge + acceptedSmall, proposedLarge + proposedSmall); }
 };
 
+// A render over several processes (render/distributed.h), as rank 0 reports it.
+struct DistributedStats {
+    int ranks = 1;
+    std::vector<long long> rankSamples;  // per rank: camera samples taken
+    std::vector<double> rankSeconds;     // per rank: render seconds
+    double reductionBytes = 0;    // the film's sums, as each rank sends them to rank 0
+    double reductionSeconds = 0;  // rank 0's time in the reductions
+};
+
 struct RenderResult {
     Image image;                 // the crop region, weighted mean per pixel
     Image variance;              // per pixel, the estimated variance of its mean luminance (Film::varianceImage)
@@ -66,6 +85,9 @@ struct RenderResult {
     double efficiency = 0;
     MetropolisStats metropolis;
     std::vector<Image> depthImages;  // per path depth, if a Metropolis render was asked to record them
+    DistributedStats distributed;
+    int resumedSpp = 0;   // samples per pixel the render resumed from (RenderOptions::resume)
+    int checkpoints = 0;  // checkpoints written
 };
 
 // What a finished film gives every driver's result: the image (in the film's colour space),
@@ -75,6 +97,9 @@ void filmResults(const Film& film, double lightPaths, const RenderSettings& sett
 
 // Throws InputError before anything is allocated if the film would exceed the memory limit
 // (util/memory_limit.h), naming the scene's Film directive.
+// Over several processes (render/distributed.h; path, light and bdpt, uniform sampling) every
+// process calls it; each takes its share of the samples, and rank 0's result holds the whole
+// render, the same image as one process's; the others' results hold only their statistics.
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options);
 
 }  // namespace ps

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include "mc/rng.h"
+#include "render/distributed.h"
 #include "transport/renderer.h"
 #include "util/error.h"
 
@@ -18,6 +19,7 @@ SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, con
                            std::atomic<bool>& stop, std::atomic<long long>& samplesDone)
     : scene_(scene), integrator_(integrator), stop_(stop), samplesDone_(samplesDone),
       imagingRatio_(scene.settings().imagingRatio), hasLens_(scene.camera().params().lensRadius > 0),
+      share_{distributed::rank(), distributed::size()},
       states_([this] {
           ThreadState s;
           for (int k = 0; k < 2; ++k) s.samplers[k] = prototypes_[k]->clone();
@@ -55,8 +57,13 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
             long long taken = 0;
             for (int py = t.y0; py < t.y1; ++py)
                 for (int px = t.x0; px < t.x1; ++px) {
-                    SampleSpan span = spanOf(size_t(py - b.y0) * size_t(b.width()) + size_t(px - b.x0));
-                    for (int si = span.begin; si < span.end; ++si) {
+                    const size_t pixel = size_t(py - b.y0) * size_t(b.width()) + size_t(px - b.x0);
+                    SampleSpan span = spanOf(pixel);
+                    // The first index of this process's share, then every share_.count-th.
+                    const int first = span.begin + int((size_t(share_.index) + size_t(share_.count) -
+                                                        (pixel + size_t(span.begin)) % size_t(share_.count)) %
+                                                       size_t(share_.count));
+                    for (int si = first; si < span.end; si += share_.count) {
                         sampler.startPixelSample(px, py, si);
                         FilterSample fs = filter.sample(sampler.getPixel2D());
                         CameraSample cs;
@@ -68,7 +75,7 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                         st.scratch.reset();
                         film.addSample(px, py, L * imagingRatio_, fs.weight, si);
                     }
-                    taken += std::max(0, span.end - span.begin);
+                    if (span.end > first) taken += (span.end - first + share_.count - 1) / share_.count;
                 }
             samplesDone_.fetch_add(taken, std::memory_order_relaxed);
         });

@@ -2,6 +2,9 @@
 // of sample indices (the same for all pixels in a uniform render, per pixel in an adaptive
 // one), with tiles in parallel (oneTBB). Results do not depend on the thread schedule:
 // every pixel's samples are a function of (pixel, sample index, seed) and a tile owns its pixels.
+// In a render over K processes (render/distributed.h) each takes its share of every range:
+// sample i of pixel p belongs to process (p + i) mod K, so even a one-sample pass is split
+// evenly, and the films of all processes add up to the film of one (Film::accumulators).
 #pragma once
 #include <atomic>
 #include <functional>
@@ -38,6 +41,11 @@ public:
     bool stopped() const { return stop_.load(); }
     long long samplesDone() const { return samplesDone_.load(); }
     PathStats stats() const;
+    // This process's share: samples with (pixel + index) mod count == index.
+    struct Share {
+        int index = 0, count = 1;
+    };
+    Share share() const { return share_; }
 
 private:
     struct Tile {
@@ -56,6 +64,7 @@ private:
     std::vector<Tile> tiles_;
     const float imagingRatio_;
     const bool hasLens_;
+    Share share_;
     std::unique_ptr<Sampler> prototypes_[2];
     tbb::enumerable_thread_specific<ThreadState> states_;
     tbb::task_arena arena_;

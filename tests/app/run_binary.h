@@ -37,6 +37,31 @@ inline Result runPathspace(const std::string& args) {
     return r;
 }
 
+// A hexadecimal signal mask from /proc/PID/status (bit k-1 = signal k); 0 if unreadable.
+inline unsigned long long procStatusMask(pid_t pid, const char* field) {
+    std::ifstream f("/proc/" + std::to_string(pid) + "/status");
+    std::string line;
+    while (std::getline(f, line))
+        if (line.rfind(field, 0) == 0) return std::stoull(line.substr(std::strlen(field)), nullptr, 16);
+    return 0;
+}
+
+// User + system CPU seconds of the whole process, from /proc/PID/stat.
+inline double procCpuSeconds(pid_t pid) {
+    std::ifstream f("/proc/" + std::to_string(pid) + "/stat");
+    std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    size_t close = text.rfind(')');
+    if (close == std::string::npos) return 0;
+    std::istringstream in(text.substr(close + 2));
+    std::string field;
+    unsigned long long utime = 0, stime = 0;
+    for (int i = 3; i <= 15 && in >> field; ++i) {  // fields 14 and 15 (1-based, man 5 proc)
+        if (i == 14) utime = std::stoull(field);
+        if (i == 15) stime = std::stoull(field);
+    }
+    return double(utime + stime) / double(sysconf(_SC_CLK_TCK));
+}
+
 // `pathspace ARGS` in the background. Readiness is read from /proc rather than guessed with
 // a sleep, so the signal tests hold on a loaded machine and under the sanitizers: the process
 // renders once its signal handlers are installed, and its CPU time says how much it has
@@ -68,15 +93,17 @@ public:
     bool waitUntilRendering(double cpuSeconds) {
         double start = -1;
         return pollUntil([&] {
-            if (start < 0 && (statusMask("SigCgt:") >> (SIGINT - 1) & 1)) start = cpuTime();
-            return start >= 0 && cpuTime() - start >= cpuSeconds;
+            if (start < 0 && (procStatusMask(pid_, "SigCgt:") >> (SIGINT - 1) & 1)) start = procCpuSeconds(pid_);
+            return start >= 0 && procCpuSeconds(pid_) - start >= cpuSeconds;
         });
     }
     // Sends `sig` and waits until it is no longer pending, i.e. a thread has taken it (two
     // signals sent before either is taken would merge into one).
     bool signalAndWaitTaken(int sig) {
         if (pid_ <= 0 || exited_ || kill(pid_, sig) != 0) return false;
-        return pollUntil([&] { return !((statusMask("ShdPnd:") | statusMask("SigPnd:")) >> (sig - 1) & 1); }) ||
+        return pollUntil([&] {
+                   return !((procStatusMask(pid_, "ShdPnd:") | procStatusMask(pid_, "SigPnd:")) >> (sig - 1) & 1);
+               }) ||
                exited_;
     }
     // The exit status; -1 if it was killed by a signal, -2 if it could not be started.
@@ -103,30 +130,6 @@ private:
         }
         return false;
     }
-    // A hexadecimal signal mask from /proc/PID/status (bit k-1 = signal k); 0 if unreadable.
-    unsigned long long statusMask(const char* field) const {
-        std::ifstream f("/proc/" + std::to_string(pid_) + "/status");
-        std::string line;
-        while (std::getline(f, line))
-            if (line.rfind(field, 0) == 0) return std::stoull(line.substr(std::strlen(field)), nullptr, 16);
-        return 0;
-    }
-    // User + system CPU seconds of the whole process, from /proc/PID/stat.
-    double cpuTime() const {
-        std::ifstream f("/proc/" + std::to_string(pid_) + "/stat");
-        std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-        size_t close = text.rfind(')');
-        if (close == std::string::npos) return 0;
-        std::istringstream in(text.substr(close + 2));
-        std::string field;
-        unsigned long long utime = 0, stime = 0;
-        for (int i = 3; i <= 15 && in >> field; ++i) {  // fields 14 and 15 (1-based, man 5 proc)
-            if (i == 14) utime = std::stoull(field);
-            if (i == 15) stime = std::stoull(field);
-        }
-        return double(utime + stime) / double(sysconf(_SC_CLK_TCK));
-    }
-
     pid_t pid_ = -1;
     int status_ = 0;
     bool exited_ = false;

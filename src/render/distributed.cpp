@@ -1,0 +1,183 @@
+#include "render/distributed.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#if PATHSPACE_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace ps::distributed {
+
+namespace {
+
+Traffic gTraffic;
+
+#if PATHSPACE_HAVE_MPI
+// Times one reduction and counts its payload.
+struct Timed {
+    explicit Timed(double bytes) : start(std::chrono::steady_clock::now()) { gTraffic.bytes += bytes; }
+    ~Timed() { gTraffic.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); }
+    std::chrono::steady_clock::time_point start;
+};
+
+bool gStarted = false;
+int gRank = 0, gSize = 1;
+MPI_Datatype gInt128 = MPI_DATATYPE_NULL;
+MPI_Op gSumInt128 = MPI_OP_NULL;
+
+// MPI has no 128-bit integer: a 16-byte type and its sum as a user operation.
+void sumInt128(void* in, void* inout, int* len, MPI_Datatype*) {
+    const auto* a = static_cast<const unsigned char*>(in);
+    auto* b = static_cast<unsigned char*>(inout);
+    for (int i = 0; i < *len; ++i) {
+        __int128 x, y;
+        std::memcpy(&x, a + 16 * size_t(i), 16);
+        std::memcpy(&y, b + 16 * size_t(i), 16);
+        y += x;
+        std::memcpy(b + 16 * size_t(i), &y, 16);
+    }
+}
+
+// Launched by mpirun/mpiexec (Open MPI, MPICH/Hydra) or a PMI/PMIx scheduler such as srun.
+bool launchedByMpi() {
+    for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+        if (std::getenv(v)) return true;
+    return false;
+}
+
+void check(int err, const char* what) {
+    if (err == MPI_SUCCESS) return;
+    char text[MPI_MAX_ERROR_STRING];
+    int n = 0;
+    MPI_Error_string(err, text, &n);
+    throw std::runtime_error(std::string("MPI ") + what + ": " + std::string(text, size_t(n)));
+}
+
+// Collectives over more elements than an int can count go in chunks.
+template <class F>
+void inChunks(size_t n, F f) {
+    constexpr size_t kChunk = size_t(1) << 26;
+    for (size_t i = 0; i < n; i += kChunk) f(i, int(std::min(kChunk, n - i)));
+}
+#endif
+
+}  // namespace
+
+void start(int& argc, char**& argv) {
+#if PATHSPACE_HAVE_MPI
+    if (gStarted || !launchedByMpi()) return;
+    // Only the main thread calls MPI (at pass boundaries); the render threads never do.
+    int provided = 0;
+    check(MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided), "init");
+    gStarted = true;
+    MPI_Comm_rank(MPI_COMM_WORLD, &gRank);
+    MPI_Comm_size(MPI_COMM_WORLD, &gSize);
+    // Errors come back as codes (turned into exceptions), not as an abort inside MPI.
+    MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+    MPI_Type_contiguous(16, MPI_BYTE, &gInt128);
+    MPI_Type_commit(&gInt128);
+    MPI_Op_create(&sumInt128, 1, &gSumInt128);
+#else
+    (void)argc;
+    (void)argv;
+#endif
+}
+
+int finish(int code) {
+#if PATHSPACE_HAVE_MPI
+    if (!gStarted) return code;
+    if (code != 0 && code != 130 && gSize > 1) MPI_Abort(MPI_COMM_WORLD, code);
+    MPI_Op_free(&gSumInt128);
+    MPI_Type_free(&gInt128);
+    MPI_Finalize();
+    gStarted = false;
+#endif
+    return code;
+}
+
+int rank() {
+#if PATHSPACE_HAVE_MPI
+    return gRank;
+#else
+    return 0;
+#endif
+}
+
+int size() {
+#if PATHSPACE_HAVE_MPI
+    return gSize;
+#else
+    return 1;
+#endif
+}
+
+void barrier() {
+#if PATHSPACE_HAVE_MPI
+    if (gSize > 1) check(MPI_Barrier(MPI_COMM_WORLD), "barrier");
+#endif
+}
+
+bool anyOf(bool local) {
+#if PATHSPACE_HAVE_MPI
+    if (gSize > 1) {
+        int in = local ? 1 : 0, out = 0;
+        check(MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD), "stop decision");
+        return out != 0;
+    }
+#endif
+    return local;
+}
+
+void sumToRoot(std::vector<int64_t>& v) {
+#if PATHSPACE_HAVE_MPI
+    if (gSize <= 1) return;
+    Timed t(double(v.size() * sizeof(int64_t)));
+    inChunks(v.size(), [&](size_t at, int n) {
+        void* send = gRank == 0 ? MPI_IN_PLACE : v.data() + at;
+        check(MPI_Reduce(send, v.data() + at, n, MPI_INT64_T, MPI_SUM, 0, MPI_COMM_WORLD), "reduce");
+    });
+#else
+    (void)v;
+#endif
+}
+
+void sumToRoot(std::vector<__int128>& v) {
+#if PATHSPACE_HAVE_MPI
+    if (gSize <= 1) return;
+    Timed t(double(v.size() * sizeof(__int128)));
+    inChunks(v.size(), [&](size_t at, int n) {
+        void* send = gRank == 0 ? MPI_IN_PLACE : v.data() + at;
+        check(MPI_Reduce(send, v.data() + at, n, gInt128, gSumInt128, 0, MPI_COMM_WORLD), "reduce");
+    });
+#else
+    (void)v;
+#endif
+}
+
+void broadcastFromRoot(std::vector<int64_t>& v) {
+#if PATHSPACE_HAVE_MPI
+    if (gSize > 1) check(MPI_Bcast(v.data(), int(v.size()), MPI_INT64_T, 0, MPI_COMM_WORLD), "broadcast");
+#else
+    (void)v;
+#endif
+}
+
+std::vector<double> gatherToRoot(double x) {
+#if PATHSPACE_HAVE_MPI
+    if (gSize > 1) {
+        std::vector<double> all(gRank == 0 ? size_t(gSize) : 0);
+        check(MPI_Gather(&x, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD), "gather");
+        return all;
+    }
+#endif
+    return {x};
+}
+
+Traffic traffic() { return gTraffic; }
+
+}  // namespace ps::distributed

@@ -1,0 +1,177 @@
+#include "transport/checkpoint.h"
+
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <unistd.h>
+
+#include "mc/rng.h"
+#include "util/error.h"
+
+namespace ps {
+
+namespace {
+
+constexpr char kMagic[8] = {'P', 'S', 'C', 'K', 'P', 'T', '\n', '\0'};
+constexpr uint32_t kVersion = 1;
+constexpr uint32_t kByteOrder = 0x01020304;  // read back otherwise on a machine of the other order
+
+struct Header {
+    char magic[8];
+    uint32_t version, byteOrder;
+    uint64_t metadataBytes, fixedCount, countCount;
+    uint64_t checksum;  // of every byte after the header
+};
+static_assert(sizeof(Header) == 48);
+
+// A 64-bit hash, eight bytes at a time: not cryptographic, it catches a damaged file.
+uint64_t hashBytes(const char* data, size_t n, uint64_t h) {
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+        uint64_t w;
+        std::memcpy(&w, data + i, 8);
+        h = mix64(h ^ w) + i;
+    }
+    uint64_t tail = 0;
+    std::memcpy(&tail, data + i, n - i);
+    return mix64(h ^ tail ^ (uint64_t(n) << 3));
+}
+
+nlohmann::json statsJson(const PathStats& s) {
+    return {s.cameraPaths, s.lightPaths, s.rays, s.shadowRays, s.guarded};
+}
+
+// "spp 64 here, 32 in the checkpoint; integrator ..." for every setting that differs.
+std::string differences(const nlohmann::json& want, const nlohmann::json& have) {
+    std::string d;
+    for (const auto& [key, value] : want.items()) {
+        const auto it = have.find(key);
+        const std::string old = it == have.end() ? "absent" : it->dump();
+        if (it == have.end() || *it != value)
+            d += (d.empty() ? "" : "; ") + key + " " + value.dump() + " here, " + old + " in the checkpoint";
+    }
+    return d;
+}
+
+[[noreturn]] void refuse(const std::string& path, const std::string& what) {
+    throw InputError("--resume \"" + path + "\": " + what + "; nothing was rendered or overwritten");
+}
+
+}  // namespace
+
+std::string fileHash(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)hashBytes(bytes.data(), bytes.size(), 0));
+    return hex;
+}
+
+void writeCheckpoint(const std::string& path, const nlohmann::json& settings, const CheckpointState& state) {
+    const std::string metadata = nlohmann::json{{"settings", settings},
+                                                {"samples_per_pixel", state.samplesPerPixel},
+                                                {"pass_size", state.passSize},
+                                                {"samples", state.samples},
+                                                {"stats", statsJson(state.stats)}}
+                                     .dump();
+    const auto& fixed = state.sums.fixed;
+    const auto& counts = state.sums.counts;
+    Header h{};
+    std::memcpy(h.magic, kMagic, 8);
+    h.version = kVersion;
+    h.byteOrder = kByteOrder;
+    h.metadataBytes = metadata.size();
+    h.fixedCount = fixed.size();
+    h.countCount = counts.size();
+    uint64_t c = hashBytes(metadata.data(), metadata.size(), 1);
+    c = hashBytes(reinterpret_cast<const char*>(fixed.data()), fixed.size() * sizeof(Fixed), c);
+    h.checksum = hashBytes(reinterpret_cast<const char*>(counts.data()), counts.size() * sizeof(int64_t), c);
+
+    const std::string tmp = path + ".tmp";
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0) throw std::runtime_error("checkpoint \"" + tmp + "\": cannot create: " + std::strerror(errno));
+    auto put = [&](const void* p, size_t n) {
+        for (const char* b = static_cast<const char*>(p); n > 0;) {
+            const ssize_t w = ::write(fd, b, n);
+            if (w < 0 && errno == EINTR) continue;  // a Ctrl-C while writing
+            if (w <= 0) {
+                const std::string why = std::strerror(errno);
+                ::close(fd);
+                ::unlink(tmp.c_str());
+                throw std::runtime_error("checkpoint \"" + tmp + "\": write failed: " + why);
+            }
+            b += w, n -= size_t(w);
+        }
+    };
+    put(&h, sizeof h);
+    put(metadata.data(), metadata.size());
+    put(fixed.data(), fixed.size() * sizeof(Fixed));
+    put(counts.data(), counts.size() * sizeof(int64_t));
+    // On disk before the rename, so the name never points at a file a crash left half-written.
+    if (::fsync(fd) != 0 || ::close(fd) != 0) {
+        ::unlink(tmp.c_str());
+        throw std::runtime_error("checkpoint \"" + tmp + "\": cannot flush to disk");
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        const std::string why = std::strerror(errno);
+        ::unlink(tmp.c_str());
+        throw std::runtime_error("checkpoint \"" + path + "\": cannot rename the temporary file over it: " + why);
+    }
+    // The rename itself is durable once the directory is flushed.
+    const std::filesystem::path dir = std::filesystem::path(path).has_parent_path() ? std::filesystem::path(path).parent_path() : ".";
+    const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+    if (dfd >= 0) {
+        ::fsync(dfd);
+        ::close(dfd);
+    }
+}
+
+CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& settings) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) refuse(path, "cannot open the file");
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    Header h;
+    if (bytes.size() < sizeof h || std::memcmp(bytes.data(), kMagic, 8) != 0)
+        refuse(path, "not a pathspace checkpoint");
+    std::memcpy(&h, bytes.data(), sizeof h);
+    if (h.byteOrder != kByteOrder) refuse(path, "written on a machine of the other byte order");
+    if (h.version != kVersion)
+        refuse(path, "format version " + std::to_string(h.version) + ", this pathspace reads version " +
+                         std::to_string(kVersion));
+    // Sizes first (a truncated file), in a way no huge count in a damaged header overflows.
+    const long double expected = (long double)sizeof h + h.metadataBytes + (long double)h.fixedCount * sizeof(Fixed) +
+                                 (long double)h.countCount * sizeof(int64_t);
+    if (expected != (long double)bytes.size())
+        refuse(path, "truncated or damaged: its header announces " + std::to_string((unsigned long long)expected) +
+                         " bytes, the file has " + std::to_string(bytes.size()));
+    if (hashBytes(bytes.data() + sizeof h + h.metadataBytes + h.fixedCount * sizeof(Fixed), h.countCount * sizeof(int64_t),
+                  hashBytes(bytes.data() + sizeof h + h.metadataBytes, h.fixedCount * sizeof(Fixed),
+                            hashBytes(bytes.data() + sizeof h, h.metadataBytes, 1))) != h.checksum)
+        refuse(path, "corrupt (its checksum does not match its contents)");
+    CheckpointState s;
+    try {
+        const nlohmann::json m = nlohmann::json::parse(bytes.substr(sizeof h, h.metadataBytes));
+        const std::string diff = differences(settings, m.at("settings"));
+        if (!diff.empty()) refuse(path, "made for another render (" + diff + ")");
+        s.samplesPerPixel = m.at("samples_per_pixel").get<int>();
+        s.passSize = m.at("pass_size").get<int>();
+        s.samples = m.at("samples").get<long long>();
+        const auto& st = m.at("stats");
+        s.stats = {st.at(0).get<uint64_t>(), st.at(1).get<uint64_t>(), st.at(2).get<uint64_t>(), st.at(3).get<uint64_t>(),
+                   st.at(4).get<uint64_t>()};
+    } catch (const nlohmann::json::exception& e) {
+        refuse(path, std::string("unreadable metadata (") + e.what() + ")");
+    }
+    s.sums.fixed.resize(h.fixedCount);
+    s.sums.counts.resize(h.countCount);
+    std::memcpy(s.sums.fixed.data(), bytes.data() + sizeof h + h.metadataBytes, h.fixedCount * sizeof(Fixed));
+    std::memcpy(s.sums.counts.data(), bytes.data() + sizeof h + h.metadataBytes + h.fixedCount * sizeof(Fixed),
+                h.countCount * sizeof(int64_t));
+    return s;
+}
+
+}  // namespace ps

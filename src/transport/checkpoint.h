@@ -1,0 +1,38 @@
+// Checkpoints of a uniform render (path, light, bdpt): the film's exact sums after the last
+// whole pass, enough to continue it, on any number of processes, to the image one
+// uninterrupted run gives. The file: a fixed binary header (magic, version, section sizes, a
+// checksum of everything after it), JSON metadata (the settings that shape the image, where
+// the render stands), then the sums as raw integers.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "film/film.h"
+#include "transport/integrator.h"
+
+namespace ps {
+
+struct CheckpointState {
+    int samplesPerPixel = 0;  // every pixel has taken sample indices [0, samplesPerPixel)
+    int passSize = 1;         // the next pass's size (the growing pass schedule goes on)
+    long long samples = 0;    // camera samples in the sums
+    PathStats stats;          // of those samples
+    Film::Accumulators sums;  // over all processes (Film::accumulators)
+};
+
+// Writes atomically: a temporary file next to `path`, flushed to disk, then renamed over it,
+// so a crash leaves the previous checkpoint or the new one, never a mix. `settings`: what
+// must match to resume (checkpointSettings). Throws std::runtime_error naming the file.
+void writeCheckpoint(const std::string& path, const nlohmann::json& settings, const CheckpointState& state);
+
+// Reads and checks a checkpoint: throws InputError naming the file and what is wrong when it
+// is not one, is truncated or corrupt (checksum), or was made with other settings (listing
+// each that differs), so nothing is rendered or overwritten.
+CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& settings);
+
+// A 64-bit hash of a file's bytes, in hexadecimal (the scene's identity in the settings).
+std::string fileHash(const std::string& path);
+
+}  // namespace ps

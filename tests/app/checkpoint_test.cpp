@@ -1,0 +1,139 @@
+// Checkpoints (--checkpoint, --resume): a render stopped after a checkpoint and resumed gives
+// the uninterrupted render's image bit for bit, on one process or several; a checkpoint that
+// is damaged or of another render is refused, and nothing is overwritten.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "image/image.h"
+#include "run_mpi.h"
+#include "sky_scene.h"
+
+namespace fs = std::filesystem;
+using namespace ps::test;
+
+namespace {
+
+class Checkpoint : public CliDirTest {
+protected:
+    std::string scene() { return write("s.pbrt", kSkyScene); }
+    std::string path(const std::string& name) const { return (dir / name).string(); }
+    static std::string bytes(const std::string& file) {
+        std::ifstream f(file, std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    }
+    nlohmann::json stats(const std::string& name) const { return nlohmann::json::parse(std::ifstream(path(name))); }
+    // A render of kSkyScene to NAME.pfm and NAME.json with `options`; its exit status and output.
+    Result render(const std::string& name, const std::string& options, int processes = 0) {
+        const std::string args = "render --quiet " + scene() + " " + options + " -o " + path(name + ".pfm") +
+                                 " --stats " + path(name + ".json");
+        return processes == 0 ? runPathspace(args) : runMpi(processes, args);
+    }
+};
+
+}  // namespace
+
+// SIGINT once a checkpoint exists (one after every pass): the image so far is written and
+// normalised; resumed with other thread counts, and over 2 processes under mpirun, the
+// path tracer's image equals the uninterrupted render's bit for bit.
+TEST_F(Checkpoint, InterruptedAndResumedEqualsUninterrupted) {
+    const std::string spp = "16384";
+    ASSERT_EQ(render("full", "--threads 2 --spp " + spp).status, 0);
+
+    {
+        RunningPathspace p({"render", "--quiet", "--threads", "1", "--spp", spp, scene(), "-o", path("part.pfm"), "--stats",
+                            path("part.json"), "--checkpoint", path("ck"), "--checkpoint-every", "0"});
+        ASSERT_TRUE(p.waitUntilRendering(0.02)) << "pathspace exited or hung before rendering";
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+        while (!fs::exists(path("ck")) && std::chrono::steady_clock::now() < deadline)
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        ASSERT_TRUE(fs::exists(path("ck"))) << "no checkpoint written";
+        EXPECT_TRUE(p.signalAndWaitTaken(SIGINT));
+        ASSERT_EQ(p.wait(), 130);
+    }
+    nlohmann::json part = stats("part.json");
+    EXPECT_TRUE(part["interrupted"].get<bool>());
+    EXPECT_GE(part["checkpoints"].get<int>(), 1);
+    expectExactSkyImage(ps::readImage(path("part.pfm")), "interrupted after a checkpoint");
+    EXPECT_FALSE(fs::exists(path("ck.tmp"))) << "the temporary file was left behind";
+
+    ASSERT_EQ(render("resumed", "--threads 2 --spp " + spp + " --resume " + path("ck")).status, 0);
+    nlohmann::json r = stats("resumed.json");
+    const int from = r["resumed_spp"].get<int>();
+    std::printf("interrupted at %.0f spp (%d checkpoints); resumed from %d of %s spp\n", part["spp_mean"].get<double>(),
+                part["checkpoints"].get<int>(), from, spp.c_str());
+    EXPECT_GT(from, 0);
+    EXPECT_LT(from, std::stoi(spp)) << "the render was not interrupted before its end";
+    EXPECT_EQ(r["spp_mean"].get<double>(), std::stod(spp));
+    EXPECT_EQ(r["camera_paths"], stats("full.json")["camera_paths"]);
+    EXPECT_TRUE(bytes(path("resumed.pfm")) == bytes(path("full.pfm"))) << "resumed image differs from the uninterrupted one";
+
+    std::string why;
+    if (mpirunPath(why).empty()) {
+        std::printf("resume over 2 processes not tested: %s\n", why.c_str());
+        return;
+    }
+    ASSERT_EQ(render("resumed2", "--threads 1 --spp " + spp + " --resume " + path("ck"), 2).status, 0);
+    EXPECT_EQ(stats("resumed2.json")["ranks"], 2);
+    EXPECT_TRUE(bytes(path("resumed2.pfm")) == bytes(path("full.pfm")))
+        << "resumed over 2 processes, the image differs from the uninterrupted one";
+}
+
+// Each bad checkpoint is refused with a message naming the file and the fault, exit status 2,
+// and neither the output image nor the checkpoint (also named by --checkpoint) is touched.
+TEST_F(Checkpoint, RefusesDamagedOrMismatchedCheckpoints) {
+    ASSERT_EQ(render("make", "--threads 2 --spp 40 --checkpoint " + path("ck") + " --checkpoint-every 0").status, 0);
+    const std::string good = bytes(path("ck"));
+    ASSERT_GT(good.size(), 32u * 24 * 160);  // the film's sums
+    std::ofstream(path("truncated"), std::ios::binary) << good.substr(0, good.size() / 2);
+    std::string corrupt = good;
+    corrupt[good.size() - 1000] ^= 0x10;  // one bit of the sums
+    std::ofstream(path("corrupt"), std::ios::binary) << corrupt;
+    write("other.pbrt", std::string(kSkyScene).replace(std::string(kSkyScene).find("0.5 0.5 0.5"), 11, "0.6 0.5 0.5"));
+
+    struct Case {
+        std::string what, file, options, message;
+    };
+    for (const Case& c : std::vector<Case>{
+             {"truncated", "truncated", "--spp 40", "truncated or damaged"},
+             {"corrupt", "corrupt", "--spp 40", "corrupt (its checksum does not match"},
+             {"other scene", "ck", "--spp 40 --scene-file other.pbrt", "scene_file_hash"},
+             {"other spp", "ck", "--spp 41", "spp 41 here, 40 in the checkpoint"},
+             {"other integrator", "ck", "--spp 40 --integrator light", "integrator \"light\" here, \"path\" in the checkpoint"},
+             {"not a checkpoint", "s.pbrt", "--spp 40", "not a pathspace checkpoint"}}) {
+        SCOPED_TRACE(c.what);
+        std::ofstream(path("out.pfm")) << "keep";
+        std::string sceneFile = scene(), options = c.options;
+        if (const size_t at = options.find(" --scene-file "); at != std::string::npos) {
+            sceneFile = path(options.substr(at + 14));
+            options = options.substr(0, at);
+        }
+        const Result r = runPathspace("render --quiet " + sceneFile + " " + options + " -o " + path("out.pfm") +
+                                      " --resume " + path(c.file) + " --checkpoint " + path(c.file));
+        EXPECT_EQ(r.status, 2) << r.out;
+        EXPECT_NE(r.out.find("--resume \"" + path(c.file) + "\""), std::string::npos) << r.out;
+        EXPECT_NE(r.out.find(c.message), std::string::npos) << r.out;
+        EXPECT_TRUE(bytes(path("out.pfm")) == "keep") << "the output was overwritten";
+        std::printf("%s: %s", c.what.c_str(), r.out.c_str());
+    }
+    EXPECT_TRUE(bytes(path("ck")) == good) << "the checkpoint was overwritten";
+}
+
+// Metropolis and adaptive sampling do not checkpoint yet, and say so.
+TEST_F(Checkpoint, RefusedWhereNotSupported) {
+    for (const std::string opts : {"--integrator pssmlt", "--integrator mmlt", "--adaptive twostage"}) {
+        SCOPED_TRACE(opts);
+        const Result r = render("x", "--spp 4 " + opts + " --checkpoint " + path("ck"));
+        EXPECT_EQ(r.status, 2) << r.out;
+        EXPECT_NE(r.out.find("does not yet write or resume checkpoints"), std::string::npos) << r.out;
+        EXPECT_FALSE(fs::exists(path("ck")));
+    }
+}

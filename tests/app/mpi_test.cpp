@@ -1,0 +1,157 @@
+// Renders over K processes (mpirun -n K, on this machine over loopback): each process takes a
+// share of every pixel's sample indices and the film's exact sums are added on rank 0, so the
+// image is the one process's, bit for bit, for any K and thread count; time limits and
+// signals stop every process together and the image is normalised by the samples taken.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "image/image.h"
+#include "run_mpi.h"
+#include "sky_scene.h"
+
+namespace fs = std::filesystem;
+using namespace ps::test;
+
+namespace {
+
+class Mpi : public CliDirTest {
+protected:
+    std::string scene() { return write("s.pbrt", kSkyScene); }
+    std::string path(const std::string& name) const { return (dir / name).string(); }
+    static std::string bytes(const std::string& file) {
+        std::ifstream f(file, std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    }
+    nlohmann::json stats(const std::string& name) const { return nlohmann::json::parse(std::ifstream(path(name))); }
+    // Renders with `options` to NAME.pfm (and its variance AOV) and NAME.json, by one plain
+    // process (processes == 0) or under mpirun; expects success.
+    void render(int processes, const std::string& name, const std::string& options) {
+        std::string args = "render --quiet " + scene() + " " + options + " --aov variance -o " + path(name + ".pfm") +
+                           " --stats " + path(name + ".json");
+        Result r = processes == 0 ? runPathspace(args) : runMpi(processes, args);
+        ASSERT_EQ(r.status, 0) << r.out;
+    }
+    // NAME.pfm and its variance image have the bits of REF's.
+    void expectSameBits(const std::string& name, const std::string& ref) {
+        for (const char* suffix : {".pfm", ".variance.pfm"}) {
+            std::string a = bytes(path(ref + suffix)), b = bytes(path(name + suffix));
+            ASSERT_FALSE(a.empty());
+            EXPECT_TRUE(a == b) << name << suffix << " differs from " << ref << suffix;
+        }
+    }
+};
+
+}  // namespace
+
+// The path tracer (Sobol sampler, the default) over 1, 2 and 4 processes with 1 or 2 threads
+// each: the image and the variance image of one process with 2 threads, bit for bit; the
+// statistics count every sample once and name each process's share.
+TEST_F(Mpi, PathTracerImageIndependentOfProcessesAndThreads) {
+    PS_SKIP_WITHOUT_MPI();
+    const std::string opts = "--spp 23 --sampler sobol --integrator path";
+    render(0, "plain", opts + " --threads 2");
+    const long long samples = 32 * 24 * 23;
+    EXPECT_EQ(stats("plain.json")["ranks"], 1);
+    for (auto [k, threads] : {std::pair{1, 1}, {2, 2}, {2, 1}, {4, 1}}) {
+        const std::string name = "k" + std::to_string(k) + "t" + std::to_string(threads);
+        SCOPED_TRACE(name);
+        render(k, name, opts + " --threads " + std::to_string(threads));
+        expectSameBits(name, "plain");
+        nlohmann::json j = stats(name + ".json");
+        EXPECT_EQ(j["ranks"], k);
+        ASSERT_EQ(j["rank_samples"].size(), size_t(k));
+        ASSERT_EQ(j["rank_seconds"].size(), size_t(k));
+        long long sum = 0;
+        for (const auto& n : j["rank_samples"]) {
+            sum += n.get<long long>();
+            EXPECT_NEAR(n.get<double>(), double(samples) / k, 0.02 * samples / k) << "an uneven share";
+        }
+        EXPECT_EQ(sum, samples);
+        EXPECT_EQ(j["camera_paths"], stats("plain.json")["camera_paths"]);
+        EXPECT_EQ(j["spp_mean"].get<double>(), 23.0);
+        if (k > 1) {
+            EXPECT_GT(j["reduction_bytes"].get<double>(), 32 * 24 * 160.0);  // the film's sums
+            EXPECT_GT(j["reduction_seconds"].get<double>(), 0.0);
+        }
+    }
+}
+
+// Light tracing and BDPT splat onto the whole film, in fixed point: the same bits too.
+TEST_F(Mpi, SplattingIntegratorsImageIndependentOfProcesses) {
+    PS_SKIP_WITHOUT_MPI();
+    for (const std::string integrator : {"light", "bdpt"}) {
+        SCOPED_TRACE(integrator);
+        const std::string opts = "--spp 9 --integrator " + integrator;
+        render(0, integrator, opts + " --threads 1");
+        for (int k : {2, 4}) {
+            const std::string name = integrator + std::to_string(k);
+            render(k, name, opts + " --threads 2");
+            expectSameBits(name, integrator);
+            EXPECT_EQ(stats(name + ".json")["light_paths"], stats(integrator + ".json")["light_paths"]);
+        }
+    }
+}
+
+// --time over 2 processes: both stop, together, and the image is normalised by the samples
+// each pixel received (kSkyScene's exact image within 4 sigma).
+TEST_F(Mpi, TimeLimitStopsEveryProcess) {
+    PS_SKIP_WITHOUT_MPI();
+    render(2, "t", "--spp 100000000 --threads 1 --time 0.6");
+    expectExactSkyImage(ps::readImage(path("t.pfm")), "--time, 2 processes");
+    nlohmann::json j = stats("t.json");
+    EXPECT_TRUE(j["stopped_early"].get<bool>());
+    EXPECT_FALSE(j["interrupted"].get<bool>());
+    for (const auto& s : j["rank_seconds"]) EXPECT_LT(s.get<double>(), 5.0);
+    for (const auto& n : j["rank_samples"]) EXPECT_GT(n.get<long long>(), 32 * 24 * 8);
+}
+
+// Ctrl-C to mpirun (which passes SIGTERM to every process) and SIGINT to one process only:
+// every process stops at the same pass boundary, rank 0 writes the normalised image, and the
+// statistics say interrupted.
+TEST_F(Mpi, SignalStopsEveryProcess) {
+    PS_SKIP_WITHOUT_MPI();
+    for (bool launcher : {true, false}) {
+        SCOPED_TRACE(launcher ? "SIGINT to mpirun" : "SIGINT to one process");
+        fs::remove(path("i.pfm"));
+        fs::remove(path("i.json"));
+        {
+            RunningMpiJob job(2, {"render", "--quiet", "--spp", "100000000", "--threads", "1", scene(), "-o",
+                                  path("i.pfm"), "--stats", path("i.json")});
+            ASSERT_TRUE(job.waitUntilRendering(0.3)) << "the job ended or hung before rendering";
+            if (launcher) job.signalLauncher(SIGINT);
+            else kill(job.ranks().back(), SIGINT);
+            const int status = job.wait();
+            // mpirun ends with 1 when it was signalled, else with the processes' 130.
+            EXPECT_EQ(status, launcher ? 1 : 130);
+        }
+        ASSERT_TRUE(fs::exists(path("i.pfm"))) << "no image written";
+        expectExactSkyImage(ps::readImage(path("i.pfm")), launcher ? "SIGINT to mpirun" : "SIGINT to one process");
+        nlohmann::json j = stats("i.json");
+        EXPECT_TRUE(j["interrupted"].get<bool>());
+        EXPECT_EQ(j["ranks"], 2);
+    }
+}
+
+// What does not yet run over several processes says so, and nothing is rendered.
+TEST_F(Mpi, RefusesWhatItCannotSplit) {
+    PS_SKIP_WITHOUT_MPI();
+    for (const std::string& opts : {std::string("--adaptive twostage"), std::string("--integrator pssmlt --bootstrap 1000 --chains 16"),
+                                   "--integrator bdpt --bdpt-strategies " + path("st")}) {
+        SCOPED_TRACE(opts);
+        fs::remove(path("r.pfm"));
+        Result r = runMpi(2, "render --quiet --spp 4 " + scene() + " -o " + path("r.pfm") + " " + opts);
+        EXPECT_NE(r.status, 0) << r.out;
+        EXPECT_NE(r.out.find("does not yet run over several processes"), std::string::npos) << r.out;
+        EXPECT_FALSE(fs::exists(path("r.pfm")));
+        // One process renders it as before.
+        Result one = runMpi(1, "render --quiet --spp 4 " + scene() + " -o " + path("r1.pfm") + " " + opts);
+        EXPECT_EQ(one.status, 0) << one.out;
+    }
+}

@@ -1,0 +1,101 @@
+// The film's sums are exact (fixed point): the same samples in any order, or split over
+// several films whose accumulators are then added (the processes of one render), give the
+// same image and variance image, bit for bit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "film/film.h"
+#include "film/filter.h"
+#include "mc/rng.h"
+
+using namespace ps;
+
+namespace {
+
+struct Sample {
+    int x, y, index;
+    Spectrum L;
+    float weight;
+    Vec2 splat;
+};
+
+// Values over twelve orders of magnitude: sums of them in double precision would round, and
+// depend on their order (over six, float values still sum exactly in a double).
+std::vector<Sample> samples(int n) {
+    std::vector<Sample> s;
+    Rng rng(7);
+    for (int i = 0; i < n; ++i) {
+        auto value = [&] { return float(std::pow(10.0, 12 * rng.uniform() - 6)); };
+        s.push_back({int(rng.uniform() * 5), int(rng.uniform() * 4), i, Spectrum(value(), value(), value()),
+                     0.5f + rng.uniform(), Vec2(5 * rng.uniform(), 4 * rng.uniform())});
+    }
+    return s;
+}
+
+void add(Film& f, const Sample& s) {
+    f.addSample(s.x, s.y, s.L, s.weight, s.index);
+    f.addSplat(s.splat, s.L * 0.1f, s.index);
+}
+
+bool sameBits(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height) return false;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            Spectrum p = a.get(x, y), q = b.get(x, y);
+            if (std::memcmp(&p, &q, sizeof p) != 0) return false;
+        }
+    return true;
+}
+
+}  // namespace
+
+TEST(FilmSums, IndependentOfOrderAndSplit) {
+    const PixelBounds bounds{0, 5, 0, 4};
+    BoxFilter box(Vec2(0.5f, 0.5f));
+    for (const Filter* filter : {static_cast<const Filter*>(nullptr), static_cast<const Filter*>(&box)}) {
+        SCOPED_TRACE(filter ? "splatting film" : "camera samples only");
+        const std::vector<Sample> s = samples(4000);
+        Film inOrder(5, 4, bounds, filter), reversed(5, 4, bounds, filter), merged(5, 4, bounds, filter);
+        for (const Sample& x : s) add(inOrder, x);
+        for (auto it = s.rbegin(); it != s.rend(); ++it) add(reversed, *it);
+        // Three "processes", each every third sample; their sums added element by element.
+        Film::Accumulators total;
+        for (int part = 0; part < 3; ++part) {
+            Film f(5, 4, bounds, filter);
+            for (const Sample& x : s)
+                if (x.index % 3 == part) add(f, x);
+            Film::Accumulators a = f.accumulators();
+            if (part == 0) total = a;
+            else {
+                ASSERT_EQ(a.fixed.size(), total.fixed.size());
+                ASSERT_EQ(a.counts.size(), total.counts.size());
+                for (size_t i = 0; i < a.fixed.size(); ++i) total.fixed[i] += a.fixed[i];
+                for (size_t i = 0; i < a.counts.size(); ++i) total.counts[i] += a.counts[i];
+            }
+        }
+        merged.setAccumulators(total);
+        const double lightPaths = double(s.size());
+        for (const Film* f : {&reversed, &merged}) {
+            EXPECT_TRUE(sameBits(f->image(lightPaths), inOrder.image(lightPaths)));
+            EXPECT_TRUE(sameBits(f->varianceImage(lightPaths), inOrder.varianceImage(lightPaths)));
+            EXPECT_EQ(f->sampleCounts(), inOrder.sampleCounts());
+            EXPECT_EQ(f->meanSamplesPerPixel(), inOrder.meanSamplesPerPixel());
+            // In double precision too (the images' floats would hide most rounding differences).
+            for (size_t i = 0; i < f->pixelCount(); ++i) {
+                Film::PixelEstimate e = f->pixelEstimate(i), r = inOrder.pixelEstimate(i);
+                EXPECT_EQ(std::memcmp(&e.mean, &r.mean, sizeof(double)), 0) << "pixel " << i << ": " << e.mean << " vs " << r.mean;
+                EXPECT_EQ(std::memcmp(&e.sampleVariance, &r.sampleVariance, sizeof(double)), 0) << "pixel " << i;
+            }
+        }
+        // And the sums are those of the samples: pixel (0, 0)'s mean, to double rounding.
+        double sum = 0, weight = 0;
+        for (const Sample& x : s)
+            if (x.x == 0 && x.y == 0) sum += double(x.L.r) * x.weight, weight += x.weight;
+        if (!filter) {
+            EXPECT_NEAR(inOrder.image().get(0, 0).r, sum / weight, 1e-6 * sum / weight);
+        }
+    }
+}
