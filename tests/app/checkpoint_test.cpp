@@ -22,15 +22,8 @@ using namespace ps::test;
 
 namespace {
 
-class Checkpoint : public CliDirTest {
+class Checkpoint : public SkyRenderTest {
 protected:
-    std::string scene() { return write("s.pbrt", kSkyScene); }
-    std::string path(const std::string& name) const { return (dir / name).string(); }
-    static std::string bytes(const std::string& file) {
-        std::ifstream f(file, std::ios::binary);
-        return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    }
-    nlohmann::json stats(const std::string& name) const { return nlohmann::json::parse(std::ifstream(path(name))); }
     // A render of kSkyScene to NAME.pfm and NAME.json with `options`; its exit status and output.
     Result render(const std::string& name, const std::string& options, int processes = 0) {
         const std::string args = "render --quiet " + scene() + " " + options + " -o " + path(name + ".pfm") +

@@ -21,15 +21,8 @@ using namespace ps::test;
 
 namespace {
 
-class Mpi : public CliDirTest {
+class Mpi : public SkyRenderTest {
 protected:
-    std::string scene() { return write("s.pbrt", kSkyScene); }
-    std::string path(const std::string& name) const { return (dir / name).string(); }
-    static std::string bytes(const std::string& file) {
-        std::ifstream f(file, std::ios::binary);
-        return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    }
-    nlohmann::json stats(const std::string& name) const { return nlohmann::json::parse(std::ifstream(path(name))); }
     // Renders with `options` to NAME.pfm (and its variance AOV) and NAME.json, by one plain
     // process (processes == 0) or under mpirun; expects success.
     void render(int processes, const std::string& name, const std::string& options) {

@@ -24,8 +24,9 @@ struct Result {
     std::string out;  // stdout and stderr together
 };
 
-inline Result runPathspace(const std::string& args) {
-    std::string cmd = std::string(PATHSPACE_BINARY) + " " + args + " 2>&1";
+// A shell command line, its output (stderr included) captured, waited for.
+inline Result runCommand(const std::string& commandLine) {
+    const std::string cmd = commandLine + " 2>&1";
     Result r;
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;
@@ -36,6 +37,8 @@ inline Result runPathspace(const std::string& args) {
     r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
     return r;
 }
+
+inline Result runPathspace(const std::string& args) { return runCommand(std::string(PATHSPACE_BINARY) + " " + args); }
 
 // A hexadecimal signal mask from /proc/PID/status (bit k-1 = signal k); 0 if unreadable.
 inline unsigned long long procStatusMask(pid_t pid, const char* field) {

@@ -3,11 +3,13 @@
 // built without MPI (then mpirun would start K independent renders).
 #pragma once
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <sys/wait.h>
 #include <thread>
@@ -15,6 +17,7 @@
 #include <vector>
 
 #include "run_binary.h"
+#include "sky_scene.h"
 
 namespace ps::test {
 
@@ -51,16 +54,7 @@ inline std::vector<std::string> mpirunArgs(int processes) {
 inline Result runMpi(int processes, const std::string& args) {
     std::string cmd;
     for (const std::string& a : mpirunArgs(processes)) cmd += a + " ";
-    cmd += args + " 2>&1";
-    Result r;
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return r;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-    int st = pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return r;
+    return runCommand(cmd + args);
 }
 
 // `mpirun -n K pathspace ARGS` in the background, to signal it or one of its processes.
@@ -146,6 +140,18 @@ private:
     int status_ = 0;
     bool exited_ = false;
     std::vector<pid_t> ranks_;
+};
+
+// A test directory with kSkyScene, and the files a render writes there.
+class SkyRenderTest : public CliDirTest {
+protected:
+    std::string scene() { return write("s.pbrt", kSkyScene); }
+    std::string path(const std::string& name) const { return (dir / name).string(); }
+    static std::string bytes(const std::string& file) {
+        std::ifstream f(file, std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    }
+    nlohmann::json stats(const std::string& name) const { return nlohmann::json::parse(std::ifstream(path(name))); }
 };
 
 }  // namespace ps::test
