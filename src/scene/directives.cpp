@@ -367,7 +367,7 @@ void DescriptionBuilder::shape(const Token& d, const std::string& type, ParamSet
     e.loc = d.loc();
     e.worldFromObject = gs_.ctm;
     e.worldFromObjectEnd = gs_.ctmEnd;
-    if (e.areaLight >= 0 && !(gs_.ctm == gs_.ctmEnd)) fail(d, "moving area lights are not supported (as in pbrt-v4)");
+    if (gs_.areaLight >= 0 && !(gs_.ctm == gs_.ctmEnd)) fail(d, "moving area lights are not supported (as in pbrt-v4)");
     e.reverseOrientation = gs_.reverseOrientation;
     e.material = gs_.material;
     e.areaLight = gs_.areaLight;
