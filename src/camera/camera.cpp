@@ -102,7 +102,13 @@ std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, Vec2 u) const {
 }
 
 Ray Camera::generateRay(const CameraSample& s) const {
-    const Transform& T = params_.worldFromCamera;
+    const float time = (1 - s.time) * params_.shutterOpen + s.time * params_.shutterClose;
+    Ray r = generateRay(s, isMoving() ? params_.motion.interpolate(time) : params_.worldFromCamera);
+    r.time = time;
+    return r;
+}
+
+Ray Camera::generateRay(const CameraSample& s, const Transform& T) const {
     if (params_.projection == Projection::Spherical) {
         Vec2 uv(s.pFilm.x / params_.xRes, s.pFilm.y / params_.yRes);
         return Ray{T.point({0, 0, 0}), normalize(T.vector(sphericalCameraDirection(params_.mapping, uv)))};

@@ -5,6 +5,7 @@
 #include <optional>
 #include "camera/spherical_mapping.h"
 #include "geometry/ray.h"
+#include "math/animated_transform.h"
 #include "math/transform.h"
 
 namespace ps {
@@ -12,6 +13,7 @@ namespace ps {
 struct CameraSample {
     Vec2 pFilm;  // raster position (pixels, continuous)
     Vec2 pLens;  // [0,1)^2
+    float time = 0;  // [0,1): where in the shutter interval the ray travels
 };
 
 // A camera connection from a scene point (the t = 1 strategies, thesis §10.2).
@@ -31,6 +33,10 @@ public:
     struct Params {
         Projection projection = Projection::Perspective;
         Transform worldFromCamera;
+        // A moving camera (ActiveTransform around Camera): its world-from-camera keyframes.
+        // Not animated: worldFromCamera holds at every time.
+        AnimatedTransform motion;
+        float shutterOpen = 0, shutterClose = 1;
         int xRes = 1280, yRes = 720;
         float fovDeg = 90;
         float screenWindow[4] = {0, 0, 0, 0};  // xmin xmax ymin ymax; all zero = default
@@ -39,8 +45,10 @@ public:
     };
     explicit Camera(const Params& p);
 
-    // A world-space ray through the film point; the weight is 1 for these cameras.
+    // A world-space ray through the film point; the weight is 1 for these cameras. Its time
+    // is pbrt-v4's: the shutter interval at s.time, and a moving camera sits where it is then.
     Ray generateRay(const CameraSample& s) const;
+    bool isMoving() const { return params_.motion.isAnimated(); }
     Vec3 position() const { return params_.worldFromCamera.point({0, 0, 0}); }
     const Params& params() const { return params_; }
 
@@ -67,6 +75,8 @@ public:
     void setFilterMargin(Vec2 rasterMargin);
 
 private:
+    // generateRay with world-from-camera T (the transform at the ray's time).
+    Ray generateRay(const CameraSample& s, const Transform& T) const;
     float lensArea() const { return params_.lensRadius > 0 ? kPi * params_.lensRadius * params_.lensRadius : 1.0f; }
     // Film point for a camera-space direction from camera-space lens point o; false off the film.
     bool rasterOf(Vec3 oCam, Vec3 dCam, Vec2* pRaster) const;

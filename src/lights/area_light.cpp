@@ -40,7 +40,7 @@ std::optional<LightLeSample> DiffuseAreaLight::sampleLe(Vec2 uPos, Vec2 uDir) co
     Vec3 w = Frame::fromNormal(n).toWorld(wLocal);
     LightLeSample ls;
     ls.L = L(s.p, s.n, s.uv, w);
-    ls.ray = spawnRay(s.p, s.n, w);
+    ls.ray = spawnRay(s.p, s.n, w, 0);  // the light subpath stamps its path's time on it
     ls.ray.o = s.p;  // the vertex is on the light; callers offset when they trace
     ls.n = s.n;
     ls.pdfPos = s.pdf;

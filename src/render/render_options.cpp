@@ -58,6 +58,10 @@ void applyCamera(const SceneDescription& desc, Scene& scene, int xRes, int yRes)
     }
     float open = ps.getFloat("shutteropen", 0), close = ps.getFloat("shutterclose", 1);
     scene.settings().imagingRatio *= (close - open);
+    p.shutterOpen = open;
+    p.shutterClose = close;
+    p.motion = AnimatedTransform(c.worldFromCamera, c.transformStartTime, c.worldFromCameraEnd, c.transformEndTime);
+    scene.settings().cameraLoc = c.loc;
     scene.setCamera(std::make_unique<Camera>(p));
     ps.reportUnused("Camera \"" + c.type + "\"");
 }

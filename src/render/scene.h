@@ -37,6 +37,7 @@ struct RenderSettings {
     float mltSigma = 0.01f;                // "sigma"
     float mltStrategyPilot = 0.1f;         // mmlt: the bootstrap's share spent on its pilot
     SourceLoc filmLoc;       // the Film directive, for errors found when the film is made
+    SourceLoc cameraLoc;     // the Camera directive
     // The film's ColorSpace, when not sRGB: the image's RGB from the rendering space's
     // (row-major). The variance image stays the rendering space's luminance variance.
     std::optional<std::array<float, 9>> outputColorMatrix;
@@ -49,7 +50,7 @@ public:
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
 
-    // Closest hit within r.tMax; fills si (geometry, material, emitter, wo).
+    // Closest hit within r.tMax at time r.time; fills si (geometry, material, emitter, wo).
     bool intersect(const Ray& r, SurfaceInteraction& si) const;
     // Any hit within r.tMax.
     bool occluded(const Ray& r) const;
@@ -67,6 +68,8 @@ public:
     void setPixelBounds(const PixelBounds& b) { pixelBounds_ = b; }
     void setCamera(std::unique_ptr<Camera> c) { camera_ = std::move(c); }
     void setFilter(std::unique_ptr<Filter> f) { filter_ = std::move(f); }
+    // Motion blur: something moves (geometry, or the camera), so each path draws its time.
+    bool hasMotion() const { return geometryMoves_ || (camera_ && camera_->isMoving()); }
     const RenderSettings& settings() const { return settings_; }
     RenderSettings& settings() { return settings_; }
     Vec3 boundsCenter() const { return center_; }
@@ -79,7 +82,16 @@ private:
     struct Instance {
         Transform worldFromPrototype;
         int prototype;
+        // A moving instance: world-from-prototype at time t is motion(t) * objectFromPrototype
+        // (the inverse of EmbreeMotion's constant C), what Embree interpolates.
+        AnimatedTransform motion;
+        Transform objectFromPrototype;
     };
+    // Embree's time in [0,1] for a scene time: TransformTimes' interval, clamped as pbrt-v4's
+    // AnimatedTransform clamps; 0 without moving geometry (no time in the rays' bits).
+    float embreeTime(float time) const {
+        return geometryMoves_ ? keyframeFraction(time, motionStart_, motionEnd_) : 0.0f;
+    }
 
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
@@ -99,6 +111,8 @@ private:
     RenderSettings settings_;
     Vec3 center_;
     float radius_ = 1;
+    bool geometryMoves_ = false;
+    float motionStart_ = 0, motionEnd_ = 1;  // TransformTimes
 };
 
 }  // namespace ps

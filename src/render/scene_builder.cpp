@@ -4,6 +4,7 @@
 
 #include "lights/area_light.h"
 #include "materials/create.h"
+#include "render/embree_motion.h"
 #include "render/light_image.h"
 
 namespace ps {
@@ -22,6 +23,18 @@ private:
     void addInstances();
     void addLights();
     unsigned attach(RTCScene target, const Shape& shape);
+    // A new instance prototype holding def's shapes, each placed by prototypeFromInstance
+    // times its own transform; returns its index.
+    int buildPrototype(const InstanceDefinition& def, const Transform& prototypeFromInstance);
+    // A moving shape (its CTM keyframes differ): alone in a prototype, instanced with motion.
+    void addMovingShape(const ShapeEntity& e);
+    // An instance of prototype `proto` in the world; `motion` (if animated) moves it, with
+    // em its Embree form, and the prototype then holds geometry placed by em's C.
+    void addInstance(int proto, const Transform& worldFromPrototype, const AnimatedTransform& motion,
+                     const EmbreeMotion* em);
+    AnimatedTransform motionOf(const Transform& start, const Transform& end) const {
+        return AnimatedTransform(start, desc_.transformStartTime, end, desc_.transformEndTime);
+    }
 
     const SceneDescription& desc_;
     Scene& scene_;
@@ -136,6 +149,10 @@ unsigned SceneBuilder::attach(RTCScene target, const Shape& shape) {
 
 void SceneBuilder::addWorldShapes() {
     for (const ShapeEntity& e : desc_.shapes) {
+        if (!(e.worldFromObject == e.worldFromObjectEnd)) {
+            addMovingShape(e);
+            continue;
+        }
         std::unique_ptr<Shape> shape = createShape(e, e.worldFromObject, desc_.baseDirectory, textures_);
         if (!shape || shape->primitiveCount() == 0) continue;
         shape->material = materialFor(e);
@@ -150,47 +167,91 @@ void SceneBuilder::addWorldShapes() {
     }
 }
 
+int SceneBuilder::buildPrototype(const InstanceDefinition& def, const Transform& prototypeFromInstance) {
+    RTCScene proto = rtcNewScene(scene_.device_);
+    // The Scene owns (and releases) it from here: a bad shape below must not leak it.
+    scene_.prototypeScenes_.push_back(proto);
+    scene_.prototypeGeometry_.emplace_back();
+    const int index = int(scene_.prototypeScenes_.size()) - 1;
+    rtcSetSceneBuildQuality(proto, RTC_BUILD_QUALITY_HIGH);
+    for (const ShapeEntity& e : def.shapes) {
+        // Embree here instances one level deep: a moving shape cannot be an instance inside one.
+        if (!(e.worldFromObject == e.worldFromObjectEnd))
+            warning(e.loc, "a moving shape inside ObjectBegin is not supported; its start transform is used");
+        std::unique_ptr<Shape> shape = createShape(e, prototypeFromInstance * e.worldFromObject, desc_.baseDirectory, textures_);
+        if (!shape || shape->primitiveCount() == 0) continue;
+        shape->material = materialFor(e);
+        unsigned id = attach(proto, *shape);
+        std::vector<const Shape*>& geoms = scene_.prototypeGeometry_[size_t(index)];
+        if (geoms.size() <= id) geoms.resize(id + 1, nullptr);
+        geoms[id] = shape.get();
+        scene_.shapes_.push_back(std::move(shape));
+    }
+    rtcCommitScene(proto);
+    return index;
+}
+
+void SceneBuilder::addMovingShape(const ShapeEntity& e) {
+    AnimatedTransform motion = motionOf(e.worldFromObject, e.worldFromObjectEnd);
+    EmbreeMotion em = embreeMotion(motion);
+    if (!em.exact) warning(e.loc, "the shape's scale changes along skewed axes; its motion is approximate");
+    InstanceDefinition single;
+    single.shapes.push_back(e);
+    single.shapes.back().worldFromObject = single.shapes.back().worldFromObjectEnd = Transform();
+    int proto = buildPrototype(single, em.prototypeFromObject);
+    if (scene_.prototypeGeometry_[size_t(proto)].empty()) return;
+    addInstance(proto, e.worldFromObject, motion, &em);
+}
+
+void SceneBuilder::addInstance(int proto, const Transform& worldFromPrototype, const AnimatedTransform& motion,
+                               const EmbreeMotion* em) {
+    RTCGeometry g = rtcNewGeometry(scene_.device_, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, scene_.prototypeScenes_[size_t(proto)]);
+    Scene::Instance inst{worldFromPrototype, proto, {}, {}};
+    if (motion.isAnimated() && em) {
+        // Embree's time 0..1 spans TransformTimes (Scene::embreeTime maps the rays' times).
+        rtcSetGeometryTimeStepCount(g, 2);
+        for (unsigned k = 0; k < 2; ++k) rtcSetGeometryTransformQuaternion(g, k, &em->steps[k]);
+        inst.motion = motion;
+        inst.objectFromPrototype = em->prototypeFromObject.inverse();
+        scene_.geometryMoves_ = true;
+    } else {
+        float xfm[12];
+        const Matrix4& m = worldFromPrototype.matrix();
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c) xfm[r * 4 + c] = m.m[r][c];
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+    }
+    rtcCommitGeometry(g);
+    unsigned id = rtcAttachGeometry(scene_.scene_, g);
+    rtcReleaseGeometry(g);
+    if (scene_.worldGeometry_.size() <= id) {
+        scene_.worldGeometry_.resize(id + 1, nullptr);
+        scene_.instanceOfGeometry_.resize(id + 1, -1);
+    }
+    scene_.instanceOfGeometry_[id] = int(scene_.instances_.size());
+    scene_.instances_.push_back(std::move(inst));
+}
+
 void SceneBuilder::addInstances() {
     std::map<std::string, int> prototypeIndex;
-    for (const auto& [name, def] : desc_.instances) {
-        RTCScene proto = rtcNewScene(scene_.device_);
-        // The Scene owns (and releases) it from here: a bad shape below must not leak it.
-        scene_.prototypeScenes_.push_back(proto);
-        scene_.prototypeGeometry_.emplace_back();
-        rtcSetSceneBuildQuality(proto, RTC_BUILD_QUALITY_HIGH);
-        for (const ShapeEntity& e : def.shapes) {
-            std::unique_ptr<Shape> shape = createShape(e, e.worldFromObject, desc_.baseDirectory, textures_);
-            if (!shape || shape->primitiveCount() == 0) continue;
-            shape->material = materialFor(e);
-            unsigned id = attach(proto, *shape);
-            std::vector<const Shape*>& geoms = scene_.prototypeGeometry_.back();
-            if (geoms.size() <= id) geoms.resize(id + 1, nullptr);
-            geoms[id] = shape.get();
-            scene_.shapes_.push_back(std::move(shape));
-        }
-        rtcCommitScene(proto);
-        prototypeIndex[name] = int(scene_.prototypeScenes_.size()) - 1;
-    }
+    for (const auto& [name, def] : desc_.instances) prototypeIndex[name] = buildPrototype(def, Transform());
     for (const InstanceUse& use : desc_.instanceUses) {
         auto it = prototypeIndex.find(use.name);
         if (it == prototypeIndex.end()) throw InputError(use.loc, "ObjectInstance " + quoteForMessage(use.name) + " is not defined");
         if (scene_.prototypeGeometry_[it->second].empty()) continue;
-        RTCGeometry g = rtcNewGeometry(scene_.device_, RTC_GEOMETRY_TYPE_INSTANCE);
-        rtcSetGeometryInstancedScene(g, scene_.prototypeScenes_[it->second]);
-        float xfm[12];
-        const Matrix4& m = use.worldFromInstance.matrix();
-        for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 4; ++c) xfm[r * 4 + c] = m.m[r][c];
-        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
-        rtcCommitGeometry(g);
-        unsigned id = rtcAttachGeometry(scene_.scene_, g);
-        rtcReleaseGeometry(g);
-        if (scene_.worldGeometry_.size() <= id) {
-            scene_.worldGeometry_.resize(id + 1, nullptr);
-            scene_.instanceOfGeometry_.resize(id + 1, -1);
+        AnimatedTransform motion = motionOf(use.worldFromInstance, use.worldFromInstanceEnd);
+        if (!motion.isAnimated()) {
+            addInstance(it->second, use.worldFromInstance, motion, nullptr);
+            continue;
         }
-        scene_.instanceOfGeometry_[id] = int(scene_.instances_.size());
-        scene_.instances_.push_back({use.worldFromInstance, it->second});
+        EmbreeMotion em = embreeMotion(motion);
+        if (!em.exact) warning(use.loc, "the instance's scale changes along skewed axes; its motion is approximate");
+        // A moving instance whose scale changes along rotated axes needs its geometry placed by
+        // C: a prototype of its own.
+        int proto = em.prototypeFromObject.isIdentity() ? it->second
+                                                        : buildPrototype(desc_.instances.at(use.name), em.prototypeFromObject);
+        addInstance(proto, use.worldFromInstance, motion, &em);
     }
 }
 
@@ -211,6 +272,8 @@ void SceneBuilder::build() {
     addWorldShapes();
     addInstances();
     addLights();
+    scene_.motionStart_ = desc_.transformStartTime;
+    scene_.motionEnd_ = desc_.transformEndTime;
     rtcCommitScene(scene_.scene_);
     {
         std::lock_guard<std::mutex> lock(gEmbreeErrorMutex);

@@ -63,19 +63,23 @@ void DescriptionBuilder::requireWorld(const Token& d) const {
 
 // ---- transforms: the CTM is post-multiplied (§1) ----
 
-void DescriptionBuilder::concat(const Token& d, const Transform& t) { setCtm(d, gs_.ctm * t, false); }
+void DescriptionBuilder::concat(const Token& d, const Transform& t) { setCtm(d, t, false); }
 
 // pbrt-v4 accepts a singular or non-finite transform (its inverse becomes NaN); only
 // placing a shape, light, camera or instance under it is an error (requireInvertibleCtm),
 // which then names the directive that made it so.
 void DescriptionBuilder::setCtm(const Token& d, const Transform& t, bool replaces) {
-    if (!gs_.startTransformActive) return;
-    if (!t.isInvertible() && (replaces || gs_.ctm.isInvertible())) gs_.singularSince = std::string(d.text) + " at " + d.loc().str();
-    gs_.ctm = t;
+    for (Transform* key : {gs_.startTransformActive ? &gs_.ctm : nullptr, gs_.endTransformActive ? &gs_.ctmEnd : nullptr}) {
+        if (!key) continue;
+        Transform next = replaces ? t : *key * t;
+        if (!next.isInvertible() && (replaces || key->isInvertible()))
+            gs_.singularSince = std::string(d.text) + " at " + d.loc().str();
+        *key = next;
+    }
 }
 
 void DescriptionBuilder::requireInvertibleCtm(const Token& d) const {
-    if (!gs_.ctm.isInvertible())
+    if (!gs_.ctm.isInvertible() || !gs_.ctmEnd.isInvertible())
         fail(d, "the current transform is singular or not finite (since " + gs_.singularSince + "), so nothing can be placed under it");
 }
 
@@ -108,28 +112,32 @@ void DescriptionBuilder::transform(const Token& d, const double m[16]) { setCtm(
 
 void DescriptionBuilder::concatTransform(const Token& d, const double m[16]) { concat(d, fromFileOrder(m)); }
 
-void DescriptionBuilder::coordinateSystem(const Token&, const std::string& name) { namedCoordSys_[name] = gs_.ctm; }
+// Named coordinate systems keep both keyframes; CoordSysTransform restores both, whatever
+// ActiveTransform selects (pbrt-v4's semantics).
+void DescriptionBuilder::coordinateSystem(const Token&, const std::string& name) {
+    namedCoordSys_[name] = {gs_.ctm, gs_.ctmEnd};
+}
 
 void DescriptionBuilder::coordSysTransform(const Token& d, const std::string& name) {
     auto it = namedCoordSys_.find(name);
-    if (it == namedCoordSys_.end()) warning(d.loc(), "CoordSysTransform: unknown coordinate system " + quote(name) + "; ignored");
-    else setCtm(d, it->second, true);
+    if (it == namedCoordSys_.end()) {
+        warning(d.loc(), "CoordSysTransform: unknown coordinate system " + quote(name) + "; ignored");
+        return;
+    }
+    gs_.ctm = it->second.first;
+    gs_.ctmEnd = it->second.second;
+    if (!gs_.ctm.isInvertible() || !gs_.ctmEnd.isInvertible()) gs_.singularSince = std::string(d.text) + " at " + d.loc().str();
 }
 
-void DescriptionBuilder::activeTransform(const Token& d, const std::string& which) {
+void DescriptionBuilder::activeTransform(const Token&, const std::string& which) {
     gs_.startTransformActive = which != "EndTime";
-    if (which != "All" && !warnedMotion_) {
-        warnedMotion_ = true;
-        warning(d.loc(), "ActiveTransform: motion blur is not supported; only the start transform is used");
-    }
+    gs_.endTransformActive = which != "StartTime";
 }
 
-void DescriptionBuilder::transformTimes(const Token& d) {
+void DescriptionBuilder::transformTimes(const Token& d, float start, float end) {
     requireOptions(d);
-    if (!warnedMotion_) {
-        warnedMotion_ = true;
-        warning(d.loc(), "TransformTimes: motion blur is not supported; ignored");
-    }
+    desc_.transformStartTime = start;
+    desc_.transformEndTime = end;
 }
 
 // ---- options block ----
@@ -146,8 +154,11 @@ void DescriptionBuilder::camera(const Token& d, const std::string& type, ParamSe
     setOptionEntity(desc_.camera, d, type, std::move(ps));
     // The CTM here is camera-from-world (§1).
     desc_.camera.worldFromCamera = gs_.ctm.inverse();
+    desc_.camera.worldFromCameraEnd = gs_.ctmEnd.inverse();
+    desc_.camera.transformStartTime = desc_.transformStartTime;
+    desc_.camera.transformEndTime = desc_.transformEndTime;
     desc_.cameraGiven = true;
-    namedCoordSys_["camera"] = desc_.camera.worldFromCamera;
+    namedCoordSys_["camera"] = {desc_.camera.worldFromCamera, desc_.camera.worldFromCameraEnd};
 }
 
 void DescriptionBuilder::film(const Token& d, const std::string& type, ParamSet ps) {
@@ -174,9 +185,9 @@ void DescriptionBuilder::accelerator(const Token& d, const std::string&, ParamSe
 void DescriptionBuilder::worldBegin(const Token& d) {
     requireOptions(d);
     inWorld_ = true;
-    gs_.ctm = Transform();
-    gs_.startTransformActive = true;
-    namedCoordSys_["world"] = gs_.ctm;
+    gs_.ctm = gs_.ctmEnd = Transform();
+    gs_.startTransformActive = gs_.endTransformActive = true;
+    namedCoordSys_["world"] = {gs_.ctm, gs_.ctmEnd};
 }
 
 // ---- anywhere ----
@@ -322,6 +333,7 @@ void DescriptionBuilder::texture(const Token& d, const std::string& name, const 
     e.type = cls;
     e.params = std::move(ps);
     e.loc = d.loc();
+    if (!(gs_.ctm == gs_.ctmEnd)) warning(d.loc(), "Texture: a moving texture space is not supported (as in pbrt-v4); the start transform is used");
     e.worldFromTexture = gs_.ctm;
     (isFloat ? desc_.floatTextures : desc_.spectrumTextures).push_back(std::move(e));
 }
@@ -334,6 +346,7 @@ void DescriptionBuilder::lightSource(const Token& d, const std::string& type, Pa
     e.type = type;
     e.params = std::move(ps);
     e.loc = d.loc();
+    if (!(gs_.ctm == gs_.ctmEnd)) warning(d.loc(), "LightSource: moving lights are not supported (as in pbrt-v4); the start transform is used");
     e.worldFromLight = gs_.ctm;  // from/to are in this space (§3)
     desc_.lights.push_back(std::move(e));
 }
@@ -358,6 +371,8 @@ void DescriptionBuilder::shape(const Token& d, const std::string& type, ParamSet
     e.params = std::move(ps);
     e.loc = d.loc();
     e.worldFromObject = gs_.ctm;
+    e.worldFromObjectEnd = gs_.ctmEnd;
+    if (gs_.areaLight >= 0 && !(gs_.ctm == gs_.ctmEnd)) fail(d, "moving area lights are not supported (as in pbrt-v4)");
     e.reverseOrientation = gs_.reverseOrientation;
     e.material = gs_.material;
     e.areaLight = gs_.areaLight;
@@ -400,7 +415,7 @@ void DescriptionBuilder::objectInstance(const Token& d, const std::string& name)
     requireWorld(d);
     if (instance_) fail(d, "not allowed inside ObjectBegin " + quote(instance_->name));
     requireInvertibleCtm(d);
-    desc_.instanceUses.push_back(InstanceUse{name, gs_.ctm, d.loc()});
+    desc_.instanceUses.push_back(InstanceUse{name, gs_.ctm, gs_.ctmEnd, d.loc()});
 }
 
 // ---- Import and the end ----

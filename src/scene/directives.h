@@ -30,7 +30,7 @@ public:
     void coordinateSystem(const Token& d, const std::string& name);
     void coordSysTransform(const Token& d, const std::string& name);
     void activeTransform(const Token& d, const std::string& which);
-    void transformTimes(const Token& d);
+    void transformTimes(const Token& d, float start, float end);
 
     // Options block.
     void camera(const Token& d, const std::string& type, ParamSet ps);
@@ -86,6 +86,7 @@ private:
     void requireOptions(const Token& d) const;
     void requireWorld(const Token& d) const;
     void concat(const Token& d, const Transform& t);
+    // Sets the active keyframes of the CTM to t (replaces) or to themselves times t.
     void setCtm(const Token& d, const Transform& t, bool replaces);
     void requireInvertibleCtm(const Token& d) const;
     void setOptionEntity(SceneEntity& e, const Token& d, const std::string& type, ParamSet ps);
@@ -95,19 +96,19 @@ private:
     SceneDescription& desc_;
     GraphicsState gs_;
     std::vector<Pushed> pushed_;
-    std::map<std::string, Transform> namedCoordSys_;
+    std::map<std::string, std::pair<Transform, Transform>> namedCoordSys_;  // both keyframes
     std::set<std::string> floatTextureNames_, spectrumTextureNames_;
     bool inWorld_ = false;
     InstanceDefinition* instance_ = nullptr;  // the ObjectBegin being defined
     bool instanceFromOuterFile_ = false;      // ... opened outside the current Import
     size_t attributeBudget_;                  // values Attribute defaults may still copy
-    bool warnedTransformBegin_ = false, warnedMotion_ = false, warnedMedia_ = false;
+    bool warnedTransformBegin_ = false, warnedMedia_ = false;
 };
 
 struct DescriptionBuilder::ImportScope {
     GraphicsState state;
     std::vector<Pushed> pushed;
-    std::map<std::string, Transform> namedCoordSys;
+    std::map<std::string, std::pair<Transform, Transform>> namedCoordSys;
     InstanceDefinition* instance = nullptr;
     bool instanceFromOuterFile = false;
 };

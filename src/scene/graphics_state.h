@@ -15,13 +15,13 @@ enum class AttributeTarget { Shape, Light, Material, Medium, Texture };
 std::optional<AttributeTarget> attributeTarget(const std::string& name);
 
 struct GraphicsState {
-    Transform ctm;
+    // The CTM's two keyframes for motion blur (§1 Motion): ctm at TransformTimes' start, ctmEnd
+    // at its end; transform directives change the ones ActiveTransform selects.
+    Transform ctm, ctmEnd;
     bool reverseOrientation = false;
     MaterialRef material{0, ""};  // the default material is SceneDescription::materials[0]
     int areaLight = -1;
-    // pbrt keeps start and end transforms for motion blur; we keep the start one only, so
-    // transform directives after `ActiveTransform EndTime` are ignored.
-    bool startTransformActive = true;
+    bool startTransformActive = true, endTransformActive = true;
     // The directive (and where) that made the CTM singular or non-finite, for the error if
     // a shape is then placed under it.
     std::string singularSince;

@@ -381,8 +381,8 @@ void directive(ParseContext& ctx, TokenStream& ts, const Token& d) {
         if (const auto& t = ts.peek(); t && t->isString()) outside = Tokenizer::dequote(*ts.next());
         b.mediumInterface(d, inside, outside);
     } else if (n == "TransformTimes") {
-        bareNumbers<2>(ts, d);
-        b.transformTimes(d);
+        auto v = bareNumbers<2>(ts, d);
+        b.transformTimes(d, float(v[0]), float(v[1]));
     } else if (n == "ActiveTransform") {
         Token w = ts.need(d, "StartTime, EndTime or All");
         if (!w.is("StartTime") && !w.is("EndTime") && !w.is("All"))

@@ -17,7 +17,9 @@ struct SceneEntity {
 };
 
 struct CameraEntity : SceneEntity {
-    Transform worldFromCamera;  // inverse of the CTM at the Camera directive
+    Transform worldFromCamera;     // inverse of the CTM at the Camera directive
+    Transform worldFromCameraEnd;  // ... of its end keyframe (equal unless the camera moves)
+    float transformStartTime = 0, transformEndTime = 1;  // TransformTimes at the Camera directive
 };
 
 struct MaterialEntity : SceneEntity {
@@ -42,7 +44,8 @@ struct MaterialRef {
 };
 
 struct ShapeEntity : SceneEntity {
-    Transform worldFromObject;
+    Transform worldFromObject;     // the CTM's start keyframe
+    Transform worldFromObjectEnd;  // its end keyframe: different for a moving shape
     bool reverseOrientation = false;
     MaterialRef material;
     int areaLight = -1;  // index into SceneDescription::areaLights, -1 when not emissive
@@ -57,6 +60,7 @@ struct InstanceDefinition {
 struct InstanceUse {
     std::string name;
     Transform worldFromInstance;
+    Transform worldFromInstanceEnd;  // different for a moving instance
     SourceLoc loc;
 };
 
@@ -70,6 +74,8 @@ struct SceneDescription {
     SceneEntity integrator;     // "volpath"
     SceneEntity filter;         // "gaussian"
     bool cameraGiven = false;
+    // TransformTimes: the times of the CTM's two keyframes (0 and 1 by default).
+    float transformStartTime = 0, transformEndTime = 1;
 
     std::vector<MaterialEntity> materials;                 // anonymous, by index
     std::map<std::string, MaterialEntity> namedMaterials;

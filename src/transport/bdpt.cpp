@@ -299,7 +299,7 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
     PathVertex* light = allocPath(scratch, lightVertices);
     // The light subpath's origin first: its sampling then overlaps the camera walk.
     sampler.startStream(kLightStream);
-    const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, stats, light);
+    const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, ray.time, stats, light);
     sampler.startStream(kCameraStream);
     int nCamera = paths_.cameraSubpath(ray, sampler, scratch, stats, camera, cameraVertices);
     sampler.startStream(kLightStream);
@@ -377,7 +377,7 @@ bool BDPTIntegrator::strategyContribution(const Ray& ray, Vec2 pFilm, int s, int
     // s = 1 samples its light vertex in the connection (joinLight): no light subpath.
     if (s > 1) {
         sampler.startStream(kLightStream);
-        const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, stats, light);
+        const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, ray.time, stats, light);
         if (paths_.continueLightSubpath(origin, sampler, scratch, stats, light, s) != s) return false;
     }
     sampler.startStream(kCameraStream);

@@ -22,12 +22,14 @@ void LightTracer::splatEmitter(const PathVertex& v, SampleContext& ctx) const {
     ctx.film.addSplat(cs->pRaster, L, ctx.sampleIndex);
 }
 
-Spectrum LightTracer::Li(const Ray&, SampleContext& ctx) const {
+// The camera ray is not traced; its time (the camera sample's, uniform over the shutter) is
+// the one time of this light path.
+Spectrum LightTracer::Li(const Ray& cameraRay, SampleContext& ctx) const {
     const Subpaths& paths = bdpt_.subpaths();
     int n = paths.maxLightVertices();
     auto* light = static_cast<PathVertex*>(ctx.scratch.allocBytes(sizeof(PathVertex) * size_t(n), alignof(PathVertex)));
     for (int i = 0; i < n; ++i) new (&light[i]) PathVertex();
-    int nLight = paths.lightSubpath(ctx.sampler, ctx.scratch, ctx.stats, light);
+    int nLight = paths.lightSubpath(ctx.sampler, cameraRay.time, ctx.scratch, ctx.stats, light);
     if (nLight > 0) splatEmitter(light[0], ctx);
     PathVertex camera[1];
     for (int s = 2; s <= nLight; ++s) {

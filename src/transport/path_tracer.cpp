@@ -5,7 +5,7 @@
 namespace ps {
 
 Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
-                                  float uLight, Vec2 u, PathStats& stats) const {
+                                  float uLight, Vec2 u, float time, PathStats& stats) const {
     float pmf;
     const Light* light = scene_.sampleLight(uLight, &pmf);
     if (!light || !(pmf > 0)) return {};
@@ -15,7 +15,7 @@ Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& fra
     Spectrum f = bxdf.f(woLocal, wiLocal, TransportMode::Radiance) * absCosTheta(wiLocal);
     if (f.isBlack()) return {};
     ++stats.shadowRays;
-    if (scene_.occluded(spawnRayTo(si.p, si.ng, ls->pLight))) return {};
+    if (scene_.occluded(spawnRayTo(si.p, si.ng, ls->pLight, time))) return {};
     float pLight = pmf * ls->pdf;
     if (light->isDelta()) return f * ls->L / pLight;
     float pBsdf = bxdf.pdf(woLocal, wiLocal, TransportMode::Radiance);
@@ -83,7 +83,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
         if (!bxdf) {
             // `interface`: not a scattering event; continue straight through.
             specularBounce = true;
-            ray = spawnRay(si.p, si.ng, ray.d);
+            ray = spawnRay(si.p, si.ng, ray.d, ray.time);
             continue;
         }
         if (depth++ == maxDepth_) break;
@@ -97,7 +97,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
         haveSamples = false;
         uint8_t flags = bxdf->flags();
         if (flags & (kDiffuse | kGlossy))
-            L += beta * sampleDirect(si, frame, *bxdf, woLocal, uLight, uLightPoint, stats);
+            L += beta * sampleDirect(si, frame, *bxdf, woLocal, uLight, uLightPoint, ray.time, stats);
         if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) break;
         Vec3 wi = frame.toWorld(bs->wi);
         Spectrum weight = bs->f * (absCosTheta(bs->wi) / bs->pdf);
@@ -111,7 +111,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
         specularBounce = bs->isSpecular();
         if (bs->isTransmission()) etaScale *= sqr(bs->eta);
         prevCtx = LightSampleContext{si.p, si.ng};
-        ray = spawnRay(si.p, si.ng, wi);
+        ray = spawnRay(si.p, si.ng, wi, ray.time);
 
         // Russian roulette on the throughput with the radiance scaling of refraction undone.
         Spectrum rrBeta = beta * etaScale;

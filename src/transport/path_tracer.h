@@ -18,7 +18,7 @@ private:
     // Direct lighting at a surface by one light sample (uLight picks the light, u the point on
     // it), MIS-weighted against BSDF sampling.
     Spectrum sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
-                          float uLight, Vec2 u, PathStats& stats) const;
+                          float uLight, Vec2 u, float time, PathStats& stats) const;
 
     const Scene& scene_;
     int maxDepth_;

@@ -34,6 +34,7 @@ struct PathVertex {
     float pdfFwd = 0;       // density of this vertex from its subpath's walk
     float pdfRev = 0;       // density of this vertex from the opposite walk
     float toPrevArea = 0;   // areaFactor(*this, previous vertex of its subpath), surfaces
+    float time = 0;         // the path's scene time (motion blur), for the rays it connects
 
     bool onSurface() const { return ng.x != 0 || ng.y != 0 || ng.z != 0; }
     // An escaped camera ray, or an emitter found by the camera subpath, or a light vertex.

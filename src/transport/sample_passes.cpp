@@ -18,7 +18,7 @@ constexpr int kTileSize = 16;
 SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, const RenderOptions& options,
                            std::atomic<bool>& stop, std::atomic<long long>& samplesDone)
     : scene_(scene), integrator_(integrator), stop_(stop), samplesDone_(samplesDone),
-      imagingRatio_(scene.settings().imagingRatio), hasLens_(scene.camera().params().lensRadius > 0),
+      imagingRatio_(scene.settings().imagingRatio), hasLens_(scene.camera().params().lensRadius > 0), hasMotion_(scene.hasMotion()),
       share_{distributed::rank(), distributed::size()},
       states_([this] {
           ThreadState s;
@@ -69,6 +69,7 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                         CameraSample cs;
                         cs.pFilm = {px + 0.5f + fs.offset.x, py + 0.5f + fs.offset.y};
                         cs.pLens = hasLens_ ? sampler.get2D() : Vec2(0.5f, 0.5f);
+                        if (hasMotion_) cs.time = sampler.get1D();
                         Ray ray = scene_.camera().generateRay(cs);
                         SampleContext ctx{sampler, st.scratch, st.stats, film, si, px, py, fs.weight};
                         Spectrum L = integrator_.Li(ray, ctx);

@@ -64,6 +64,7 @@ private:
     std::vector<Tile> tiles_;
     const float imagingRatio_;
     const bool hasLens_;
+    const bool hasMotion_;  // the camera sample draws a time (only then: static scenes keep their streams)
     Share share_;
     std::unique_ptr<Sampler> prototypes_[2];
     tbb::enumerable_thread_specific<ThreadState> states_;

@@ -26,6 +26,7 @@ int Subpaths::cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, 
     cam.kind = VertexKind::Camera;
     cam.mode = TransportMode::Radiance;
     cam.p = ray.o;
+    cam.time = ray.time;
     cam.beta = Spectrum(1.0f);
     float pdfDir = scene_.camera().generatedRayPdfDir(ray.d);
     ++stats.cameraPaths;
@@ -36,13 +37,13 @@ int Subpaths::cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, 
 }
 
 template <typename S>
-int Subpaths::lightSubpath(S& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const {
-    LightOrigin origin = lightOrigin(sampler, stats, path);
+int Subpaths::lightSubpath(S& sampler, float time, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const {
+    LightOrigin origin = lightOrigin(sampler, time, stats, path);
     return continueLightSubpath(origin, sampler, scratch, stats, path);
 }
 
 template <typename S>
-Subpaths::LightOrigin Subpaths::lightOrigin(S& sampler, PathStats& stats, PathVertex* path) const {
+Subpaths::LightOrigin Subpaths::lightOrigin(S& sampler, float time, PathStats& stats, PathVertex* path) const {
     LightOrigin o;
     ++stats.lightPaths;
     float uLight = sampler.get1D();
@@ -61,6 +62,7 @@ Subpaths::LightOrigin Subpaths::lightOrigin(S& sampler, PathStats& stats, PathVe
     v.light = light;
     v.infinite = light->atInfinity();
     v.p = les->ray.o;
+    v.time = time;
     v.ng = v.ns = les->n;
     v.beta = les->L;
     v.pdfFwd = pmf * les->pdfPos;
@@ -70,7 +72,8 @@ Subpaths::LightOrigin Subpaths::lightOrigin(S& sampler, PathStats& stats, PathVe
         ++stats.guarded;
         return o;
     }
-    o.ray = v.onSurface() ? spawnRay(les->ray.o, les->n, les->ray.d) : les->ray;
+    o.ray = v.onSurface() ? spawnRay(les->ray.o, les->n, les->ray.d, time) : les->ray;
+    o.ray.time = time;
     o.direction = les->ray.d;
     o.pdfPos = les->pdfPos;
     o.pdfDir = les->pdfDir;
@@ -129,6 +132,7 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
                 v.kind = VertexKind::Light;
                 v.mode = mode;
                 v.infinite = true;
+                v.time = ray.time;
                 v.p = ray.o + ray.d;
                 v.wo = -ray.d;
                 v.beta = beta;
@@ -141,13 +145,14 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
         if (!bxdf) {
             // `interface`: not a vertex; the ray continues and the density stays per solid angle.
             if (++passThroughs > 1024) break;  // a degenerate stack of coincident interfaces
-            ray = spawnRay(si.p, si.ng, ray.d);
+            ray = spawnRay(si.p, si.ng, ray.d, ray.time);
             continue;
         }
         resetVertex(v);
         v.kind = VertexKind::Surface;
         v.mode = mode;
         v.p = si.p;
+        v.time = ray.time;
         v.ng = si.ng;
         v.ns = si.ns;
         v.wo = si.wo;
@@ -195,7 +200,7 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
         }
         if (mode == TransportMode::Radiance && bs->isTransmission()) etaScale *= sqr(bs->eta);
         prev.pdfRev = pdfRev * v.toPrevArea;
-        ray = spawnRay(si.p, si.ng, wi);
+        ray = spawnRay(si.p, si.ng, wi, ray.time);
         if (beta.isBlack()) break;
 
         // Russian roulette on the walk's own throughput (radiance scaling of refraction undone),
@@ -214,8 +219,8 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
 
 #define PS_SUBPATH_WALKS(S)                                                                                  \
     template int Subpaths::cameraSubpath<S>(const Ray&, S&, ScratchBuffer&, PathStats&, PathVertex*, int) const; \
-    template int Subpaths::lightSubpath<S>(S&, ScratchBuffer&, PathStats&, PathVertex*) const;                 \
-    template Subpaths::LightOrigin Subpaths::lightOrigin<S>(S&, PathStats&, PathVertex*) const;                 \
+    template int Subpaths::lightSubpath<S>(S&, float, ScratchBuffer&, PathStats&, PathVertex*) const;          \
+    template Subpaths::LightOrigin Subpaths::lightOrigin<S>(S&, float, PathStats&, PathVertex*) const;          \
     template int Subpaths::continueLightSubpath<S>(const LightOrigin&, S&, ScratchBuffer&, PathStats&,          \
                                                    PathVertex*, int) const;
 PS_SUBPATH_WALKS(Sampler)
@@ -296,7 +301,7 @@ Spectrum Subpaths::Le(const PathVertex& v, const PathVertex& to) const {
 
 bool Subpaths::visible(const PathVertex& a, const PathVertex& b, PathStats& stats) const {
     ++stats.shadowRays;
-    return !scene_.occluded(spawnRayTo(a.p, a.ng, b.p));
+    return !scene_.occluded(spawnRayTo(a.p, a.ng, b.p, a.time));  // both ends share the path's time
 }
 
 float Subpaths::infiniteLightDensity(Vec3 wToLight) const {

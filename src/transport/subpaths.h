@@ -28,6 +28,9 @@ public:
     // the light stream with the emission sample (5 values); then every vertex of a walk
     // reads its own block of 4: the direction (2), the lobe choice and Russian roulette.
     static constexpr int kCameraStartDimensions = 4, kLightStartDimensions = 5, kDimensionsPerVertex = 4;
+    // Streamed samplers (Metropolis) read the path's time (motion blur) in the camera stream
+    // just past the last vertex block a camera walk can read.
+    int timeDimension() const { return kCameraStartDimensions + kDimensionsPerVertex * maxCameraVertices(); }
 
     // Vertex 0 on the lens, then the walk along `ray`, which the scene camera generated;
     // returns the number of vertices. The walks are compiled for the renderer's samplers
@@ -38,8 +41,9 @@ public:
     int cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path,
                       int maxVertices = 0) const;
     // Vertex 0 on a light chosen by power, then the walk; returns the number of vertices.
+    // `time`: the scene time of the whole path (the camera sample's, for BDPT).
     template <typename S>
-    int lightSubpath(S& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const;
+    int lightSubpath(S& sampler, float time, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const;
     // lightSubpath in two steps: the emitted ray (vertex 0 written to path[0]), then the walk.
     // BDPT samples the origin before tracing its camera subpath, so that the emission
     // sampling's latency overlaps that walk (only the order of sample dimensions changes).
@@ -51,7 +55,7 @@ public:
         float pdfPos = 0, pdfDir = 0;  // sampleLe's densities
     };
     template <typename S>
-    LightOrigin lightOrigin(S& sampler, PathStats& stats, PathVertex* path) const;
+    LightOrigin lightOrigin(S& sampler, float time, PathStats& stats, PathVertex* path) const;
     template <typename S>
     int continueLightSubpath(const LightOrigin& origin, S& sampler, ScratchBuffer& scratch, PathStats& stats,
                              PathVertex* path, int maxVertices = 0) const;
@@ -77,7 +81,7 @@ public:
     void emissionDensities(const PathVertex& v, const PathVertex& to, float* origin, float* next) const;
     // Radiance emitted at light vertex v towards `to`.
     Spectrum Le(const PathVertex& v, const PathVertex& to) const;
-    // Mutual visibility of two points.
+    // Mutual visibility of two points, at a's time (a path's vertices share one time).
     bool visible(const PathVertex& a, const PathVertex& b, PathStats& stats) const;
     // Density of choosing direction wToLight from all infinite lights together.
     float infiniteLightDensity(Vec3 wToLight) const;

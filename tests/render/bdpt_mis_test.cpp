@@ -59,7 +59,7 @@ SubpathPair tracePair(const Scene& scene, const Subpaths& paths, Sampler& sample
     Ray ray = scene.camera().generateRay(cs);
     SubpathPair p{allocPath(scratch, paths.maxCameraVertices()), allocPath(scratch, paths.maxLightVertices()), 0, 0};
     p.nCamera = paths.cameraSubpath(ray, sampler, scratch, stats, p.camera);
-    p.nLight = paths.lightSubpath(sampler, scratch, stats, p.light);
+    p.nLight = paths.lightSubpath(sampler, 0.0f, scratch, stats, p.light);
     return p;
 }
 

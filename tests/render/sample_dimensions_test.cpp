@@ -90,7 +90,7 @@ TEST(SampleDimensions, EveryVertexReadsItsOwnBlock) {
         Sampler& walks = sampler;  // the walks' generic instantiation
         int n = paths.cameraSubpath(ray, walks, scratch, stats, camera);
         sampler.startStream(BDPTIntegrator::kLightStream);
-        n += paths.lightSubpath(walks, scratch, stats, light);
+        n += paths.lightSubpath(walks, 0.0f, scratch, stats, light);
         vertices += n;
         int lastBlock[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
         for (const RecordingSampler::Read& r : sampler.reads) {

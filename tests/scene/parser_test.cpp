@@ -251,16 +251,56 @@ TEST(Parser, NamedCoordinateSystems) {
     expectNear(d.shapes[3].worldFromObject.point({0, 0, 0}), {3, 0, 0});  // unknown: warning, unchanged
 }
 
-// Only the start transform is kept: transforms after ActiveTransform EndTime are ignored.
-TEST(Parser, MotionTransformsKeepTheStartTransform) {
-    SceneDescription d = parse(R"(WorldBegin
-        Translate 1 0 0
+// Motion (pbrt-v4's semantics): the CTM has a start and an end keyframe; ActiveTransform picks
+// which ones transform directives change, AttributeEnd restores the choice, CoordSysTransform
+// restores both keyframes whatever is active, and TransformTimes (options block) dates them.
+TEST(Parser, MotionKeepsBothTransformKeyframes) {
+    SceneDescription d = parse(R"(TransformTimes 0.25 2
+        LookAt 0 0 0  0 0 1  0 1 0
         ActiveTransform EndTime
-        Translate 5 0 0
+        Translate 0 0 -3
         ActiveTransform All
+        Camera "perspective"
+        WorldBegin
+        Translate 1 0 0
+        CoordinateSystem "one"
+        AttributeBegin
+          ActiveTransform EndTime
+          Translate 5 0 0
+          Shape "sphere"
+        AttributeEnd
+        Translate 1 0 0
         Shape "sphere"
+        ActiveTransform StartTime
+        CoordSysTransform "one"
+        Shape "sphere"
+        ObjectBegin "o"
+        Shape "sphere"
+        ObjectEnd
+        ActiveTransform EndTime
+        Translate 0 2 0
+        ObjectInstance "o"
     )");
+    EXPECT_EQ(d.transformStartTime, 0.25f);
+    EXPECT_EQ(d.transformEndTime, 2.0f);
+    EXPECT_EQ(d.camera.transformStartTime, 0.25f);
+    expectNear(d.camera.worldFromCamera.point({0, 0, 0}), {0, 0, 0});
+    expectNear(d.camera.worldFromCameraEnd.point({0, 0, 0}), {0, 0, 3});  // CTM = camera-from-world
+    ASSERT_EQ(d.shapes.size(), 3u);
     expectNear(d.shapes[0].worldFromObject.point({0, 0, 0}), {1, 0, 0});
+    expectNear(d.shapes[0].worldFromObjectEnd.point({0, 0, 0}), {6, 0, 0});
+    // After AttributeEnd both keyframes are active again and equal.
+    expectNear(d.shapes[1].worldFromObject.point({0, 0, 0}), {2, 0, 0});
+    expectNear(d.shapes[1].worldFromObjectEnd.point({0, 0, 0}), {2, 0, 0});
+    expectNear(d.shapes[2].worldFromObjectEnd.point({0, 0, 0}), {1, 0, 0});
+    ASSERT_EQ(d.instanceUses.size(), 1u);
+    expectNear(d.instanceUses[0].worldFromInstance.point({0, 0, 0}), {1, 0, 0});
+    expectNear(d.instanceUses[0].worldFromInstanceEnd.point({0, 0, 0}), {1, 2, 0});
+    // A moving area light is an error in pbrt-v4; TransformTimes belongs before WorldBegin.
+    expectError("WorldBegin\nActiveTransform EndTime Translate 1 0 0 ActiveTransform All\n"
+                "AreaLightSource \"diffuse\"\nShape \"sphere\"",
+                "s.pbrt:4:1", "moving area lights are not supported");
+    expectError("WorldBegin\nTransformTimes 0 1", "s.pbrt:2:1", "TransformTimes");
 }
 
 TEST(Parser, AttributeScopesRestoreState) {

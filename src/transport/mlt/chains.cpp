@@ -40,6 +40,11 @@ CameraSample MetropolisIntegrator::filmSample(PrimarySampleSampler& sampler) con
     cs.pFilm = {-margin_.x + u.x * filmSize_.x, -margin_.y + u.y * filmSize_.y};
     cs.pLens = sampler.get2D();
     if (!(scene_.camera().params().lensRadius > 0)) cs.pLens = Vec2(0.5f, 0.5f);
+    if (scene_.hasMotion()) {
+        // The path's time: a camera-stream value past every block the camera walk reads.
+        sampler.seekDimension(bdpt_.subpaths().timeDimension());
+        cs.time = sampler.get1D();
+    }
     return cs;
 }
 
