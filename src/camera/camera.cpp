@@ -101,8 +101,15 @@ std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, Vec2 u) const {
     return s;
 }
 
-Ray Camera::generateRay(const CameraSample& s) const {
+Ray Camera::generateRay(const CameraSample& s, float* weight) const {
     const Transform& T = params_.worldFromCamera;
+    if (weight) *weight = 1;
+    if (params_.projection == Projection::Realistic) {
+        Ray r{{0, 0, 0}, {0, 0, 1}};
+        float w = params_.lens->generateRay(s.pFilm, s.pLens, &r);
+        if (weight) *weight = w;
+        return Ray{T.point(r.o), normalize(T.vector(r.d))};
+    }
     if (params_.projection == Projection::Spherical) {
         Vec2 uv(s.pFilm.x / params_.xRes, s.pFilm.y / params_.yRes);
         return Ray{T.point({0, 0, 0}), normalize(T.vector(sphericalCameraDirection(params_.mapping, uv)))};
