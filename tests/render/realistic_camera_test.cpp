@@ -361,8 +361,9 @@ double maskIntegral(const ApertureMask& mask, double rr, double z) {
 }  // namespace
 
 // Shaped apertures (pbrt-v4's built-in masks, scaled to the mean pi/4 over the stop's
-// square so they pass the circular stop's light): at the film's centre the mean ray weight
-// equals the mask's exact weight integral. (Off the axis pbrt-v4 rotates exit-pupil bounds
+// square so they pass the circular stop's light): each mask's transmission matches its
+// shape's area, and at the film's centre the mean ray weight equals the mask's exact weight
+// integral. (Off the axis pbrt-v4 rotates exit-pupil bounds
 // found along +x to the film point's azimuth, which clips the corners of shapes that are
 // not rotationally symmetric; that darkening is kept, so it is not tested here.) Through a
 // scene, the radially symmetric "gaussian" mask gives the same value at the image centre.
@@ -371,6 +372,21 @@ TEST(RealisticCamera, ApertureShapesWeightTheStop) {
     for (const char* shape : {"square", "gaussian", "pentagon", "star"}) {
         auto mask = std::make_shared<ApertureMask>();
         ASSERT_TRUE(ApertureMask::builtin(shape, mask.get()));
+        // The shape and its scale, independently: the texels inside are (pi/4) / (the
+        // shape's area fraction of the square), the Gaussian's peak (1 - 1/e) / (1 - 2/e)
+        // (its mean over the square is (pi/4)(1 - 2/e) before scaling); pixelised polygons
+        // within 1%.
+        const double pentagon = 2.5 * 0.64 * std::sin(radians(72.0f)), innerStar = std::cos(radians(72.0f)) /
+                                                                                      std::cos(radians(36.0f));
+        const double star = 5 * innerStar * std::sin(radians(36.0f));
+        const double area = std::string(shape) == "square" ? 1.0 : std::string(shape) == "pentagon" ? pentagon : star;
+        double peak = 0;
+        for (int y = 0; y < mask->height(); ++y)
+            for (int x = 0; x < mask->width(); ++x) peak = std::max(peak, double(mask->texel(x, y)));
+        const double wantPeak = std::string(shape) == "gaussian" ? (1 - std::exp(-1.0)) / (1 - 2 * std::exp(-1.0))
+                                                                  : (kPi / 4) / (area / 4);
+        std::printf("%-8s peak transmission %.4f, expected %.4f\n", shape, peak, wantPeak);
+        EXPECT_NEAR(peak, wantPeak, 0.01 * wantPeak);
         LensSystem lens = biconvexLens(1.0f, 0.01f, 64, 64, 1 << 14, mask);
         const double want = maskIntegral(*mask, rr, lens.rearZ());
         Rng rng(11);
