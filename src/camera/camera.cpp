@@ -101,14 +101,21 @@ std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, Vec2 u) const {
     return s;
 }
 
-Ray Camera::generateRay(const CameraSample& s) const {
+Ray Camera::generateRay(const CameraSample& s, float* weight) const {
     const float time = (1 - s.time) * params_.shutterOpen + s.time * params_.shutterClose;
-    Ray r = generateRay(s, isMoving() ? params_.motion.interpolate(time) : params_.worldFromCamera);
+    Ray r = generateRay(s, isMoving() ? params_.motion.interpolate(time) : params_.worldFromCamera, weight);
     r.time = time;
     return r;
 }
 
-Ray Camera::generateRay(const CameraSample& s, const Transform& T) const {
+Ray Camera::generateRay(const CameraSample& s, const Transform& T, float* weight) const {
+    if (weight) *weight = 1;
+    if (params_.projection == Projection::Realistic) {
+        Ray r{{0, 0, 0}, {0, 0, 1}};
+        float w = params_.lens->generateRay(s.pFilm, s.pLens, &r);
+        if (weight) *weight = w;
+        return Ray{T.point(r.o), normalize(T.vector(r.d))};
+    }
     if (params_.projection == Projection::Spherical) {
         Vec2 uv(s.pFilm.x / params_.xRes, s.pFilm.y / params_.yRes);
         return Ray{T.point({0, 0, 0}), normalize(T.vector(sphericalCameraDirection(params_.mapping, uv)))};

@@ -1,8 +1,11 @@
 // Projective cameras with pbrt-v4's conventions (PBRT-CONVENTIONS §1): raster y points
 // down, fov spans the shorter image axis, focus on the plane z = focaldistance. Also the
-// spherical camera (a pinhole seeing every direction; see spherical_mapping.h).
+// spherical camera (a pinhole seeing every direction; see spherical_mapping.h) and the
+// realistic camera (rays traced through a lens system; see lens_system.h).
 #pragma once
+#include <memory>
 #include <optional>
+#include "camera/lens_system.h"
 #include "camera/spherical_mapping.h"
 #include "geometry/ray.h"
 #include "math/animated_transform.h"
@@ -29,7 +32,7 @@ struct CameraWiSample {
 
 class Camera {
 public:
-    enum class Projection { Perspective, Orthographic, Spherical };
+    enum class Projection { Perspective, Orthographic, Spherical, Realistic };
     struct Params {
         Projection projection = Projection::Perspective;
         Transform worldFromCamera;
@@ -42,13 +45,18 @@ public:
         float screenWindow[4] = {0, 0, 0, 0};  // xmin xmax ymin ymax; all zero = default
         float lensRadius = 0, focalDistance = 1e6f;  // projective cameras only
         SphericalMapping mapping = SphericalMapping::EqualArea;  // spherical only
+        std::shared_ptr<const LensSystem> lens;                  // realistic only
     };
     explicit Camera(const Params& p);
 
-    // A world-space ray through the film point; the weight is 1 for these cameras. Its time
-    // is pbrt-v4's: the shutter interval at s.time, and a moving camera sits where it is then.
-    Ray generateRay(const CameraSample& s) const;
+    // A world-space ray through the film point. Its time is pbrt-v4's: the shutter interval at
+    // s.time, and a moving camera sits where it is then. *weight (if given) receives the
+    // ray's weight: 1, except for the realistic camera, whose rays carry the lens system's
+    // weight and 0 when the lens blocks them (then the ray is meaningless).
+    Ray generateRay(const CameraSample& s, float* weight = nullptr) const;
     bool isMoving() const { return params_.motion.isAnimated(); }
+    // Whether generateRay reads CameraSample::pLens.
+    bool usesLensSample() const { return params_.lensRadius > 0 || params_.projection == Projection::Realistic; }
     Vec3 position() const { return params_.worldFromCamera.point({0, 0, 0}); }
     const Params& params() const { return params_; }
 
@@ -76,7 +84,7 @@ public:
 
 private:
     // generateRay with world-from-camera T (the transform at the ray's time).
-    Ray generateRay(const CameraSample& s, const Transform& T) const;
+    Ray generateRay(const CameraSample& s, const Transform& T, float* weight) const;
     float lensArea() const { return params_.lensRadius > 0 ? kPi * params_.lensRadius * params_.lensRadius : 1.0f; }
     // Film point for a camera-space direction from camera-space lens point o; false off the film.
     bool rasterOf(Vec3 oCam, Vec3 dCam, Vec2* pRaster) const;

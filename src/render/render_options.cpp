@@ -2,6 +2,7 @@
 #include <cmath>
 #include <limits>
 
+#include "render/realistic_camera_options.h"
 #include "render/scene_builder.h"
 #include "scene/color_space.h"
 
@@ -18,7 +19,7 @@ SphericalMapping sphericalMapping(const ParamSet& ps, const SourceLoc& cameraLoc
                      "Camera \"spherical\": unknown \"mapping\" \"" + m + "\" (must be \"equalarea\" or \"equirectangular\")");
 }
 
-void applyCamera(const SceneDescription& desc, Scene& scene, int xRes, int yRes) {
+void applyCamera(const SceneDescription& desc, Scene& scene, int xRes, int yRes, float filmDiagonalMm) {
     const CameraEntity& c = desc.camera;
     const ParamSet& ps = c.params;
     Camera::Params p;
@@ -30,6 +31,9 @@ void applyCamera(const SceneDescription& desc, Scene& scene, int xRes, int yRes)
     } else if (c.type == "spherical") {
         p.projection = Camera::Projection::Spherical;
         p.mapping = sphericalMapping(ps, c.loc);
+    } else if (c.type == "realistic") {
+        p.projection = Camera::Projection::Realistic;
+        p.lens = createLensSystem(ps, c.loc, desc.baseDirectory, filmDiagonalMm, xRes, yRes);
     } else if (c.type != "perspective") {
         warning(c.loc, "Camera \"" + c.type + "\" is not supported; using \"perspective\"");
     }
@@ -39,9 +43,10 @@ void applyCamera(const SceneDescription& desc, Scene& scene, int xRes, int yRes)
     }
     // The spherical camera accepts the lens and screen parameters and ignores them (a pinhole
     // seeing the whole sphere), as pbrt-v4 does; its "fov" stays unused and is reported.
+    // The realistic camera ignores them too: its lens system is its whole projection.
     p.lensRadius = ps.getFloat("lensradius", 0);
     p.focalDistance = ps.getFloat("focaldistance", 1e6f);
-    if (p.projection == Camera::Projection::Spherical) p.lensRadius = 0;
+    if (p.projection == Camera::Projection::Spherical || p.projection == Camera::Projection::Realistic) p.lensRadius = 0;
     std::vector<float> sw = ps.getFloats("screenwindow");
     if (sw.size() == 4) {
         for (int i = 0; i < 4; ++i) p.screenWindow[i] = sw[i];
@@ -136,7 +141,7 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
     float iso = film.getFloat("iso", 100);
     s.imagingRatio = iso / 100;
     film.getBool("savefp16", true);  // we always write float32 EXR
-    film.getFloat("diagonal", 35);
+    const float diagonalMm = film.getFloat("diagonal", 35);  // only the realistic camera uses it
     if (film.getFloat("whitebalance", 0) != 0)
         warning(desc.film.loc, "Film: \"whitebalance\" is not supported; ignored");
     if (film.getString("sensor", "cie1931") != "cie1931")
@@ -148,7 +153,7 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
     }
     film.reportUnused("Film \"rgb\"");
 
-    applyCamera(desc, scene, xRes, yRes);
+    applyCamera(desc, scene, xRes, yRes, diagonalMm);
     scene.setFilter(createFilter(desc.filter));
     scene.camera().setFilterMargin(scene.filter().radius());
 

@@ -18,8 +18,8 @@ constexpr int kTileSize = 16;
 SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, const RenderOptions& options,
                            std::atomic<bool>& stop, std::atomic<long long>& samplesDone)
     : scene_(scene), integrator_(integrator), stop_(stop), samplesDone_(samplesDone),
-      imagingRatio_(scene.settings().imagingRatio), hasLens_(scene.camera().params().lensRadius > 0), hasMotion_(scene.hasMotion()),
-      share_{distributed::rank(), distributed::size()},
+      imagingRatio_(scene.settings().imagingRatio), hasLens_(scene.camera().usesLensSample()),
+      hasMotion_(scene.hasMotion()), share_{distributed::rank(), distributed::size()},
       states_([this] {
           ThreadState s;
           for (int k = 0; k < 2; ++k) s.samplers[k] = prototypes_[k]->clone();
@@ -70,9 +70,11 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                         cs.pFilm = {px + 0.5f + fs.offset.x, py + 0.5f + fs.offset.y};
                         cs.pLens = hasLens_ ? sampler.get2D() : Vec2(0.5f, 0.5f);
                         if (hasMotion_) cs.time = sampler.get1D();
-                        Ray ray = scene_.camera().generateRay(cs);
+                        float cameraWeight = 1;
+                        Ray ray = scene_.camera().generateRay(cs, &cameraWeight);
                         SampleContext ctx{sampler, st.scratch, st.stats, film, si, px, py, fs.weight};
-                        Spectrum L = integrator_.Li(ray, ctx);
+                        // A ray the lens blocks is a black sample (still counted).
+                        Spectrum L = cameraWeight > 0 ? integrator_.Li(ray, ctx) * cameraWeight : Spectrum(0.0f);
                         st.scratch.reset();
                         film.addSample(px, py, L * imagingRatio_, fs.weight, si);
                     }

@@ -23,16 +23,17 @@ double luminance(Spectrum c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b
 
 // Our block means of luminance (16 renders of `spp`) against pbrt-v4's render of the same
 // scene file in tests/data/pbrt-v4, with no allowance: every block within 4 sigma, and the
-// image's mean luminance within 4 sigma with sigma under 0.5%. Texture paths in the file are
-// relative to it.
+// image's mean luminance within 4 sigma with sigma under 0.5%. Texture and lens paths in the
+// file are relative to it.
 void expectPbrtReference(const std::string& sceneFile, const std::string& refFile, int refSpp, int spp) {
     const fs::path dir = fs::path(PATHSPACE_SOURCE_DIR) / "tests" / "data" / "pbrt-v4";
     std::ifstream in(dir / sceneFile);
     std::stringstream text;
     text << in.rdbuf();
     std::string scene = text.str();
-    for (size_t at = 0; (at = scene.find("\"textures/", at)) != std::string::npos; at += dir.string().size() + 10)
-        scene.insert(at + 1, dir.string() + "/");
+    for (const std::string rel : {"\"textures/", "\"../lenses/"})
+        for (size_t at = 0; (at = scene.find(rel, at)) != std::string::npos; at += dir.string().size() + rel.size())
+            scene.insert(at + 1, dir.string() + "/");
     Image ref = readImage((dir / refFile).string());
     const int renders = 16, blocks = 4;
     BlockMeans ours = blockMeans(scene, "", spp, renders, blocks);
@@ -78,4 +79,10 @@ TEST(PbrtShapesReference, LoopSubdivisionAndCylinder) {
 // a normal map (an 8-bit PNG on a diffuse wall), with texture filtering off in both renderers.
 TEST(PbrtShapesReference, BumpAndNormalMaps) {
     expectPbrtReference("shading-detail.pbrt", "shading-detail-4096spp.exr", 4096, 64);
+}
+
+// Camera "realistic" (a double-Gauss lens: focusing, exit-pupil sampling, the cos^4 weight
+// and the lens's vignetting) on a checkerboard wall in focus and a sphere out of focus.
+TEST(PbrtShapesReference, RealisticCamera) {
+    expectPbrtReference("realistic-camera.pbrt", "realistic-camera-4096spp.exr", 4096, 64);
 }
