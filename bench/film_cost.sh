@@ -30,26 +30,13 @@ old=$dir/build/pathspace
 
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-# A sky around a small sphere: camera rays mostly miss, so the sampler, the camera and the film
-# make most of a sample's cost.
-cat >"$tmp/sky.pbrt" <<'EOF'
-LookAt 0 0 5  0 0 0  0 1 0
-Camera "perspective" "float fov" [ 30 ]
-Film "rgb" "integer xresolution" [ 256 ] "integer yresolution" [ 256 ] "string filename" [ "sky.exr" ]
-PixelFilter "box"
-Sampler "independent"
-WorldBegin
-LightSource "infinite" "rgb L" [ 1 1 1 ]
-Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
-Shape "sphere" "float radius" [ 0.2 ]
-EOF
 
 # Best render time (the statistics' wall_time_s, scene loading excluded) of RUNS alternating runs.
 seconds() {  # binary scene spp
     "$1" render --quiet --threads 2 --spp "$3" "$2" -o "$tmp/out.pfm" --stats "$tmp/s.json" >/dev/null
     python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['wall_time_s'])" "$tmp/s.json"
 }
-for case in "sky $tmp/sky.pbrt 256" "cornell $cornell 32"; do
+for case in "sky $root/bench/scenes/sky-sphere.pbrt 256" "cornell $cornell 32"; do
     set -- $case
     best_old=1e30 best_now=1e30
     for i in $(seq "$runs"); do
