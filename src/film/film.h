@@ -84,7 +84,8 @@ public:
         p.weight += toFixed(weight);
         p.samples += 1;
         p.sumY += toFixed(y);
-        p.sumY2 += toFixedSquare(y * y);
+        const double yCapped = std::min(std::fabs(y), kMaxSquaredValue);
+        p.sumY2 += toFixedSquare(yCapped * yCapped);
         if (splatFilter_) {
             p.halfY[sampleIndex & 1] += toFixed(y * weight);
             p.halfWeight[sampleIndex & 1] += toFixed(weight);
@@ -162,8 +163,11 @@ private:
     // samples were split over processes (see accumulators()). Each sample's value is
     // truncated to a multiple of 2^-64 (squares: 2^-32), which a float's product never misses
     // by more than that; |value| < kMaxSampleValue per sample keeps 2^23 samples from overflow.
+    // Squares would overflow sooner: a luminance above kMaxSquaredValue (3.4e10) enters the
+    // variance estimate's sum of squares capped there (the estimate is then low, the image
+    // exact), which keeps that sum below 2^126 over 2^23 samples too.
     static constexpr double kFixedUnit = 0x1p64, kFixedSquareUnit = 0x1p32;
-    static constexpr double kMaxSampleValue = 0x1p40;
+    static constexpr double kMaxSampleValue = 0x1p40, kMaxSquaredValue = 0x1p35;
     static Fixed toFixed(double v) { return truncateToFixed(v * kFixedUnit); }
     static Fixed toFixedSquare(double v) { return truncateToFixed(v * kFixedSquareUnit); }
     // Fixed(x) (truncation toward zero, |x| < 2^127) without the library call a compiler makes

@@ -99,3 +99,25 @@ TEST(FilmSums, IndependentOfOrderAndSplit) {
         }
     }
 }
+
+// Luminances near the film's limit (2^40 per sample) over 2^23 samples: the sums of squares
+// stay within 128 bits (the variance estimate caps a sample's luminance at 2^35 there) and the
+// mean is exact. Without the cap the sum of squares overflows (and UBSan reports it).
+TEST(FilmSums, HugeSamplesDoNotOverflowTheSquares) {
+    PixelBounds b{0, 1, 0, 1};
+    Film film(1, 1, b, nullptr);
+    const float v = 1e11f;  // luminance 1e11 < 2^40 = 1.1e12
+    const int n = 1 << 23;
+    for (int i = 0; i < n; ++i) film.addSample(0, 0, Spectrum(v, v, v), 1.0f, i);
+    const Image img = film.image(0);
+    const Film::PixelEstimate e = film.pixelEstimate(0);
+    std::printf("mean %.6g (exact %.6g), sample variance %.3g, rejected %lld\n", img.get(0, 0).r, double(v),
+                e.sampleVariance, film.rejectedSamples());
+    EXPECT_FLOAT_EQ(img.get(0, 0).r, v);
+    EXPECT_EQ(film.rejectedSamples(), 0);
+    EXPECT_TRUE(std::isfinite(e.sampleVariance));
+    EXPECT_GE(e.sampleVariance, 0.0);
+    // The sum of squares (index 5 of a pixel's accumulators, in units of 2^-32): n samples
+    // of the cap squared, 2^23 * 2^70 * 2^32 = 2^125 exactly.
+    EXPECT_TRUE(film.accumulators().fixed[5] == Fixed(1) << 125) << "the sum of squares overflowed or was not capped";
+}
