@@ -1,4 +1,5 @@
 #include "math/animated_transform.h"
+#include "math/matrix3.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,60 +8,37 @@ namespace ps {
 
 namespace {
 
-using M3 = double[3][3];
-
-void linearPart(const Matrix4& m, M3 out) {
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) out[i][j] = m.m[i][j];
-}
-
-double det3(const M3 a) {
-    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-}
-
-// Inverse transpose by cofactors (the cofactor matrix over the determinant).
-bool inverseTranspose(const M3 a, M3 out) {
-    double d = det3(a);
-    if (!(std::fabs(d) > 0) || !std::isfinite(d)) return false;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-            int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-            out[i][j] = (a[i1][j1] * a[i2][j2] - a[i1][j2] * a[i2][j1]) / d;
-        }
-    return true;
-}
-
 // Polar decomposition M = R S (R orthogonal, S symmetric) by the averaging iteration
 // R <- (R + R^-T) / 2, stopped as pbrt-v4 stops it (row sums of changes below 1e-4, at most
 // 100 steps). A reflection (det < 0) is carried by S so that R is a rotation a quaternion
 // can hold.
 void polarDecompose(const Matrix4& m, Matrix4* rotation, Matrix4* scale) {
-    M3 M, R, Rit;
-    linearPart(m, M);
-    linearPart(m, R);
+    const Matrix3 M = Matrix3::linearPart(m);
+    Matrix3 R = M;
     for (int count = 0; count < 100; ++count) {
-        if (!inverseTranspose(R, Rit)) break;
+        const double d = R.determinant();
+        if (!(std::fabs(d) > 0) || !std::isfinite(d)) break;
+        const Matrix3 Rit = R.inverse().transposed();
         double norm = 0;
         for (int i = 0; i < 3; ++i) {
             double rowChange = 0;
             for (int j = 0; j < 3; ++j) {
-                double next = 0.5 * (R[i][j] + Rit[i][j]);
-                rowChange += std::fabs(next - R[i][j]);
-                R[i][j] = next;
+                double next = 0.5 * (R.a[i][j] + Rit.a[i][j]);
+                rowChange += std::fabs(next - R.a[i][j]);
+                R.a[i][j] = next;
             }
             norm = std::max(norm, rowChange);
         }
         if (norm <= 1e-4) break;
     }
-    double sign = det3(R) < 0 ? -1 : 1;
+    double sign = R.determinant() < 0 ? -1 : 1;
     *rotation = Matrix4();
     *scale = Matrix4();
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
-            rotation->m[i][j] = float(sign * R[i][j]);
+            rotation->m[i][j] = float(sign * R.a[i][j]);
             double s = 0;  // S = R^T M (R orthogonal)
-            for (int k = 0; k < 3; ++k) s += R[k][i] * M[k][j];
+            for (int k = 0; k < 3; ++k) s += R.a[k][i] * M.a[k][j];
             scale->m[i][j] = float(sign * s);
         }
 }
