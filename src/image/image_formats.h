@@ -39,8 +39,4 @@ std::vector<char> encodePng(const Image& image);
 // NaN -> 0, +-Inf -> +-largest finite float: nothing non-finite reaches a file.
 float finiteForOutput(float v);
 
-// Writes bytes to a temporary file beside path, syncs it and renames it over path. On
-// failure the temporary is removed, path is untouched, and InputError names path and errno.
-void writeFileAtomically(const std::string& path, const std::vector<char>& bytes);
-
 }  // namespace ps::imageio

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "image/image_formats.h"
+#include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/path.h"
 
@@ -44,7 +45,7 @@ void writeImage(const std::string& path, const Image& image) {
     } catch (const std::exception& e) {  // OpenEXR exceptions, bad_alloc
         throw InputError(what + e.what());
     }
-    imageio::writeFileAtomically(path, bytes);
+    writeFileAtomically(path, {std::span<const char>(bytes)}, "image");
 }
 
 }  // namespace ps

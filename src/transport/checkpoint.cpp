@@ -2,14 +2,12 @@
 
 #include <cstdio>
 #include <cstring>
-#include <fcntl.h>
-#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
-#include <unistd.h>
 
 #include "mc/rng.h"
+#include "util/atomic_file.h"
 #include "util/error.h"
 
 namespace ps {
@@ -91,43 +89,11 @@ void writeCheckpoint(const std::string& path, const nlohmann::json& settings, co
     c = hashBytes(reinterpret_cast<const char*>(fixed.data()), fixed.size() * sizeof(Fixed), c);
     h.checksum = hashBytes(reinterpret_cast<const char*>(counts.data()), counts.size() * sizeof(int64_t), c);
 
-    const std::string tmp = path + ".tmp";
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd < 0) throw std::runtime_error("checkpoint \"" + tmp + "\": cannot create: " + std::strerror(errno));
-    auto put = [&](const void* p, size_t n) {
-        for (const char* b = static_cast<const char*>(p); n > 0;) {
-            const ssize_t w = ::write(fd, b, n);
-            if (w < 0 && errno == EINTR) continue;  // a Ctrl-C while writing
-            if (w <= 0) {
-                const std::string why = std::strerror(errno);
-                ::close(fd);
-                ::unlink(tmp.c_str());
-                throw std::runtime_error("checkpoint \"" + tmp + "\": write failed: " + why);
-            }
-            b += w, n -= size_t(w);
-        }
-    };
-    put(&h, sizeof h);
-    put(metadata.data(), metadata.size());
-    put(fixed.data(), fixed.size() * sizeof(Fixed));
-    put(counts.data(), counts.size() * sizeof(int64_t));
-    // On disk before the rename, so the name never points at a file a crash left half-written.
-    if (::fsync(fd) != 0 || ::close(fd) != 0) {
-        ::unlink(tmp.c_str());
-        throw std::runtime_error("checkpoint \"" + tmp + "\": cannot flush to disk");
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        const std::string why = std::strerror(errno);
-        ::unlink(tmp.c_str());
-        throw std::runtime_error("checkpoint \"" + path + "\": cannot rename the temporary file over it: " + why);
-    }
-    // The rename itself is durable once the directory is flushed.
-    const std::filesystem::path dir = std::filesystem::path(path).has_parent_path() ? std::filesystem::path(path).parent_path() : ".";
-    const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
-    if (dfd >= 0) {
-        ::fsync(dfd);
-        ::close(dfd);
-    }
+    auto bytes = [](const void* p, size_t n) { return std::span<const char>(static_cast<const char*>(p), n); };
+    writeFileAtomically(path,
+                        {bytes(&h, sizeof h), bytes(metadata.data(), metadata.size()),
+                         bytes(fixed.data(), fixed.size() * sizeof(Fixed)), bytes(counts.data(), counts.size() * sizeof(int64_t))},
+                        "checkpoint");
 }
 
 CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& settings) {
