@@ -49,6 +49,9 @@ TEST_F(Checkpoint, InterruptedAndResumedEqualsUninterrupted) {
         while (!fs::exists(path("ck")) && std::chrono::steady_clock::now() < deadline)
             std::this_thread::sleep_for(std::chrono::milliseconds(2));
         ASSERT_TRUE(fs::exists(path("ck"))) << "no checkpoint written";
+        // Enough samples after it for the interrupted image to resolve a 2% error (the
+        // sanitizer build renders several times slower between checkpoints).
+        ASSERT_TRUE(p.waitUntilRendering(cpuSeconds(0.3))) << "pathspace exited before the signal";
         EXPECT_TRUE(p.signalAndWaitTaken(SIGINT));
         ASSERT_EQ(p.wait(), 130);
     }
