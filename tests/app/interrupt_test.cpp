@@ -174,7 +174,7 @@ TEST_F(CliStop, InterruptedMetropolisIsNormalisedByTheMutationsMade) {
             } else {
                 fs::remove(out());
                 ps::test::Result r = ps::test::runPathspace(
-                    "render --quiet --spp 100000000 --time " + std::to_string(cpuSeconds(1.0)) + " --integrator " +
+                    "render --quiet --spp 100000000 --time " + std::to_string(metropolisStartCpu(integrator) + cpuSeconds(1.0)) + " --integrator " +
                     integrator + " --bootstrap 20000 --chains 64 --stats " + stats() + " " + write("s.pbrt", kSkyScene) +
                     " -o " + out());
                 ASSERT_EQ(r.status, 0) << r.out;
