@@ -113,8 +113,10 @@ void RenderCommand::attach(CLI::App& app) {
                      "Integrator: path (path tracing with MIS), light (light tracing: particles from the lights "
                      "splatted through the lens), bdpt (bidirectional path tracing, every strategy with MIS), pssmlt "
                      "(primary-sample-space Metropolis light transport over BDPT), mmlt (multiplexed Metropolis: the "
-                     "chains also choose the path depth and one BDPT strategy); for both --spp sets the mutations per "
-                     "pixel. pbrt names volpath, lightpath, mlt (= mmlt) map to them")
+                     "chains also choose the path depth and one BDPT strategy), mlt (Veach's Metropolis light transport: "
+                     "chains over paths themselves, changed by path-space mutations); for the Metropolis integrators "
+                     "--spp sets the mutations per pixel. pbrt names volpath and lightpath map to path and light (a "
+                     "scene's Integrator \"mlt\" is pbrt-v4's multiplexed MLT: mmlt)")
         ->check(CLI::IsMember({"path", "volpath", "light", "lightpath", "bdpt", "pssmlt", "mmlt", "mlt"}));
     cmd_->add_option("--bdpt-strategies", strategiesDir_,
                      "With --integrator bdpt: also write, into this directory, one EXR per strategy (s light "
@@ -198,7 +200,6 @@ int RenderCommand::run() {
     if (!integrator_.empty())
         settings.integrator = integrator_ == "volpath"     ? "path"
                               : integrator_ == "lightpath" ? "light"
-                              : integrator_ == "mlt"       ? "mmlt"
                                                            : integrator_;
     if (!sampler_.empty()) settings.sampler = sampler_;
     if (strategyPilot_ >= 0) {
@@ -208,10 +209,13 @@ int RenderCommand::run() {
         if (strategyPilot_ >= 1) throw InputError("--strategy-pilot must be below 1 (the bootstrap proper needs samples)");
         settings.mltStrategyPilot = float(strategyPilot_);
     }
+    if (settings.integrator == "mlt" && (largeStepProbability_ >= 0 || sigma_ > 0))
+        throw InputError("--large-step-probability and --sigma are parameters of the primary-sample-space Metropolis "
+                         "integrators (pssmlt, mmlt); mlt's mutations change paths, not random numbers");
     if (chains_ > 0 || bootstrap_ > 0 || largeStepProbability_ >= 0 || sigma_ > 0) {
-        if (settings.integrator != "pssmlt" && settings.integrator != "mmlt")
+        if (settings.integrator != "pssmlt" && settings.integrator != "mmlt" && settings.integrator != "mlt")
             throw InputError("--chains, --bootstrap, --large-step-probability and --sigma are Metropolis parameters: "
-                             "they need --integrator pssmlt or mmlt (the integrator here is \"" + settings.integrator +
+                             "they need --integrator pssmlt, mmlt or mlt (the integrator here is \"" + settings.integrator +
                              "\")");
         if (chains_ > 0) settings.mltChains = chains_;
         if (bootstrap_ > 0) settings.mltBootstrapSamples = bootstrap_;
@@ -256,10 +260,11 @@ int RenderCommand::run() {
     // before anything is rendered or written.
     if (checkpointEvery_ >= 0 && checkpoint_.empty()) throw InputError("--checkpoint-every needs --checkpoint FILE");
     if ((!checkpoint_.empty() || !resume_.empty()) &&
-        (adaptive != AdaptiveMode::None || settings.integrator == "pssmlt" || settings.integrator == "mmlt" || bdpt))
+        (adaptive != AdaptiveMode::None || settings.integrator == "pssmlt" || settings.integrator == "mmlt" ||
+         settings.integrator == "mlt" || bdpt))
         throw InputError(std::string(adaptive != AdaptiveMode::None ? "adaptive sampling (--adaptive)"
                                      : bdpt                         ? "--bdpt-strategies"
-                                                                    : "Metropolis (pssmlt, mmlt)") +
+                                                                    : "Metropolis (pssmlt, mmlt, mlt)") +
                          " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling do");
     const PixelBounds& bounds = scene->pixelBounds();
     const nlohmann::json checkpointSettings = {
@@ -394,6 +399,14 @@ int RenderCommand::run() {
             depths.push_back(e);
         }
         stats["metropolis"]["depths"] = depths;
+        nlohmann::json kinds = nlohmann::json::array();
+        for (const MetropolisStats::Kind& k : ms.kinds)
+            kinds.push_back({{"mutation", k.name},
+                             {"proposed", k.proposed},
+                             {"failed", k.failed},
+                             {"accepted", k.accepted},
+                             {"acceptance_rate", MetropolisStats::rate(k.accepted, k.proposed)}});
+        stats["metropolis"]["mutations_by_kind"] = kinds;
     }
     if (!statsFile_.empty()) {
         std::ofstream f(statsFile_);
@@ -431,6 +444,9 @@ int RenderCommand::run() {
                     std::printf(" %.3f", MetropolisStats::rate(d.accepted, d.proposed));
             }
             std::printf("\n");
+            for (const MetropolisStats::Kind& k : ms.kinds)
+                std::printf("metropolis: %s mutation: %lld proposed, %lld failed, acceptance %.3f\n", k.name.c_str(),
+                            k.proposed, k.failed, MetropolisStats::rate(k.accepted, k.proposed));
         }
         if (r.resumedSpp > 0) std::printf("resumed from %s at %d spp\n", resume_.c_str(), r.resumedSpp);
         if (r.checkpoints > 0)

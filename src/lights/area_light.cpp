@@ -43,6 +43,7 @@ std::optional<LightLeSample> DiffuseAreaLight::sampleLe(Vec2 uPos, Vec2 uDir) co
     ls.ray = spawnRay(s.p, s.n, w, 0);  // the light subpath stamps its path's time on it
     ls.ray.o = s.p;  // the vertex is on the light; callers offset when they trace
     ls.n = s.n;
+    ls.uv = s.uv;
     ls.pdfPos = s.pdf;
     ls.pdfDir = sidePdf * cosineHemispherePdf(wLocal.z);
     return ls;

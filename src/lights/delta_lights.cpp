@@ -10,7 +10,7 @@ std::optional<LightLiSample> PointLight::sampleLi(const LightSampleContext& ctx,
 }
 
 std::optional<LightLeSample> PointLight::sampleLe(Vec2, Vec2 uDir) const {
-    return LightLeSample{I_, Ray{pos_, sampleUniformSphere(uDir)}, {}, 1.0f, uniformSpherePdf()};
+    return LightLeSample{I_, Ray{pos_, sampleUniformSphere(uDir)}, {}, 1.0f, uniformSpherePdf(), {}};
 }
 
 // The position is a delta (density 0 for every other strategy); directions are uniform.
@@ -39,7 +39,7 @@ std::optional<LightLeSample> SpotLight::sampleLe(Vec2, Vec2 uDir) const {
     Vec3 w = frame_.toWorld(sampleUniformCone(uDir, cosEnd_));
     Spectrum I = intensity(w);
     if (I.isBlack()) return std::nullopt;
-    return LightLeSample{I, Ray{pos_, w}, {}, 1.0f, uniformConePdf(cosEnd_)};
+    return LightLeSample{I, Ray{pos_, w}, {}, 1.0f, uniformConePdf(cosEnd_), {}};
 }
 
 void SpotLight::pdfLe(Vec3, Vec3, Vec3 w, float* pdfPos, float* pdfDir) const {
@@ -59,7 +59,7 @@ std::optional<LightLiSample> DistantLight::sampleLi(const LightSampleContext& ct
 
 std::optional<LightLeSample> DistantLight::sampleLe(Vec2 uPos, Vec2) const {
     return LightLeSample{L_, rayFromInfinityDisk(w_, sceneCenter_, sceneRadius_, uPos), {},
-                         infinityDiskPdf(sceneRadius_), 1.0f};
+                         infinityDiskPdf(sceneRadius_), 1.0f, {}};
 }
 
 void DistantLight::pdfLe(Vec3, Vec3, Vec3, float* pdfPos, float* pdfDir) const {

@@ -40,7 +40,7 @@ std::optional<LightLeSample> GoniometricLight::sampleLe(Vec2, Vec2 uDir) const {
     float pdfDir = frame_.toWorldDensity(pdfUV / (4 * kPi), wLight);
     Spectrum I = intensityLight(wLight);
     if (!(pdfDir > 0) || I.isBlack()) return std::nullopt;
-    return LightLeSample{I, Ray{pos_, frame_.toWorld(wLight)}, {}, 1.0f, pdfDir};
+    return LightLeSample{I, Ray{pos_, frame_.toWorld(wLight)}, {}, 1.0f, pdfDir, {}};
 }
 
 // The position is a delta (density 0 for every other strategy).

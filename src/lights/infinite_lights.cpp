@@ -19,7 +19,7 @@ float UniformInfiniteLight::pdfLi(const LightSampleContext&, Vec3, const Surface
 std::optional<LightLeSample> UniformInfiniteLight::sampleLe(Vec2 uPos, Vec2 uDir) const {
     Vec3 wl = sampleUniformSphere(uDir);
     return LightLeSample{L_, rayFromInfinityDisk(wl, sceneCenter_, sceneRadius_, uPos), {},
-                         infinityDiskPdf(sceneRadius_), uniformSpherePdf()};
+                         infinityDiskPdf(sceneRadius_), uniformSpherePdf(), {}};
 }
 
 void UniformInfiniteLight::pdfLe(Vec3, Vec3, Vec3, float* pdfPos, float* pdfDir) const {
@@ -91,7 +91,7 @@ std::optional<LightLeSample> ImageInfiniteLight::sampleLe(Vec2 uPos, Vec2 uDir) 
     auto li = sampleLi(LightSampleContext{sceneCenter_, {}}, uDir);
     if (!li) return std::nullopt;
     return LightLeSample{li->L, rayFromInfinityDisk(li->wi, sceneCenter_, sceneRadius_, uPos), {},
-                         infinityDiskPdf(sceneRadius_), li->pdf};
+                         infinityDiskPdf(sceneRadius_), li->pdf, {}};
 }
 
 void ImageInfiniteLight::pdfLe(Vec3, Vec3, Vec3 w, float* pdfPos, float* pdfDir) const {

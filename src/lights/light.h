@@ -37,6 +37,7 @@ struct LightLeSample {
     Vec3 n;           // surface normal at the origin (area lights); zero otherwise
     float pdfPos = 0; // area density of the origin (1 for delta positions)
     float pdfDir = 0; // solid-angle density of the direction (1 for delta directions)
+    Vec2 uv;          // area lights: the surface parameters of the origin (textured emission)
 };
 
 class Light {

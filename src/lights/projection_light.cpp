@@ -74,7 +74,7 @@ std::optional<LightLeSample> ProjectionLight::sampleLe(Vec2, Vec2 uDir) const {
     float pdfDir = frame_.toWorldDensity(pdfUV / (screen_.planeArea() * screen_.cos3(sx, sy)), wl);
     Spectrum I = intensityLight(wl);
     if (!(pdfDir > 0) || I.isBlack()) return std::nullopt;
-    return LightLeSample{I, Ray{pos_, frame_.toWorld(wl)}, {}, 1.0f, pdfDir};
+    return LightLeSample{I, Ray{pos_, frame_.toWorld(wl)}, {}, 1.0f, pdfDir, {}};
 }
 
 void ProjectionLight::pdfLe(Vec3, Vec3, Vec3 w, float* pdfPos, float* pdfDir) const {

@@ -4,6 +4,7 @@
 #include "transport/light_tracer.h"
 #include "transport/mlt/mmlt.h"
 #include "transport/mlt/pssmlt.h"
+#include "transport/mlt/veach/veach_mlt.h"
 #include "transport/path_tracer.h"
 #include "util/error.h"
 
@@ -16,22 +17,24 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
     else if (mis != "power") throw InputError("unknown MIS heuristic \"" + mis + "\" (available: power, balance, none)");
     int maxDepth = scene.settings().maxDepth;
     if (name == "path") return std::make_unique<PathTracer>(scene, maxDepth);
-    if (name == "light" || name == "bdpt" || name == "pssmlt" || name == "mmlt") {
+    if (name == "light" || name == "bdpt" || name == "pssmlt" || name == "mmlt" ||
+        name == "mlt") {
         if (!scene.camera().hasImportance())
             throw InputError("integrator \"" + name + "\" connects light paths to the lens and needs a perspective camera");
         if (scene.camera().isMoving())
             throw InputError(scene.settings().cameraLoc, "Camera: a moving camera (ActiveTransform around Camera) is supported by the \"path\" integrator only, not \"" + name + "\", whose light paths connect to the lens");
         if (name == "light") return std::make_unique<LightTracer>(scene, maxDepth);
-        if (name == "pssmlt" || name == "mmlt") {
+        if (name == "pssmlt" || name == "mmlt" || name == "mlt") {
             const RenderSettings& st = scene.settings();
             MetropolisParams mp{st.mltBootstrapSamples, st.mltChains, st.mltLargeStepProbability, st.mltSigma,
                                 st.mltStrategyPilot};
+            if (name == "mlt") return std::make_unique<VeachMLTIntegrator>(scene, maxDepth, mp);
             if (name == "mmlt") return std::make_unique<MMLTIntegrator>(scene, maxDepth, mp, heuristic);
             return std::make_unique<PSSMLTIntegrator>(scene, maxDepth, mp, heuristic);
         }
         return std::make_unique<BDPTIntegrator>(scene, maxDepth, heuristic);
     }
-    throw InputError("unknown integrator \"" + name + "\" (available: path, light, bdpt, pssmlt, mmlt)");
+    throw InputError("unknown integrator \"" + name + "\" (available: path, light, bdpt, pssmlt, mmlt, mlt)");
 }
 
 }  // namespace ps

@@ -15,6 +15,7 @@
 #include "util/memory_limit.h"
 
 #include "transport/mlt/metropolis.h"
+#include "transport/mlt/veach/veach_mlt.h"
 #include "transport/render_monitor.h"
 #include "transport/sample_passes.h"
 
@@ -121,17 +122,19 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     if (options.adaptive != AdaptiveMode::None && integrator.splats())
         throw InputError("adaptive sampling needs an integrator whose pixels come from their own samples "
                          "(path); light tracing, BDPT and Metropolis splat onto the whole film");
+    auto* veach = dynamic_cast<const VeachMLTIntegrator*>(&integrator);
     auto* mlt = dynamic_cast<const MetropolisIntegrator*>(&integrator);
-    if (distributed::size() > 1 && (mlt || options.adaptive != AdaptiveMode::None))
-        throw InputError(std::string(mlt ? "Metropolis (pssmlt, mmlt)" : "adaptive sampling (--adaptive)") +
+    if (distributed::size() > 1 && (mlt || veach || options.adaptive != AdaptiveMode::None))
+        throw InputError(std::string(mlt || veach ? "Metropolis (pssmlt, mmlt, mlt)" : "adaptive sampling (--adaptive)") +
                          " does not yet run over several processes: render it with one (without mpirun, or -n 1); "
                          "path, light and bdpt with uniform sampling do");
-    if ((options.resume || options.checkpoint) && (mlt || options.adaptive != AdaptiveMode::None))
-        throw InputError(std::string(mlt ? "Metropolis (pssmlt, mmlt)" : "adaptive sampling (--adaptive)") +
+    if ((options.resume || options.checkpoint) && (mlt || veach || options.adaptive != AdaptiveMode::None))
+        throw InputError(std::string(mlt || veach ? "Metropolis (pssmlt, mmlt, mlt)" : "adaptive sampling (--adaptive)") +
                          " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling do");
     requireFilmMemory(scene, integrator, options);
     // Markov chains have their own driver: a chain is not a per-camera-ray estimate.
     if (mlt) return renderMetropolis(scene, *mlt, options);
+    if (veach) return renderVeachMLT(scene, *veach, options);
     const PixelBounds& bounds = scene.pixelBounds();
     Film film(scene.camera().params().xRes, scene.camera().params().yRes, bounds,
               integrator.splats() ? &scene.filter() : nullptr);

@@ -56,8 +56,22 @@ struct MetropolisStats {
         long long bootstrapSamples = 0;  // the bootstrap's samples of this depth (mmlt)
     };
     std::vector<Depth> depths;
+    // Per mutation (Veach's MLT): proposals, those that failed before the acceptance test
+    // (a ray escaped, a join was blocked: the chain stays) and acceptances.
+    struct Kind {
+        std::string name;
+        long long proposed = 0, failed = 0, accepted = 0;
+    };
+    std::vector<Kind> kinds;
     static double rate(long long accepted, long long proposed) { return proposed ? double(accepted) / double(proposed) : 0.0; }
-    double acceptanceRate() const { return rate(acceptedLarge + acceptedSmall, proposedLarge + proposedSmall); }
+    double acceptanceRate() const {
+        long long accepted = acceptedLarge + acceptedSmall, proposed = proposedLarge + proposedSmall;
+        for (const Kind& k : kinds) {
+            accepted += k.accepted;
+            proposed += k.proposed;
+        }
+        return rate(accepted, proposed);
+    }
 };
 
 // A render over several processes (render/distributed.h), as rank 0 reports it.

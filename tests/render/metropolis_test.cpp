@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "agreement.h"
+#include "mlt_scenes.h"
 #include "mc/estimator.h"
 #include "render_helpers.h"
 #include "transport/mlt/metropolis.h"
@@ -19,58 +20,6 @@ using namespace ps;
 using namespace ps::test;
 
 namespace {
-
-// The chain parameters of the tests: a bootstrap and chain count sized for small films. The
-// image mean of an MLT render is b times a fixed total of splatted luminance, so its spread
-// across seeds is mostly the bootstrap's estimate of b.
-std::string mltIntegrator(int bootstrapSamples = 50000) {
-    return R"(Integrator "pssmlt" "integer maxdepth" [ 5 ] "integer chains" [ 64 ] "integer bootstrapsamples" [ )" +
-           std::to_string(bootstrapSamples) + " ]";
-}
-
-// A sphere lit from inside by its own emission, albedo 0.6: every pixel sees Le sum_k 0.6^k.
-std::string furnace() {
-    return std::string(R"(
-        LookAt 0 0 0  0 0 1  0 1 0
-        Camera "perspective" "float fov" [ 60 ]
-        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
-        PixelFilter "box"
-        )") + mltIntegrator() + R"(
-        WorldBegin
-        AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
-        Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]
-        ReverseOrientation
-        Shape "sphere" "float radius" [ 1 ]
-    )";
-}
-const double kFurnaceExact = (1 - std::pow(0.6, 6)) / 0.4;
-
-// A 1 x 1 x 1 box open towards the camera with coloured walls; `light` and `walls` set the
-// emission and the side walls' reflectances.
-std::string box(const std::string& light, const std::string& left, const std::string& right) {
-    return std::string(R"(
-        LookAt 0 0.5 2.2  0 0.5 0  0 1 0
-        Camera "perspective" "float fov" [ 30 ]
-        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
-        PixelFilter "box"
-        )") + mltIntegrator() + R"(
-        WorldBegin
-        AttributeBegin
-          AreaLightSource "diffuse" "rgb L" [ )" + light + R"( ]
-          Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
-        AttributeEnd
-        Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]
-        Shape "bilinearmesh" "point3 P" [ -0.5 0 0.5   0.5 0 0.5   -0.5 0 -0.5   0.5 0 -0.5 ]
-        Shape "bilinearmesh" "point3 P" [ -0.5 1 -0.5   0.5 1 -0.5   -0.5 1 0.5   0.5 1 0.5 ]
-        Shape "bilinearmesh" "point3 P" [ -0.5 0 -0.5   0.5 0 -0.5   -0.5 1 -0.5   0.5 1 -0.5 ]
-        Material "diffuse" "rgb reflectance" [ )" + left + R"( ]
-        Shape "bilinearmesh" "point3 P" [ -0.5 0 0.5   -0.5 0 -0.5   -0.5 1 0.5   -0.5 1 -0.5 ]
-        Material "diffuse" "rgb reflectance" [ )" + right + R"( ]
-        Shape "bilinearmesh" "point3 P" [ 0.5 0 -0.5   0.5 0 0.5   0.5 1 -0.5   0.5 1 0.5 ]
-        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ]
-        Shape "sphere" "float radius" [ 0.2 ]
-    )";
-}
 
 // Every test runs for both variants: the parameter is the integrator's name. Both are held
 // to the same detectable bias. A multiplexed sample evaluates one strategy of one depth:
@@ -111,17 +60,7 @@ TEST_P(Metropolis, ClosedFurnaceIsExact) {
 // R = 1, rho = 0.5, maxdepth 5. Every path ends on a delta light, reachable only through
 // connections (no camera subpath hits it): the chain's target is all connection strategies.
 TEST_P(Metropolis, PointLightInADiffuseSphereIsExact) {
-    const std::string scene = std::string(R"(
-        LookAt 0 0 -0.2  0 0 1  0 1 0
-        Camera "perspective" "float fov" [ 60 ]
-        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
-        PixelFilter "box"
-        )") + mltIntegrator() + R"(
-        WorldBegin
-        LightSource "point" "rgb I" [ 3.14159265358979 3.14159265358979 3.14159265358979 ]
-        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
-        Shape "sphere" "float radius" [ 1 ]
-    )";
+    const std::string scene = pointLightInASphere();
     const double exact = 0.5 + 0.25 + 0.125 + 0.0625 + 0.03125;
     RunningStats means;
     for (int k = 0; k < 16; ++k) {
@@ -260,25 +199,7 @@ TEST(MetropolisOptions, PbrtMltIntegratorReadsPbrtParametersAndDefaults) {
 // (L S S D E) reach the lens only through BDPT's light-subpath strategies, so the chain's
 // target comes from the splats of t = 1 connections. Block and image means against BDPT.
 TEST_P(Metropolis, AgreesWithBDPTOnAGlassCaustic) {
-    const std::string scene = std::string(R"(
-        LookAt 0 2.2 2.6  0 0.3 0  0 1 0
-        Camera "perspective" "float fov" [ 30 ]
-        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
-        PixelFilter "box"
-        )") + mltIntegrator(150000) + R"(
-        WorldBegin
-        AttributeBegin
-          AreaLightSource "diffuse" "rgb L" [ 27 27 27 ]
-          Shape "bilinearmesh" "point3 P" [ -0.15 2.5 -0.15   0.15 2.5 -0.15   -0.15 2.5 0.15   0.15 2.5 0.15 ]
-        AttributeEnd
-        Material "diffuse" "rgb reflectance" [ 0.8 0.8 0.8 ]
-        Shape "bilinearmesh" "point3 P" [ -3 0 3   3 0 3   -3 0 -3   3 0 -3 ]
-        AttributeBegin
-          Material "dielectric" "float eta" [ 1.5 ]
-          Translate 0 0.9 0
-          Shape "sphere" "float radius" [ 0.5 ]
-        AttributeEnd
-    )";
+    const std::string scene = glassCaustic();
     expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", GetParam()}, 128, 16, {{GetParam(), mutations(64)}},
                                   0.02});
 }
@@ -288,23 +209,7 @@ TEST_P(Metropolis, AgreesWithBDPTOnAGlassCaustic) {
 // camera subpaths that hit it (s = 0), the point light only by connections: both kinds of
 // strategy carry the chain. Block and image means against BDPT.
 TEST_P(Metropolis, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
-    const std::string scene = std::string(R"(
-        LookAt 0 1 3  0 0.7 0  0 1 0
-        Camera "perspective" "float fov" [ 35 ]
-        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
-        PixelFilter "box"
-        )") + mltIntegrator(200000) + R"(
-        WorldBegin
-        LightSource "point" "rgb I" [ 2 2 2 ] "point3 from" [ 0.6 1.5 1 ]
-        AttributeBegin
-          AreaLightSource "diffuse" "rgb L" [ 6 6 6 ] "bool twosided" true
-          Shape "bilinearmesh" "point3 P" [ -0.4 0.6 3.5   0.4 0.6 3.5   -0.4 1.4 3.5   0.4 1.4 3.5 ]
-        AttributeEnd
-        Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]
-        Shape "bilinearmesh" "point3 P" [ -2 0 4   2 0 4   -2 0 -1   2 0 -1 ]
-        Material "conductor" "rgb reflectance" [ 0.9 0.9 0.9 ] "float roughness" [ 0 ]
-        Shape "bilinearmesh" "point3 P" [ -1 0 -1   1 0 -1   -1 2 -1   1 2 -1 ]
-    )";
+    const std::string scene = lightSeenInAMirror();
     expectAgreement(AgreementCase{"light seen in a mirror", scene, {"bdpt", GetParam()}, 32, 16,
                                   {{GetParam(), mutations(32, 4)}}, 0.02});
 }

@@ -9,18 +9,14 @@
 
 namespace ps {
 
+uint64_t bootstrapSeed(uint64_t seed, int64_t i) { return mixWithKey(mix64(seed ^ 0x6a09e667f3bcc908ULL), uint64_t(i)); }
+
 namespace {
 
 // The share of the defaults in what the pilot learns: large enough that a strategy or a
 // group the pilot missed is still proposed and sampled now and then, small enough to leave
 // most of both to those that carry the image.
 constexpr double kDefaultShare = 0.25;
-
-// The key of bootstrap sample i's random stream. The seed is mixed before the index enters:
-// keyed on seed ^ constant directly, nearby seeds would give largely the same set of keys
-// over a range of indices (shifted), and renders with different seeds would share most of
-// their bootstrap samples.
-uint64_t bootstrapSeed(uint64_t seed, int64_t i) { return mixWithKey(mix64(seed ^ 0x6a09e667f3bcc908ULL), uint64_t(i)); }
 
 // What a run of independent samples gives: each sample's total weight and, when learning,
 // each strategy's summed weight and each group's sum and sum of squares of its samples'

@@ -66,6 +66,12 @@ struct BootstrapContext {
 
 Bootstrap runBootstrap(const BootstrapContext& ctx);
 
+// The key of bootstrap sample i's random stream. The seed is mixed before the index enters:
+// keyed on seed ^ constant directly, nearby seeds would give largely the same set of keys
+// over a range of indices (shifted), and renders with different seeds would share most of
+// their bootstrap samples.
+uint64_t bootstrapSeed(uint64_t seed, int64_t i);
+
 // A chain's initial state, drawn with the chain's rng in proportion to the bootstrap's
 // weights and replayed: the sampler holding it (its proposal accepted) and the state.
 // False if the replay does not reproduce the bootstrap's weights and target value.

@@ -1,0 +1,150 @@
+#include "transport/mlt/veach/bidirectional_mutation.h"
+
+#include <cmath>
+#include <cstdlib>
+
+namespace ps {
+
+namespace {
+
+// Unnormalised weights: deleting one vertex is most likely, then each more vertex half as
+// likely (thesis §11.4.2); deleting none (a pure insertion) and deleting all (a path made
+// afresh, the move that keeps the chain ergodic) get a fixed share whatever the length.
+double deletionWeight(int d, int n) {
+    if (d == 0 || d == n) return 0.25;
+    return std::ldexp(1.0, -d);
+}
+
+}  // namespace
+
+double BidirectionalMutation::deletionPmf(int d, int n) {
+    if (d < 0 || d > n || n < 2) return 0;
+    double sum = 0;
+    for (int k = 0; k <= n; ++k) sum += deletionWeight(k, n);
+    return deletionWeight(d, n) / sum;
+}
+
+int BidirectionalMutation::positions(int d, int n) { return d >= 1 ? n - d + 1 : n - 1; }
+
+bool BidirectionalMutation::splitAllowed(int c, int a, int lo, int n) const {
+    const int e = a - c, suffix = n - lo - a;
+    if (c < 0 || e < 0 || suffix < 0) return false;
+    if (c >= 1 && !space_.canContinue(lo, TransportMode::Importance)) return false;
+    if (e >= 1 && !space_.canContinue(suffix, TransportMode::Radiance)) return false;
+    if (suffix == 0 && e == 0) return false;  // the lens is never reached by a light walk
+    if (lo == 0 && a == 0) return false;
+    return true;
+}
+
+double BidirectionalMutation::insertionPmf(int a, int d, int lo, int n) const {
+    auto weight = [&](int k) {
+        const int n2 = n - d + k;
+        if (k < 0 || n2 < 2 || n2 > space_.maxVertices()) return 0.0;
+        if (k == 0 && (d == 0 || lo == 0 || lo + d == n)) return 0.0;  // nothing to join, or an endpoint lost
+        bool any = false;
+        for (int c = 0; c <= k && !any; ++c) any = splitAllowed(c, k, lo, n2);
+        return any ? std::ldexp(1.0, -std::abs(k - d)) : 0.0;
+    };
+    const double w = weight(a);
+    if (!(w > 0)) return 0;
+    double sum = 0;
+    for (int k = 0; k <= space_.maxVertices() - n + d; ++k) sum += weight(k);
+    return w / sum;
+}
+
+double BidirectionalMutation::insertedDensity(const MltPath& z, int lo, int a) const {
+    const int n = int(z.size());
+    // Each vertex's density from either side once; a split's density is then a product of
+    // a prefix of the light side's and a suffix of the camera side's.
+    double light[kMaxVertices + 1], camera[kMaxVertices + 1];
+    if (a > kMaxVertices) return 0;
+    camera[a] = 1;
+    for (int j = a - 1; j >= 0; --j) camera[j] = camera[j + 1] * space_.cameraDensity(z, lo + j);
+    light[0] = 1;
+    int splits = 0;
+    double sum = 0;
+    for (int c = 0; c <= a; ++c) {
+        if (c > 0) light[c] = light[c - 1] * space_.lightDensity(z, lo + c - 1);
+        if (!splitAllowed(c, a, lo, n)) continue;
+        ++splits;
+        const int jl = lo + c - 1, jr = lo + c;
+        if (jl >= 0 && !(space_.connectible(z, jl) && space_.connectible(z, jr))) continue;
+        sum += light[c] * camera[c];
+    }
+    return splits > 0 ? sum / splits : 0.0;
+}
+
+double BidirectionalMutation::transition(const MltPath& x, const MltPath& y, int lo, int d, int a) const {
+    const int n = int(x.size());
+    const double choose = deletionPmf(d, n) / positions(d, n) * insertionPmf(a, d, lo, n);
+    return choose > 0 ? choose * insertedDensity(y, lo, a) : 0.0;
+}
+
+bool BidirectionalMutation::insert(const MltPath& x, int lo, int d, int a, int c, Rng& rng, ScratchBuffer& arena,
+                                   PathStats& stats, MltPath& y) const {
+    const int n = int(x.size()), n2 = n - d + a;
+    arena.reset();
+    std::vector<MltVertex> light(x.begin(), x.begin() + lo), camera(x.rbegin(), x.rbegin() + (n - lo - d));
+    for (MltVertex& v : light) PathSpace::rebind(v, arena);
+    for (MltVertex& v : camera) PathSpace::rebind(v, arena);
+    if (!space_.walk(light, c, TransportMode::Importance, rng, arena, stats) ||
+        !space_.walk(camera, a - c, TransportMode::Radiance, rng, arena, stats))
+        return false;
+    if (int(light.size()) != lo + c || int(camera.size()) != n2 - lo - c) return false;
+    y.assign(light.begin(), light.end());
+    y.insert(y.end(), camera.rbegin(), camera.rend());
+    if (light.empty()) return y[0].light != nullptr;  // the camera walk ended on an emitter
+    const int jl = lo + c - 1, jr = lo + c;
+    return space_.connectible(y, jl) && space_.connectible(y, jr) && space_.visible(y[size_t(jl)], y[size_t(jr)], stats);
+}
+
+bool BidirectionalMutation::propose(const MltPath& x, Rng& rng, ScratchBuffer& arena, PathStats& stats, MltPath& y,
+                                    double* Txy, double* Tyx) const {
+    const int n = int(x.size());
+    int d = 0;
+    for (double u = rng.uniformDouble(); d < n; ++d) {
+        u -= deletionPmf(d, n);
+        if (u < 0) break;
+    }
+    const int lo = d >= 1 ? int(rng.uniformInt(uint32_t(n - d + 1))) : 1 + int(rng.uniformInt(uint32_t(n - 1)));
+    const int aMax = space_.maxVertices() - n + d;
+    int a = -1;
+    double u = rng.uniformDouble();
+    for (int k = 0; k <= aMax; ++k) {
+        const double p = insertionPmf(k, d, lo, n);
+        if (p > 0) {
+            a = k;
+            if ((u -= p) < 0) break;
+        }
+    }
+    if (a < 0) return false;
+    const int n2 = n - d + a;
+    int allowed = 0;
+    for (int c = 0; c <= a; ++c) allowed += splitAllowed(c, a, lo, n2);
+    int pick = int(rng.uniformInt(uint32_t(allowed))), c = 0;
+    for (;; ++c)
+        if (splitAllowed(c, a, lo, n2) && pick-- == 0) break;
+    if (!insert(x, lo, d, a, c, rng, arena, stats, y)) return false;
+    *Txy = transition(x, y, lo, d, a);
+    *Tyx = transition(y, x, lo, a, d);
+    return true;
+}
+
+bool BidirectionalMutation::generate(Rng& rng, ScratchBuffer& arena, PathStats& stats, MltPath& y,
+                                     double* density) const {
+    const int n = 2 + int(rng.uniformInt(uint32_t(space_.maxVertices() - 1)));
+    int allowed = 0;
+    for (int c = 0; c <= n; ++c) allowed += splitAllowed(c, n, 0, n);
+    int pick = int(rng.uniformInt(uint32_t(allowed))), c = 0;
+    for (;; ++c)
+        if (splitAllowed(c, n, 0, n) && pick-- == 0) break;
+    if (!insert(MltPath(), 0, 0, n, c, rng, arena, stats, y)) return false;
+    *density = generationDensity(y);
+    return *density > 0;
+}
+
+double BidirectionalMutation::generationDensity(const MltPath& y) const {
+    return insertedDensity(y, 0, int(y.size())) / double(space_.maxVertices() - 1);
+}
+
+}  // namespace ps

@@ -1,0 +1,252 @@
+#include "transport/mlt/veach/path_space.h"
+
+#include <cmath>
+
+namespace ps {
+
+namespace {
+
+Vec3 unitTo(const MltVertex& from, const MltVertex& to) { return normalize(to.p - from.p); }
+
+// The normal a ray leaving v is offset along (the lens and points have none).
+Vec3 offsetNormal(const MltVertex& v) { return v.kind == MltVertex::Kind::Lens ? Vec3() : v.ng; }
+
+// The area density at `to` of a direction density pdfDir at `from`.
+double toArea(double pdfDir, const MltVertex& from, const MltVertex& to) {
+    Vec3 d = to.p - from.p;
+    double d2 = double(lengthSquared(d));
+    if (!(d2 > 0)) return 0;
+    return pdfDir * cosAt(to, d * float(1 / std::sqrt(d2))) / d2;
+}
+
+}  // namespace
+
+PathSpace::PathSpace(const Scene& scene, int maxDepth) : scene_(scene), maxDepth_(maxDepth) {
+    const Camera::Params& c = scene.camera().params();
+    pinhole_ = !(c.lensRadius > 0);
+    margin_ = scene.filter().radius();
+    filmSize_ = Vec2(float(c.xRes) + 2 * margin_.x, float(c.yRes) + 2 * margin_.y);
+}
+
+void PathSpace::bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, Spectrum* f, float* pdf) const {
+    const Vec3 woL = v.frame.toLocal(wo), wiL = v.frame.toLocal(wi);
+    if (!v.delta) {
+        if (f) *f = v.bxdf->f(woL, wiL, mode);
+        if (pdf) *pdf = v.bxdf->pdf(woL, wiL, mode);
+        return;
+    }
+    // A specular vertex: the lobe (reflection or transmission) whose direction is wi. Each
+    // lobe is found by sampling with the lobe choice at either end of [0, 1).
+    if (f) *f = Spectrum();
+    if (pdf) *pdf = 0;
+    for (float uc : {0.0f, 0x1.fffffep-1f}) {
+        auto s = v.bxdf->sample(woL, uc, Vec2(0.5f, 0.5f), mode);
+        if (s && dot(s->wi, wiL) > 1 - 1e-4f) {
+            if (f) *f = s->f;
+            if (pdf) *pdf = s->pdf;
+            return;
+        }
+    }
+}
+
+Spectrum PathSpace::contribution(const MltPath& x, Vec2* pRaster) const {
+    const int k = int(x.size()) - 1;
+    if (k < 1 || !x[0].light || x[k].kind != MltVertex::Kind::Lens) return {};
+    // A point light seen directly would be a point of finite energy on the film, which no
+    // other integrator renders (a camera ray never hits it; BDPT has no such strategy).
+    if (k == 1 && x[0].delta) return {};
+    auto geometry = [](const MltVertex& a, const MltVertex& b) {
+        Vec3 d = b.p - a.p;
+        float d2 = lengthSquared(d);
+        if (!(d2 > 0)) return 0.0f;
+        Vec3 w = d / std::sqrt(d2);
+        return cosAt(a, w) * cosAt(b, w) / d2;
+    };
+    Spectrum f = x[0].light->L(x[0].p, x[0].ng, x[0].uv, unitTo(x[0], x[1])) * geometry(x[0], x[1]);
+    for (int i = 1; i < k && !f.isBlack(); ++i) {
+        const MltVertex& v = x[size_t(i)];
+        if (v.kind != MltVertex::Kind::Surface || !v.bxdf) return {};
+        const Vec3 wi = unitTo(v, x[size_t(i - 1)]), wo = unitTo(v, x[size_t(i + 1)]);
+        Spectrum fs;
+        bsdf(v, wo, wi, TransportMode::Radiance, &fs, nullptr);
+        // The path tracer's shading cosine |wi.ns| in place of the geometric one in G.
+        const float cosG = std::fabs(dot(wi, v.ng));
+        if (!(cosG > 0)) return {};
+        f *= fs * (std::fabs(dot(wi, v.ns)) / cosG) * geometry(v, x[size_t(i + 1)]);
+    }
+    if (f.isBlack()) return {};
+    const float We = scene_.camera().We(Ray{x[size_t(k)].p, unitTo(x[size_t(k)], x[size_t(k - 1)])}, pRaster);
+    f *= We;
+    return f.isFinite() ? f : Spectrum();
+}
+
+double PathSpace::lightDensity(const MltPath& x, int i) const {
+    const int k = int(x.size()) - 1;
+    if (i < 0 || i > k || x[size_t(i)].kind == MltVertex::Kind::Lens) return 0;
+    const MltVertex& v = x[size_t(i)];
+    if (i == 0) {
+        if (!v.light || k < 1) return 0;
+        float pdfPos, pdfDir;
+        v.light->pdfLe(v.p, v.ng, unitTo(v, x[1]), &pdfPos, &pdfDir);
+        // A point light's position is a delta of unit weight (the light reports no density
+        // there, as no other strategy can reach it).
+        if (pdfPos == 0 && v.delta) pdfPos = 1;
+        return double(scene_.lightPmf(v.light)) * pdfPos;
+    }
+    const MltVertex& u = x[size_t(i - 1)];
+    const Vec3 w = unitTo(u, v);
+    float pdfDir = 0;
+    if (i == 1) {
+        float pdfPos;
+        u.light->pdfLe(u.p, u.ng, w, &pdfPos, &pdfDir);
+    } else {
+        if (u.kind != MltVertex::Kind::Surface || !u.bxdf) return 0;
+        bsdf(u, unitTo(u, x[size_t(i - 2)]), w, TransportMode::Importance, nullptr, &pdfDir);
+    }
+    return toArea(pdfDir, u, v);
+}
+
+double PathSpace::cameraDensity(const MltPath& x, int i) const {
+    const int k = int(x.size()) - 1;
+    if (i < 0 || i > k || k < 1) return 0;
+    const MltVertex& v = x[size_t(i)];
+    // Walks from the lens reach neither a point light nor the lens itself.
+    if ((v.kind == MltVertex::Kind::Light && v.delta) || (i < k && v.kind == MltVertex::Kind::Lens)) return 0;
+    if (i == k) {
+        float pdfPos, pdfDir;
+        scene_.camera().pdfWe(Ray{v.p, unitTo(v, x[size_t(k - 1)])}, &pdfPos, &pdfDir);
+        return pdfPos;
+    }
+    const MltVertex& u = x[size_t(i + 1)];
+    const Vec3 w = unitTo(u, v);
+    float pdfDir = 0;
+    if (i + 1 == k) {
+        float pdfPos;
+        scene_.camera().pdfWe(Ray{u.p, w}, &pdfPos, &pdfDir);
+    } else {
+        if (u.kind != MltVertex::Kind::Surface || !u.bxdf) return 0;
+        bsdf(u, unitTo(u, x[size_t(i + 2)]), w, TransportMode::Radiance, nullptr, &pdfDir);
+    }
+    return toArea(pdfDir, u, v);
+}
+
+bool PathSpace::connectible(const MltPath& x, int i) const {
+    const int k = int(x.size()) - 1;
+    if (i == 0) return x[0].light != nullptr;  // distant lights are refused by the integrator
+    if (i == k) return x[size_t(k)].kind == MltVertex::Kind::Lens;
+    const MltVertex& v = x[size_t(i)];
+    return v.kind == MltVertex::Kind::Surface && v.bxdf && !v.delta;
+}
+
+bool PathSpace::canContinue(int size, TransportMode mode) const {
+    if (size == 0) return true;
+    if (size == 1) return mode == TransportMode::Radiance && pinhole_;
+    return true;
+}
+
+bool PathSpace::visible(const MltVertex& a, const MltVertex& b, PathStats& stats) const {
+    ++stats.shadowRays;
+    return !scene_.occluded(spawnRayTo(a.p, offsetNormal(a), b.p, 0));
+}
+
+void PathSpace::rebind(MltVertex& v, ScratchBuffer& arena) {
+    if (v.kind != MltVertex::Kind::Surface) return;
+    SurfaceInteraction si = v.si;
+    v.bxdf = surfaceBxDF(si, arena);
+}
+
+bool PathSpace::trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex& out) const {
+    for (int passThroughs = 0; passThroughs <= 1024; ++passThroughs) {
+        SurfaceInteraction si;
+        ++stats.rays;
+        if (!scene_.intersect(ray, si)) return false;
+        out = MltVertex();
+        out.si = si;
+        const BxDF* bxdf = surfaceBxDF(si, arena);
+        if (!bxdf) {
+            // `interface`: not a vertex; the ray continues.
+            ray = spawnRay(si.p, si.ng, ray.d, ray.time);
+            continue;
+        }
+        out.kind = MltVertex::Kind::Surface;
+        out.p = si.p;
+        out.ng = si.ng;
+        out.ns = si.ns;
+        out.uv = si.uv;
+        out.frame = si.shadingFrame();
+        out.bxdf = bxdf;
+        out.delta = (bxdf->flags() & (kDiffuse | kGlossy)) == 0;
+        out.light = si.areaLight;
+        return true;
+    }
+    return false;
+}
+
+bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode, Rng& rng, ScratchBuffer& arena,
+                     PathStats& stats) const {
+    if (count <= 0) return true;
+    if (!canContinue(int(side.size()), mode)) return false;
+    Ray ray;
+    if (mode == TransportMode::Importance && side.empty()) {
+        // A light chosen by power, a point and a direction on it.
+        ++stats.lightPaths;
+        const float uLight = rng.uniform();
+        const Vec2 uPos(rng.uniform(), rng.uniform()), uDir(rng.uniform(), rng.uniform());
+        float pmf;
+        const Light* light = scene_.sampleLight(uLight, &pmf);
+        if (!light || !(pmf > 0)) return false;
+        auto les = light->sampleLe(uPos, uDir);
+        if (!les || !(les->pdfPos > 0) || !(les->pdfDir > 0)) return false;
+        MltVertex v;
+        v.kind = MltVertex::Kind::Light;
+        v.light = light;
+        v.delta = light->type() == LightType::DeltaPosition;
+        v.p = les->ray.o;
+        v.ng = v.ns = les->n;
+        v.uv = les->uv;
+        side.push_back(v);
+        ray = spawnRay(v.p, v.ng, les->ray.d, 0);
+        --count;
+    } else if (mode == TransportMode::Radiance && side.size() <= 1) {
+        // A film point uniform over the film widened by the filter radius (where the
+        // camera's importance and its direction density live) and a lens point; a kept
+        // pinhole is the same point.
+        ++stats.cameraPaths;
+        CameraSample cs;
+        cs.pFilm = {-margin_.x + rng.uniform() * filmSize_.x, -margin_.y + rng.uniform() * filmSize_.y};
+        cs.pLens = Vec2(rng.uniform(), rng.uniform());
+        if (pinhole_) cs.pLens = Vec2(0.5f, 0.5f);
+        ray = scene_.camera().generateRay(cs);
+        if (side.empty()) {
+            MltVertex v;
+            v.kind = MltVertex::Kind::Lens;
+            v.p = ray.o;
+            v.ng = scene_.camera().forward();
+            side.push_back(v);
+            --count;
+        }
+    } else if (!scatter(side, mode, rng, ray)) {
+        return false;
+    }
+    while (count > 0) {
+        MltVertex next;
+        if (!trace(ray, arena, stats, next)) return false;
+        side.push_back(next);
+        if (--count > 0 && !scatter(side, mode, rng, ray)) return false;
+    }
+    return true;
+}
+
+bool PathSpace::scatter(const std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const {
+    const MltVertex& v = side.back();
+    if (side.size() < 2 || v.kind != MltVertex::Kind::Surface || !v.bxdf) return false;
+    const Vec3 woL = v.frame.toLocal(unitTo(v, side[side.size() - 2]));
+    const float uc = rng.uniform();
+    const Vec2 u(rng.uniform(), rng.uniform());
+    auto bs = v.bxdf->sample(woL, uc, u, mode);
+    if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) return false;
+    ray = spawnRay(v.p, v.ng, v.frame.toWorld(bs->wi), 0);
+    return true;
+}
+
+}  // namespace ps

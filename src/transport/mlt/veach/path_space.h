@@ -1,0 +1,105 @@
+// Paths as points of path space (thesis ch. 8), the state of Veach's Metropolis light
+// transport (thesis ch. 11): the vertices x0 (on a light) ... xk (on the lens) themselves,
+// not the random numbers that made them. A mutation keeps some vertices and generates
+// others by the same local sampling BDPT uses, and its acceptance needs, for any path, the
+// measurement contribution f(x) and the area density with which each vertex could have
+// been generated from either side; this class gives them.
+//
+// Conventions, shared by f and the densities so that every delta cancels:
+//  - f uses the BSDFs for light flowing from x0 to xk (radiance transport) with the
+//    shading-normal correction of the path tracer (thesis §5.3), so its f / p equals the
+//    path tracer's, BDPT's and light tracing's estimates;
+//  - a specular vertex stands for its lobe's weight per unit solid angle, and its
+//    "density" for the discrete probability of choosing that lobe (both times one delta);
+//  - the pinhole's position and a point light's are deltas of unit weight;
+//  - the lens has the viewing direction as its normal, so the geometry term of the last
+//    edge carries the lens cosine that the importance We expects.
+#pragma once
+#include <vector>
+#include "geometry/interaction.h"
+#include "lights/light.h"
+#include "materials/bxdf.h"
+#include "math/frame.h"
+#include "mc/rng.h"
+#include "render/scene.h"
+#include "transport/integrator.h"
+#include "util/scratch.h"
+
+namespace ps {
+
+struct MltVertex {
+    enum class Kind : uint8_t { Light, Surface, Lens };
+    Kind kind = Kind::Surface;
+    bool delta = false;  // surfaces: specular lobes only; lights: a delta position
+    Vec3 p;
+    Vec3 ng;             // geometric normal; zero for a point (point light, pinhole); lens: the view axis
+    Vec3 ns;             // shading normal (surfaces)
+    Vec2 uv;
+    Frame frame;         // shading frame (surfaces)
+    const Light* light = nullptr;  // the emitter at x0 (a light vertex or an emitting surface)
+    const BxDF* bxdf = nullptr;    // surfaces, built in the owning path's arena
+    SurfaceInteraction si;         // surfaces: the hit as traced, to rebuild bxdf in another arena
+};
+
+using MltPath = std::vector<MltVertex>;
+
+class PathSpace {
+public:
+    PathSpace(const Scene& scene, int maxDepth);
+    const Scene& scene() const { return scene_; }
+    int maxDepth() const { return maxDepth_; }
+    // Vertices of the longest path: a light, maxDepth scattering vertices, the lens.
+    int maxVertices() const { return maxDepth_ + 2; }
+    bool pinhole() const { return pinhole_; }
+
+    // f(x), the measurement contribution of the whole path (visibility of its edges is
+    // established when they are made), with the film position it lands at; zero where any
+    // factor is.
+    Spectrum contribution(const MltPath& x, Vec2* pRaster) const;
+    // Area density (solid angle for nothing here: no vertex is at infinity) of vertex i when
+    // generated from the light side, given vertices i - 1 and i - 2, and from the camera side,
+    // given i + 1 and i + 2. Vertex 0 from the light side: the light's choice and position;
+    // the last from the camera side: the lens position.
+    double lightDensity(const MltPath& x, int i) const;
+    double cameraDensity(const MltPath& x, int i) const;
+    // Whether a connection (a deterministic edge) can end at vertex i of x: the light
+    // endpoint, the lens, or a surface with a non-specular lobe.
+    bool connectible(const MltPath& x, int i) const;
+
+    // Walks that append `count` vertices to `side`, a subpath in walk order: from the light
+    // (Importance: side[0] is x0) or from the lens (Radiance: side[0] is xk). An empty side
+    // starts on a light chosen by power or at a new film point; a light side cannot continue
+    // from its light vertex alone, nor a camera side from a thin lens alone (no density
+    // of a direction given a fixed point there); a pinhole's is regenerated. False when a
+    // ray escapes or a sample fails.
+    bool walk(std::vector<MltVertex>& side, int count, TransportMode mode, Rng& rng, ScratchBuffer& arena,
+              PathStats& stats) const;
+    // Whether walk can extend a side that holds `size` vertices, the last at index `last` of
+    // the path (the light endpoint is 0, the lens n - 1).
+    bool canContinue(int size, TransportMode mode) const;
+    // Mutual visibility of vertices a and b.
+    bool visible(const MltVertex& a, const MltVertex& b, PathStats& stats) const;
+    // Rebuilds a surface vertex's BxDF in `arena` (a path's vertices must all live in its own).
+    static void rebind(MltVertex& v, ScratchBuffer& arena);
+
+private:
+    // The BSDF at surface vertex v for light arriving from direction wi and leaving along wo
+    // (unit, world), in `mode`, with the density of sampling wi from wo; specular lobes
+    // matched to the direction pair.
+    void bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, Spectrum* f, float* pdf) const;
+    bool trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex& out) const;
+    // The next ray of a walk: a direction sampled by the BSDF at side's last vertex.
+    bool scatter(const std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const;
+
+    const Scene& scene_;
+    int maxDepth_;
+    bool pinhole_;
+    Vec2 margin_, filmSize_;
+};
+
+// |cos| at v of the direction w (1 for a point without a normal).
+inline float cosAt(const MltVertex& v, Vec3 w) {
+    return (v.ng.x != 0 || v.ng.y != 0 || v.ng.z != 0) ? std::fabs(dot(v.ng, w)) : 1.0f;
+}
+
+}  // namespace ps

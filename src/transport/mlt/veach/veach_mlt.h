@@ -1,0 +1,57 @@
+// Veach's Metropolis light transport (thesis ch. 11), `--integrator mlt`: a Markov chain
+// over path space itself, whose state is a path of vertices (path_space.h) and whose target
+// is the luminance of its measurement contribution f(x); the RGB contribution is splatted.
+//
+// With the chain machinery of the primary-sample-space variants:
+//  - bootstrap: N BDPT samples (a light and a camera subpath, every path their joins make,
+//    each weighted by f over the sum of its strategies' densities: the balance heuristic)
+//    estimate b = the integral of the target, and each chain starts from one of their paths
+//    drawn in proportion to its weight (no start-up bias); the drawn sample is generated
+//    again from its own random stream and must give the same weights, bit for bit;
+//  - expected values: the state is splatted with weight 1 - a and the proposal with a, each
+//    divided by its target value; the image is scaled by b / mutations;
+//  - chains own their random streams and advance in passes, splats are summed in fixed
+//    point, even and odd chains fill the film's two halves: the image does not depend on
+//    the thread count, and a stopped render has mutations from every chain.
+#pragma once
+#include "transport/mlt/metropolis.h"
+#include "transport/mlt/veach/bidirectional_mutation.h"
+
+namespace ps {
+
+// The mutations a chain chooses from, with their probabilities (normalised over those
+// that apply to the state).
+struct VeachMutations {
+    double bidirectional = 1;
+    // For tests: in place of the bidirectional mutation, an independent path generated from
+    // nothing (T(x -> y) = its generation density): the image must be BDPT's whatever the
+    // mutations' own densities, a check of the chain's bookkeeping alone.
+    bool regenerate = false;
+};
+
+class VeachMLTIntegrator final : public Integrator {
+public:
+    VeachMLTIntegrator(const Scene& scene, int maxDepth, const MetropolisParams& params,
+                       const VeachMutations& mutations = {});
+    // Not a per-ray estimator: render() runs renderVeachMLT instead.
+    Spectrum Li(const Ray& ray, SampleContext& ctx) const override;
+    bool splats() const override { return true; }
+    const char* name() const { return "mlt"; }
+
+    const PathSpace& space() const { return space_; }
+    const BidirectionalMutation& bidirectional() const { return bidirectional_; }
+    const MetropolisParams& params() const { return params_; }
+    const VeachMutations& mutations() const { return mutations_; }
+
+private:
+    PathSpace space_;
+    BidirectionalMutation bidirectional_;
+    MetropolisParams params_;
+    VeachMutations mutations_;
+};
+
+// The Markov-chain driver: options.spp mutations per film pixel (crop region); threads,
+// seed, time limit, cancellation and progress as for render().
+RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integrator, const RenderOptions& options);
+
+}  // namespace ps

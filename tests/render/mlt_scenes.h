@@ -1,0 +1,123 @@
+// Small scenes for the Metropolis tests (metropolis_test.cpp: pssmlt and mmlt;
+// veach_mlt_test.cpp: mlt). Each carries an Integrator line that the tests override by name.
+#pragma once
+#include <cmath>
+#include <string>
+
+namespace ps::test {
+
+// The chain parameters of the tests: a bootstrap and chain count sized for small films. The
+// image mean of an MLT render is b times a fixed total of splatted luminance, so its spread
+// across seeds is mostly the bootstrap's estimate of b.
+inline std::string mltIntegrator(int bootstrapSamples = 50000) {
+    return R"(Integrator "pssmlt" "integer maxdepth" [ 5 ] "integer chains" [ 64 ] "integer bootstrapsamples" [ )" +
+           std::to_string(bootstrapSamples) + " ]";
+}
+
+// A sphere lit from inside by its own emission, albedo 0.6: every pixel sees Le sum_k 0.6^k.
+inline std::string furnace() {
+    return std::string(R"(
+        LookAt 0 0 0  0 0 1  0 1 0
+        Camera "perspective" "float fov" [ 60 ]
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        PixelFilter "box"
+        )") + mltIntegrator() + R"(
+        WorldBegin
+        AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+        Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]
+        ReverseOrientation
+        Shape "sphere" "float radius" [ 1 ]
+    )";
+}
+inline const double kFurnaceExact = (1 - std::pow(0.6, 6)) / 0.4;
+
+// A 1 x 1 x 1 box open towards the camera with coloured walls; `light` and `walls` set the
+// emission and the side walls' reflectances.
+inline std::string box(const std::string& light, const std::string& left, const std::string& right) {
+    return std::string(R"(
+        LookAt 0 0.5 2.2  0 0.5 0  0 1 0
+        Camera "perspective" "float fov" [ 30 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        )") + mltIntegrator() + R"(
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ )" + light + R"( ]
+          Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]
+        Shape "bilinearmesh" "point3 P" [ -0.5 0 0.5   0.5 0 0.5   -0.5 0 -0.5   0.5 0 -0.5 ]
+        Shape "bilinearmesh" "point3 P" [ -0.5 1 -0.5   0.5 1 -0.5   -0.5 1 0.5   0.5 1 0.5 ]
+        Shape "bilinearmesh" "point3 P" [ -0.5 0 -0.5   0.5 0 -0.5   -0.5 1 -0.5   0.5 1 -0.5 ]
+        Material "diffuse" "rgb reflectance" [ )" + left + R"( ]
+        Shape "bilinearmesh" "point3 P" [ -0.5 0 0.5   -0.5 0 -0.5   -0.5 1 0.5   -0.5 1 -0.5 ]
+        Material "diffuse" "rgb reflectance" [ )" + right + R"( ]
+        Shape "bilinearmesh" "point3 P" [ 0.5 0 -0.5   0.5 0 0.5   0.5 1 -0.5   0.5 1 0.5 ]
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ]
+        Shape "sphere" "float radius" [ 0.2 ]
+    )";
+}
+
+// A caustic: a small area light above a glass sphere focuses on a diffuse floor (L S S D E).
+inline std::string glassCaustic() {
+    return std::string(R"(
+        LookAt 0 2.2 2.6  0 0.3 0  0 1 0
+        Camera "perspective" "float fov" [ 30 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        )") + mltIntegrator(150000) + R"(
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 27 27 27 ]
+          Shape "bilinearmesh" "point3 P" [ -0.15 2.5 -0.15   0.15 2.5 -0.15   -0.15 2.5 0.15   0.15 2.5 0.15 ]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [ 0.8 0.8 0.8 ]
+        Shape "bilinearmesh" "point3 P" [ -3 0 3   3 0 3   -3 0 -3   3 0 -3 ]
+        AttributeBegin
+          Material "dielectric" "float eta" [ 1.5 ]
+          Translate 0 0.9 0
+          Shape "sphere" "float radius" [ 0.5 ]
+        AttributeEnd
+    )";
+}
+
+// An area light seen only in a smooth mirror, and a point light over the floor.
+inline std::string lightSeenInAMirror() {
+    return std::string(R"(
+        LookAt 0 1 3  0 0.7 0  0 1 0
+        Camera "perspective" "float fov" [ 35 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        )") + mltIntegrator(200000) + R"(
+        WorldBegin
+        LightSource "point" "rgb I" [ 2 2 2 ] "point3 from" [ 0.6 1.5 1 ]
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 6 6 6 ] "bool twosided" true
+          Shape "bilinearmesh" "point3 P" [ -0.4 0.6 3.5   0.4 0.6 3.5   -0.4 1.4 3.5   0.4 1.4 3.5 ]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]
+        Shape "bilinearmesh" "point3 P" [ -2 0 4   2 0 4   -2 0 -1   2 0 -1 ]
+        Material "conductor" "rgb reflectance" [ 0.9 0.9 0.9 ] "float roughness" [ 0 ]
+        Shape "bilinearmesh" "point3 P" [ -1 0 -1   1 0 -1   -1 2 -1   1 2 -1 ]
+    )";
+}
+
+// A point light of intensity pi at the centre of a closed diffuse sphere of radius 1 and
+// albedo 0.5 (maxdepth 5): every pixel sees sum_{k=1..5} 0.5^k.
+inline std::string pointLightInASphere() {
+    return std::string(R"(
+        LookAt 0 0 -0.2  0 0 1  0 1 0
+        Camera "perspective" "float fov" [ 60 ]
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        PixelFilter "box"
+        )") + mltIntegrator() + R"(
+        WorldBegin
+        LightSource "point" "rgb I" [ 3.14159265358979 3.14159265358979 3.14159265358979 ]
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+        Shape "sphere" "float radius" [ 1 ]
+    )";
+}
+
+inline const double kPointLightInASphereExact = 0.5 + 0.25 + 0.125 + 0.0625 + 0.03125;
+
+}  // namespace ps::test

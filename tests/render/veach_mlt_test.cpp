@@ -1,0 +1,185 @@
+// Veach's path-space Metropolis light transport (transport/mlt/veach/) against answers it
+// must reach: exact radiance in closed scenes, and BDPT's images (agreement.h: block and
+// image means within 4 sigma, sigma measured across independent renders: an MLT image's
+// pixels are correlated through its chains). And the mutation's parts: its choice
+// probabilities, and a chain whose proposals are whole new paths (the bookkeeping alone).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "agreement.h"
+#include "mc/estimator.h"
+#include "mlt_scenes.h"
+#include "render_helpers.h"
+#include "transport/mlt/veach/veach_mlt.h"
+
+using namespace ps;
+using namespace ps::test;
+
+namespace {
+
+// The scene with another bootstrap sample count: b's error, common to the whole image, is
+// most of an MLT image mean's spread, and mlt's bootstrap samples (one strategy of one
+// path each) are cheaper and noisier than BDPT's.
+std::string withBootstrap(std::string scene, int samples) {
+    const std::string key = "\"integer bootstrapsamples\" [ ";
+    const size_t at = scene.find(key) + key.size();
+    scene.replace(at, scene.find(' ', at) - at, std::to_string(samples));
+    return scene;
+}
+
+// Mean over the image of (r + g + b) / 3 for `renders` seeds.
+RunningStats greyMeans(const std::string& scene, int mutations, uint64_t seed0, int renders) {
+    RunningStats means;
+    for (int k = 0; k < renders; ++k) {
+        RegionStats s = wholeImage(renderString(scene, mutations, seed0 + uint64_t(k), 0, "mlt").image);
+        means.add((s.mean[0] + s.mean[1] + s.mean[2]) / 3);
+    }
+    return means;
+}
+
+void expectExact(const char* what, const RunningStats& means, double exact) {
+    const double z = (means.mean() - exact) / means.standardError();
+    std::printf("[ mlt ] %s: %.5f +- %.5f, exact %.5f (%.2f sigma; 4 sigma = %.2f%%)\n", what, means.mean(),
+                means.standardError(), exact, z, 400 * means.standardError() / exact);
+    EXPECT_LT(std::fabs(z), 4.0);
+    EXPECT_LT(4 * means.standardError(), 0.01 * exact) << "too noisy";
+}
+
+}  // namespace
+
+// The closed furnace: every path's vertices are all on one emitting diffuse sphere, so the
+// mutations move through paths of every length; image mean within 4 sigma of exact.
+TEST(VeachMLT, ClosedFurnaceIsExact) { expectExact("furnace", greyMeans(furnace(), 64, 300, 16), kFurnaceExact); }
+
+// Every path ends on a point light (a delta position), reachable only by a light walk: the
+// mutations must never try to reach it from the camera side.
+TEST(VeachMLT, PointLightInADiffuseSphereIsExact) {
+    expectExact("point light in a sphere", greyMeans(pointLightInASphere(), 64, 400, 16), kPointLightInASphereExact);
+}
+
+TEST(VeachMLT, AgreesWithBDPTOnADiffuseBox) {
+    expectAgreement(AgreementCase{"diffuse box", box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), {"bdpt", "mlt"}, 16, 16,
+                                  {{"mlt", 64}}, 0.02});
+}
+
+// Saturated colours: the target is luminance, the splats RGB; each channel against BDPT.
+TEST(VeachMLT, AgreesWithBDPTOnASaturatedBoxPerChannel) {
+    const std::string scene = box("1 1 12", "0.8 0.05 0.05", "0.05 0.05 0.8");
+    RunningStats bdpt[3], mlt[3];
+    for (int k = 0; k < 28; ++k) {
+        RegionStats a = wholeImage(renderString(scene, 16, 100 + uint64_t(k), 0, "bdpt").image);
+        RegionStats b = wholeImage(renderString(scene, 48, 100 + uint64_t(k), 0, "mlt").image);
+        for (int c = 0; c < 3; ++c) {
+            bdpt[c].add(a.mean[c]);
+            mlt[c].add(b.mean[c]);
+        }
+    }
+    for (int c = 0; c < 3; ++c) {
+        const double se = std::hypot(bdpt[c].standardError(), mlt[c].standardError());
+        const double z = (mlt[c].mean() - bdpt[c].mean()) / se;
+        std::printf("[ mlt ] saturated box, channel %d: bdpt %.5f, mlt %.5f +- %.5f (%.2f sigma; 4 sigma = %.2f%%)\n", c,
+                    bdpt[c].mean(), mlt[c].mean(), se, z, 400 * se / bdpt[c].mean());
+        EXPECT_LT(std::fabs(z), 4.0) << "channel " << c;
+        EXPECT_LT(4 * se, 0.02 * bdpt[c].mean()) << "channel " << c << ": too noisy";
+    }
+}
+
+// Specular vertices: a caustic through a glass sphere (L S S D E), whose specular vertices
+// only walks generate and no join may end at.
+TEST(VeachMLT, AgreesWithBDPTOnAGlassCaustic) {
+    expectAgreement(AgreementCase{"glass caustic", glassCaustic(), {"bdpt", "mlt"}, 128, 16,
+                                  {{"mlt", 256}}, 0.02});
+}
+
+// A light seen only in a mirror (paths that end on an emitter hit by a camera walk) and a
+// point light (paths that start on a delta position).
+TEST(VeachMLT, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
+    expectAgreement(AgreementCase{"light seen in a mirror", lightSeenInAMirror(), {"bdpt", "mlt"},
+                                  32, 16, {{"mlt", 128}}, 0.02});
+}
+
+// The chain's bookkeeping alone (bootstrap, b, expected values, the acceptance ratio with
+// T): with whole new paths as proposals, T(x -> y) is the density the bootstrap uses, and
+// the image must be BDPT's whatever the bidirectional mutation's own densities are.
+TEST(VeachMLT, RegeneratingWholePathsGivesBDPTsImage) {
+    const std::string scene = box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1");
+    RunningStats bdpt, mlt;
+    for (int k = 0; k < 16; ++k) {
+        bdpt.add(luminanceMean(renderString(scene, 16, 500 + uint64_t(k), 0, "bdpt").image));
+        setWarningsQuiet(true);
+        auto s = buildScene(parseSceneString(scene, ".", "<test>"));
+        MetropolisParams mp;
+        mp.bootstrapSamples = 50000;
+        mp.chains = 64;
+        VeachMLTIntegrator integrator(*s, s->settings().maxDepth, mp, VeachMutations{1, true});
+        RenderOptions o;
+        o.spp = 64;
+        o.seed = 500 + uint64_t(k);
+        o.progress = false;
+        RenderResult r = render(*s, integrator, o);
+        ASSERT_EQ(r.metropolis.kinds.size(), 1u);
+        EXPECT_EQ(r.metropolis.kinds[0].name, "regenerate");
+        mlt.add(luminanceMean(r.image));
+    }
+    const double se = std::hypot(bdpt.standardError(), mlt.standardError());
+    const double z = (mlt.mean() - bdpt.mean()) / se;
+    std::printf("[ mlt ] regenerating whole paths: bdpt %.5f, mlt %.5f +- %.5f (%.2f sigma; 4 sigma = %.2f%%)\n",
+                bdpt.mean(), mlt.mean(), se, z, 400 * se / bdpt.mean());
+    EXPECT_LT(std::fabs(z), 4.0);
+    EXPECT_LT(4 * se, 0.02 * bdpt.mean()) << "too noisy";
+}
+
+// The chains, not the threads, own the random streams: the same bits at 1 and 4 threads;
+// no NaN; every mutation counted; acceptance strictly between 0 and 1.
+TEST(VeachMLT, SameBitsWhateverTheThreadCount) {
+    const std::string scene = box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1");
+    RenderResult a = renderString(scene, 4, 9, 1, "mlt"), b = renderString(scene, 4, 9, 4, "mlt");
+    ASSERT_EQ(a.image.width, b.image.width);
+    int differ = 0, nonFinite = 0;
+    for (int y = 0; y < a.image.height; ++y)
+        for (int x = 0; x < a.image.width; ++x) {
+            Spectrum p = a.image.get(x, y), q = b.image.get(x, y);
+            differ += (p.r != q.r || p.g != q.g || p.b != q.b);
+            nonFinite += !p.isFinite();
+        }
+    EXPECT_EQ(differ, 0);
+    EXPECT_EQ(nonFinite, 0);
+    EXPECT_EQ(a.metropolis.mutations, 4LL * 24 * 24);
+    ASSERT_EQ(a.metropolis.kinds.size(), 1u);
+    const MetropolisStats::Kind& k = a.metropolis.kinds[0];
+    EXPECT_EQ(k.proposed, a.metropolis.mutations);
+    const double rate = MetropolisStats::rate(k.accepted, k.proposed);
+    std::printf("[ mlt ] bidirectional mutation: acceptance %.3f, %.3f failed\n", rate, double(k.failed) / k.proposed);
+    EXPECT_GT(rate, 0.05);
+    EXPECT_LT(rate, 0.95);
+}
+
+// The mutation's choice probabilities: deleting d of n vertices sums to 1 over d, and the
+// number inserted sums to 1 over its values wherever some value is possible; inserting
+// nothing where nothing was deleted, or where an endpoint was, is impossible.
+TEST(VeachMLT, MutationChoiceProbabilitiesAreDistributions) {
+    setWarningsQuiet(true);
+    auto s = buildScene(parseSceneString(box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), ".", "<test>"));
+    VeachMLTIntegrator integrator(*s, 5, MetropolisParams{});
+    const BidirectionalMutation& m = integrator.bidirectional();
+    const int maxV = integrator.space().maxVertices();
+    for (int n = 2; n <= maxV; ++n) {
+        double sum = 0;
+        for (int d = 0; d <= n; ++d) sum += BidirectionalMutation::deletionPmf(d, n);
+        EXPECT_NEAR(sum, 1.0, 1e-12) << "n " << n;
+        for (int d = 0; d <= n; ++d)
+            for (int lo = d >= 1 ? 0 : 1; lo <= (d >= 1 ? n - d : n - 1); ++lo) {
+                double insert = 0;
+                for (int a = 0; a <= maxV; ++a) insert += m.insertionPmf(a, d, lo, n);
+                EXPECT_TRUE(std::fabs(insert - 1) < 1e-12 || insert == 0) << n << " " << d << " " << lo;
+                EXPECT_EQ(m.insertionPmf(0, 0, lo, n), 0.0);
+                if (lo == 0 || lo + d == n) {
+                    EXPECT_EQ(m.insertionPmf(0, d, lo, n), 0.0);
+                }
+            }
+    }
+}
+
