@@ -80,7 +80,7 @@ Spectrum PathSpace::contribution(const MltPath& x, Vec2* pRaster) const {
     return f.isFinite() ? f : Spectrum();
 }
 
-double PathSpace::lightDensity(const MltPath& x, int i) const {
+double PathSpace::lightDensity(const MltPath& x, int i, Lobes lobes) const {
     const int k = int(x.size()) - 1;
     if (i < 0 || i > k || x[size_t(i)].kind == MltVertex::Kind::Lens) return 0;
     const MltVertex& v = x[size_t(i)];
@@ -102,11 +102,12 @@ double PathSpace::lightDensity(const MltPath& x, int i) const {
     } else {
         if (u.kind != MltVertex::Kind::Surface || !u.bxdf) return 0;
         bsdf(u, unitTo(u, x[size_t(i - 2)]), w, TransportMode::Importance, nullptr, &pdfDir);
+        if (u.delta && lobes == Lobes::Forced && pdfDir > 0) pdfDir = 1;
     }
     return toArea(pdfDir, u, v);
 }
 
-double PathSpace::cameraDensity(const MltPath& x, int i) const {
+double PathSpace::cameraDensity(const MltPath& x, int i, Lobes lobes) const {
     const int k = int(x.size()) - 1;
     if (i < 0 || i > k || k < 1) return 0;
     const MltVertex& v = x[size_t(i)];
@@ -126,6 +127,7 @@ double PathSpace::cameraDensity(const MltPath& x, int i) const {
     } else {
         if (u.kind != MltVertex::Kind::Surface || !u.bxdf) return 0;
         bsdf(u, unitTo(u, x[size_t(i + 2)]), w, TransportMode::Radiance, nullptr, &pdfDir);
+        if (u.delta && lobes == Lobes::Forced && pdfDir > 0) pdfDir = 1;
     }
     return toArea(pdfDir, u, v);
 }
@@ -147,6 +149,26 @@ bool PathSpace::canContinue(int size, TransportMode mode) const {
 bool PathSpace::visible(const MltVertex& a, const MltVertex& b, PathStats& stats) const {
     ++stats.shadowRays;
     return !scene_.occluded(spawnRayTo(a.p, offsetNormal(a), b.p, 0));
+}
+
+double PathSpace::areaFactor(const MltPath& x, int from, int to) { return toArea(1.0, x[size_t(from)], x[size_t(to)]); }
+
+bool PathSpace::reflects(const MltPath& x, int i) {
+    const MltVertex& v = x[size_t(i)];
+    return dot(x[size_t(i - 1)].p - v.p, v.ng) * dot(x[size_t(i + 1)].p - v.p, v.ng) > 0;
+}
+
+bool PathSpace::followSpecular(const MltVertex& v, const Ray& ray, bool reflect, TransportMode mode, Ray& next) const {
+    if (v.kind != MltVertex::Kind::Surface || !v.bxdf || !v.delta) return false;
+    const Vec3 woL = v.frame.toLocal(-ray.d);
+    for (float uc : {0.0f, 0x1.fffffep-1f}) {
+        auto s = v.bxdf->sample(woL, uc, Vec2(0.5f, 0.5f), mode);
+        if (s && s->isSpecular() && s->isReflection() == reflect) {
+            next = spawnRay(v.p, v.ng, v.frame.toWorld(s->wi), 0);
+            return true;
+        }
+    }
+    return false;
 }
 
 void PathSpace::rebind(MltVertex& v, ScratchBuffer& arena) {

@@ -60,8 +60,15 @@ public:
     // generated from the light side, given vertices i - 1 and i - 2, and from the camera side,
     // given i + 1 and i + 2. Vertex 0 from the light side: the light's choice and position;
     // the last from the camera side: the lens position.
-    double lightDensity(const MltPath& x, int i) const;
-    double cameraDensity(const MltPath& x, int i) const;
+    // `Density` says what a specular vertex's lobe counts for: its probability of being
+    // chosen (Sampled: a walk chose it), or 1 (Forced: a perturbation keeps the path's own
+    // lobes, and only the geometry of the retraced chain changes the density).
+    enum class Lobes { Sampled, Forced };
+    double lightDensity(const MltPath& x, int i, Lobes lobes = Lobes::Sampled) const;
+    double cameraDensity(const MltPath& x, int i, Lobes lobes = Lobes::Sampled) const;
+    // The factor |cos at x[to]| / d^2 that turns a unit direction density at x[from] into an
+    // area density at x[to].
+    static double areaFactor(const MltPath& x, int from, int to);
     // Whether a connection (a deterministic edge) can end at vertex i of x: the light
     // endpoint, the lens, or a surface with a non-specular lobe.
     bool connectible(const MltPath& x, int i) const;
@@ -81,13 +88,19 @@ public:
     bool visible(const MltVertex& a, const MltVertex& b, PathStats& stats) const;
     // Rebuilds a surface vertex's BxDF in `arena` (a path's vertices must all live in its own).
     static void rebind(MltVertex& v, ScratchBuffer& arena);
+    // Whether the light at specular vertex i of x is reflected (else transmitted).
+    static bool reflects(const MltPath& x, int i);
+    // Traces the ray to the next vertex (passing through interfaces): false if it escapes.
+    bool trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex& out) const;
+    // Continues a retraced specular chain at specular vertex v, reached along `ray`, by the
+    // lobe that reflects or transmits as asked: the next ray, or false if v has no such lobe.
+    bool followSpecular(const MltVertex& v, const Ray& ray, bool reflect, TransportMode mode, Ray& next) const;
 
 private:
     // The BSDF at surface vertex v for light arriving from direction wi and leaving along wo
     // (unit, world), in `mode`, with the density of sampling wi from wo; specular lobes
     // matched to the direction pair.
     void bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, Spectrum* f, float* pdf) const;
-    bool trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex& out) const;
     // The next ray of a walk: a direction sampled by the BSDF at side's last vertex.
     bool scatter(const std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const;
 

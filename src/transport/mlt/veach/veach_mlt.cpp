@@ -22,7 +22,12 @@ namespace ps {
 
 VeachMLTIntegrator::VeachMLTIntegrator(const Scene& scene, int maxDepth, const MetropolisParams& params,
                                        const VeachMutations& mutations)
-    : space_(scene, maxDepth), bidirectional_(space_), params_(params), mutations_(mutations) {}
+    : space_(scene, maxDepth),
+      bidirectional_(space_),
+      perturbations_(space_),
+      params_(params),
+      mutations_(mutations),
+      mutator_(bidirectional_, perturbations_, mutations_) {}
 
 Spectrum VeachMLTIntegrator::Li(const Ray&, SampleContext&) const {
     throw std::logic_error("mlt is a Markov-chain integrator: render it with renderVeachMLT");
@@ -92,7 +97,8 @@ double bootstrapSample(const VeachMLTIntegrator& integrator, uint64_t seed, int6
 }
 
 struct Counts {
-    long long proposed = 0, failed = 0, accepted = 0, invalid = 0, done = 0;
+    long long invalid = 0, done = 0;
+    long long proposed[int(Mutation::Count)] = {}, failed[int(Mutation::Count)] = {}, accepted[int(Mutation::Count)] = {};
 };
 
 struct Chain {
@@ -160,7 +166,6 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     ms.bootstrapSamples = nBoot;
     ms.b = bootstrapCancelled ? 0.0 : sum / n;
     ms.bRelativeError = ms.b > 0 ? std::sqrt(std::max(0.0, squares / n - ms.b * ms.b) / n) / ms.b : 0.0;
-    ms.kinds = {{integrator.mutations().regenerate ? "regenerate" : "bidirectional"}};
 
     const long long total = std::max(1LL, (long long)std::max(1, options.spp) * bounds.area());
     const int chains = int(std::min<long long>(std::max(1, mp.chains), total));
@@ -200,7 +205,6 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         if (replayMismatch) throw std::logic_error("mlt: a bootstrap path generated again gave another f / p");
         constexpr long long kPass = 256;
         const long long largestShare = total / chains + (total % chains ? 1 : 0);
-        const bool regenerate = integrator.mutations().regenerate;
         for (long long pass = 0; pass * kPass < largestShare && !stop.load(); ++pass) {
             arena.execute([&] {
                 tbb::parallel_for(0, chains, [&](int c) {
@@ -209,23 +213,18 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                     PathStats& stats = threadStats.local();
                     const long long steps = std::min(ch.remaining, kPass);
                     for (long long k = 0; k < steps; ++k) {
-                        double Txy = 0, Tyx = 0;
-                        ++ch.counts.proposed;
-                        bool made;
-                        if (regenerate) {
-                            made = integrator.bidirectional().generate(ch.rng, *ch.y.arena, stats, ch.y.path, &Txy);
-                            Tyx = integrator.bidirectional().generationDensity(ch.x.path);
-                        } else {
-                            made = integrator.bidirectional().propose(ch.x.path, ch.rng, *ch.y.arena, stats,
-                                                                      ch.y.path, &Txy, &Tyx);
-                        }
-                        double a = 0;
+                        Mutation m;
+                        double ratio = 0, a = 0;
+                        const bool made = integrator.mutator().mutate(ch.x.path, ch.x.pRaster, ch.rng, *ch.y.arena,
+                                                                      stats, ch.y.path, &m, &ratio);
+                        const int kind = int(m);
+                        if (kind < int(Mutation::Count)) ++ch.counts.proposed[kind];
                         if (!made) {
-                            ++ch.counts.failed;
-                        } else if (!evaluate(space, ch.y) || !(Txy > 0)) {
+                            if (kind < int(Mutation::Count)) ++ch.counts.failed[kind];
+                        } else if (!evaluate(space, ch.y) || !(ratio > 0)) {
                             ++ch.counts.invalid;
                         } else {
-                            const double r = (ch.y.f * Tyx) / (ch.x.f * Txy);
+                            const double r = ch.y.f / ch.x.f * ratio;
                             a = std::isfinite(r) ? std::min(1.0, r) : (r > 0 ? 1.0 : 0.0);
                         }
                         // Expected values: the state with 1 - a, the proposal with a.
@@ -233,7 +232,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                         if (a > 0) film.addSplat(ch.y.pRaster, ch.y.C * float(a / ch.y.f), c);
                         if (a > 0 && ch.rng.uniformDouble() < a) {
                             std::swap(ch.x, ch.y);
-                            ++ch.counts.accepted;
+                            ++ch.counts.accepted[kind];
                         }
                     }
                     ch.remaining -= steps;
@@ -245,10 +244,16 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         result.seconds += monitor.elapsed();
     }
 
+    for (int m = 0; m < int(Mutation::Count); ++m)
+        if (integrator.mutations().weight(Mutation(m)) > 0) ms.kinds.push_back({mutationName(Mutation(m))});
     for (const Chain& ch : all) {
-        ms.kinds[0].proposed += ch.counts.proposed;
-        ms.kinds[0].failed += ch.counts.failed;
-        ms.kinds[0].accepted += ch.counts.accepted;
+        for (MetropolisStats::Kind& kind : ms.kinds)
+            for (int m = 0; m < int(Mutation::Count); ++m)
+                if (kind.name == mutationName(Mutation(m))) {
+                    kind.proposed += ch.counts.proposed[m];
+                    kind.failed += ch.counts.failed[m];
+                    kind.accepted += ch.counts.accepted[m];
+                }
         ms.invalidProposals += ch.counts.invalid;
         ms.mutations += ch.counts.done;
     }

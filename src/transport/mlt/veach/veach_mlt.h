@@ -15,19 +15,9 @@
 //    the thread count, and a stopped render has mutations from every chain.
 #pragma once
 #include "transport/mlt/metropolis.h"
-#include "transport/mlt/veach/bidirectional_mutation.h"
+#include "transport/mlt/veach/mutator.h"
 
 namespace ps {
-
-// The mutations a chain chooses from, with their probabilities (normalised over those
-// that apply to the state).
-struct VeachMutations {
-    double bidirectional = 1;
-    // For tests: in place of the bidirectional mutation, an independent path generated from
-    // nothing (T(x -> y) = its generation density): the image must be BDPT's whatever the
-    // mutations' own densities, a check of the chain's bookkeeping alone.
-    bool regenerate = false;
-};
 
 class VeachMLTIntegrator final : public Integrator {
 public:
@@ -40,14 +30,18 @@ public:
 
     const PathSpace& space() const { return space_; }
     const BidirectionalMutation& bidirectional() const { return bidirectional_; }
+    const Perturbations& perturbations() const { return perturbations_; }
+    const Mutator& mutator() const { return mutator_; }
     const MetropolisParams& params() const { return params_; }
     const VeachMutations& mutations() const { return mutations_; }
 
 private:
     PathSpace space_;
     BidirectionalMutation bidirectional_;
+    Perturbations perturbations_;
     MetropolisParams params_;
     VeachMutations mutations_;
+    Mutator mutator_;
 };
 
 // The Markov-chain driver: options.spp mutations per film pixel (crop region); threads,

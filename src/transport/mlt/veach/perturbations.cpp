@@ -1,0 +1,166 @@
+#include "transport/mlt/veach/perturbations.h"
+
+#include <cmath>
+
+namespace ps {
+
+namespace {
+
+bool isD(const MltVertex& v) { return v.kind == MltVertex::Kind::Surface && v.bxdf && !v.delta; }
+bool isS(const MltVertex& v) { return v.kind == MltVertex::Kind::Surface && v.bxdf && v.delta; }
+
+}  // namespace
+
+Perturbations::Perturbations(const PathSpace& space, const PerturbationSizes& sizes) : space_(space), sizes_(sizes) {
+    const Camera::Params& c = space.scene().camera().params();
+    r2_ = std::sqrt(sizes.imageFraction * double(c.xRes) * double(c.yRes) / kPi);
+}
+
+int Perturbations::lensChainEnd(const MltPath& x) const {
+    const int k = int(x.size()) - 1;
+    int m = k - 1;
+    while (m > 0 && isS(x[size_t(m)])) --m;
+    if (m > 0 && !isD(x[size_t(m)])) return -1;
+    return m;
+}
+
+// The lens ray and every specular chain after it, up to a D vertex that connects to its
+// predecessor (or the light): the lens perturbation when that is the first chain's end,
+// the multi-chain perturbation when a chain ends on a D vertex after a specular one.
+namespace {
+
+// The index where the retraced part of x ends (the D vertex joined to its predecessor, or 0
+// for a light reached by the last chain), or -1; *chains receives the number of chains.
+int retracedEnd(const MltPath& x, const PathSpace& space, int* chains) {
+    const int k = int(x.size()) - 1;
+    int m = k - 1;
+    *chains = 0;
+    while (true) {
+        ++*chains;
+        while (m > 0 && isS(x[size_t(m)])) --m;
+        if (m == 0) return (x[0].light && !x[0].delta) ? 0 : -1;  // the chain must be able to hit the light
+        if (!isD(x[size_t(m)])) return -1;
+        if (space.connectible(x, m - 1)) return m;
+        --m;  // a specular predecessor: the next chain starts there
+    }
+}
+
+// T's Jacobian part for the retraced vertices [end, k - 1] of z (see perturbations.h).
+double retracedDensity(const MltPath& z, const PathSpace& space, int end) {
+    const int k = int(z.size()) - 1;
+    double p = 1;
+    for (int i = k - 1; i >= end && p > 0; --i)
+        p *= (i + 1 < k && isD(z[size_t(i + 1)])) ? PathSpace::areaFactor(z, i + 1, i)
+                                                   : space.cameraDensity(z, i, PathSpace::Lobes::Forced);
+    return p;
+}
+
+}  // namespace
+
+bool Perturbations::lensApplies(const MltPath& x) const {
+    int chains;
+    return space_.pinhole() && retracedEnd(x, space_, &chains) >= 0 && chains == 1;
+}
+
+bool Perturbations::multiChainApplies(const MltPath& x) const {
+    int chains;
+    return space_.pinhole() && retracedEnd(x, space_, &chains) >= 0 && chains > 1;
+}
+
+Vec3 Perturbations::perturbDirection(Vec3 w, Rng& rng) const {
+    // theta with density proportional to 1 / theta on [theta1, theta2], phi uniform: a
+    // density in solid angle that depends only on the angle between the directions.
+    const double theta = sizes_.theta1 * std::pow(sizes_.theta2 / sizes_.theta1, rng.uniformDouble());
+    const double phi = 2 * kPi * rng.uniformDouble();
+    const Frame f = Frame::fromNormal(w);
+    const double st = std::sin(theta);
+    return normalize(f.toWorld(Vec3(float(st * std::cos(phi)), float(st * std::sin(phi)), float(std::cos(theta)))));
+}
+
+bool Perturbations::lens(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer& arena, PathStats& stats, MltPath& y,
+                         double* ratio) const {
+    const int k = int(x.size()) - 1;
+    int chains;
+    const int end = retracedEnd(x, space_, &chains);
+    if (end < 0 || !space_.pinhole()) return false;
+    // The image point's offset: length with density proportional to 1 / r, uniform angle.
+    const double r = sizes_.r1 * std::pow(r2_ / sizes_.r1, rng.uniformDouble());
+    const double phi = 2 * kPi * rng.uniformDouble();
+    CameraSample cs;
+    cs.pFilm = Vec2(float(rasterX.x + r * std::cos(phi)), float(rasterX.y + r * std::sin(phi)));
+    cs.pLens = Vec2(0.5f, 0.5f);
+    float pdfPos, pdfDir;
+    Ray ray = space_.scene().camera().generateRay(cs);
+    space_.scene().camera().pdfWe(ray, &pdfPos, &pdfDir);
+    if (!(pdfDir > 0)) return false;  // off the film
+
+    arena.reset();
+    y = x;
+    for (MltVertex& v : y) PathSpace::rebind(v, arena);
+    for (int i = k - 1; i >= end; --i) {
+        MltVertex v;
+        if (!space_.trace(ray, arena, stats, v)) return false;
+        const MltVertex& old = x[size_t(i)];
+        y[size_t(i)] = v;
+        if (i == 0) {
+            if (!v.light) return false;  // the last chain must end on an emitter
+        } else if (isS(old)) {
+            if (!isS(v) || !space_.followSpecular(v, ray, PathSpace::reflects(x, i), TransportMode::Radiance, ray))
+                return false;
+        } else {
+            if (!isD(v)) return false;
+            if (i > end) ray = spawnRay(v.p, v.ng, perturbDirection(normalize(x[size_t(i - 1)].p - old.p), rng), 0);
+        }
+    }
+    if (end > 0 && !space_.visible(y[size_t(end - 1)], y[size_t(end)], stats)) return false;
+    const double py = retracedDensity(y, space_, end);
+    if (!(py > 0)) return false;
+    *ratio = retracedDensity(x, space_, end) / py;
+    return true;
+}
+
+bool Perturbations::causticApplies(const MltPath& x) const {
+    const int k = int(x.size()) - 1;
+    if (k < 3 || !isD(x[size_t(k - 1)]) || !isS(x[size_t(k - 2)])) return false;
+    int m = k - 2;
+    while (m > 0 && isS(x[size_t(m)])) --m;
+    return m == 0 || isD(x[size_t(m)]);
+}
+
+bool Perturbations::caustic(const MltPath& x, Rng& rng, ScratchBuffer& arena, PathStats& stats, MltPath& y,
+                            double* ratio) const {
+    if (!causticApplies(x)) return false;
+    const int k = int(x.size()) - 1;
+    int m = k - 2;
+    while (m > 0 && isS(x[size_t(m)])) --m;
+    arena.reset();
+    y = x;
+    for (MltVertex& v : y) PathSpace::rebind(v, arena);
+    const MltVertex& from = y[size_t(m)];
+    Ray ray = spawnRay(from.p, from.ng, perturbDirection(normalize(x[size_t(m + 1)].p - from.p), rng), 0);
+    for (int i = m + 1; i <= k - 1; ++i) {
+        MltVertex v;
+        if (!space_.trace(ray, arena, stats, v)) return false;
+        y[size_t(i)] = v;
+        if (i < k - 1) {
+            if (!isS(v) || !space_.followSpecular(v, ray, PathSpace::reflects(x, i), TransportMode::Importance, ray))
+                return false;
+        } else if (!isD(v)) {
+            return false;
+        }
+    }
+    if (!space_.visible(y[size_t(k - 1)], y[size_t(k)], stats)) return false;
+    // The Jacobians: a unit direction density at x_m, then the retraced vertices' with
+    // forced lobes.
+    auto density = [&](const MltPath& z) {
+        double p = PathSpace::areaFactor(z, m, m + 1);
+        for (int i = m + 2; i <= k - 1 && p > 0; ++i) p *= space_.lightDensity(z, i, PathSpace::Lobes::Forced);
+        return p;
+    };
+    const double py = density(y);
+    if (!(py > 0)) return false;
+    *ratio = density(x) / py;
+    return true;
+}
+
+}  // namespace ps
