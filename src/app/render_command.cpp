@@ -165,12 +165,12 @@ void RenderCommand::attach(CLI::App& app) {
         ->type_name("SIZE")
         ->check(plainCheck("a size such as 512M, 8G or 1.5GiB", "",
                            [](const std::string& s) { return parseByteSize(s).has_value(); }));
-    // Metropolis (pssmlt, mmlt): each overrides the scene's Integrator parameter of the same meaning.
+    // Metropolis (pssmlt, mmlt, mlt): each overrides the scene's Integrator parameter of the same meaning.
     cmd_->add_option("--chains", chains_,
-                     "Metropolis (pssmlt, mmlt) only: number of Markov chains (overrides the scene's \"chains\"; default 1000)")
+                     "Metropolis (pssmlt, mmlt, mlt) only: number of Markov chains (overrides the scene's \"chains\"; default 1000)")
         ->check(countCheck());
     cmd_->add_option("--bootstrap", bootstrap_,
-                     "Metropolis (pssmlt, mmlt) only: number of independent BDPT samples that estimate the normalisation b "
+                     "Metropolis (pssmlt, mmlt, mlt) only: number of independent BDPT samples that estimate the normalisation b "
                      "and seed the chains (overrides \"bootstrapsamples\"; default 100000)")
         ->check(countCheck());
     cmd_->add_option("--large-step-probability", largeStepProbability_,
@@ -186,6 +186,10 @@ void RenderCommand::attach(CLI::App& app) {
                      "to choose each path depth and strategy and how to split the bootstrap among the depths (default 0.1; "
                      "0: no pilot, every depth and strategy equally)")
         ->check(probabilityCheck());
+    cmd_->add_option("--mlt-mutations", mltMutations_,
+                     "mlt only: the mutations' weights, KEY=VALUE,... with keys bidirectional, lens-subpath, lens, "
+                     "multi-chain, caustic (default 1 each; a mutation is chosen among those that apply to the path in "
+                     "proportion to its weight; 0 switches one off; bidirectional must stay > 0)");
     cmd_->add_flag("--quiet", quiet_, "No progress bar or statistics on the terminal");
 }
 
@@ -208,6 +212,12 @@ int RenderCommand::run() {
                              "integrator here is \"" + settings.integrator + "\")");
         if (strategyPilot_ >= 1) throw InputError("--strategy-pilot must be below 1 (the bootstrap proper needs samples)");
         settings.mltStrategyPilot = float(strategyPilot_);
+    }
+    if (!mltMutations_.empty()) {
+        if (settings.integrator != "mlt")
+            throw InputError("--mlt-mutations sets the mutations of Veach's MLT: it needs --integrator mlt (the "
+                             "integrator here is \"" + settings.integrator + "\")");
+        settings.mltMutations = mltMutations_;
     }
     if (settings.integrator == "mlt" && (largeStepProbability_ >= 0 || sigma_ > 0))
         throw InputError("--large-step-probability and --sigma are parameters of the primary-sample-space Metropolis "

@@ -36,7 +36,8 @@ private:
     int bootstrap_ = -1;
     double largeStepProbability_ = -1;
     double strategyPilot_ = -1;
-    double sigma_ = -1;  // --max-memory SIZE, checked by parseByteSize
+    double sigma_ = -1;
+    std::string mltMutations_;  // --mlt-mutations KEY=VALUE,...  // --max-memory SIZE, checked by parseByteSize
     bool quiet_ = false;
 };
 

@@ -36,6 +36,7 @@ struct RenderSettings {
     float mltLargeStepProbability = 0.3f;  // "largestepprobability"
     float mltSigma = 0.01f;                // "sigma"
     float mltStrategyPilot = 0.1f;         // mmlt: the bootstrap's share spent on its pilot
+    std::string mltMutations;              // mlt: the mutations' weights, "KEY=VALUE,..." (--mlt-mutations)
     SourceLoc filmLoc;       // the Film directive, for errors found when the film is made
     SourceLoc cameraLoc;     // the Camera directive
     // The film's ColorSpace, when not sRGB: the image's RGB from the rendering space's

@@ -159,7 +159,7 @@ TEST(VeachMLT, SameBitsWhateverTheThreadCount) {
         const double rate = MetropolisStats::rate(k.accepted, k.proposed);
         std::printf("[ mlt ] %s: %lld proposed, acceptance %.3f, %.3f failed\n", k.name.c_str(), k.proposed, rate,
                     k.proposed ? double(k.failed) / k.proposed : 0.0);
-        if (k.name == "bidirectional" || k.name == "lens perturbation") {
+        if (k.name == "bidirectional" || k.name == "lens subpath" || k.name == "lens perturbation") {
             EXPECT_GT(rate, 0.05) << k.name;
             EXPECT_LT(rate, 0.95) << k.name;
         } else {

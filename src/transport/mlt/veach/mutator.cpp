@@ -1,12 +1,18 @@
 #include "transport/mlt/veach/mutator.h"
 
 #include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+
+#include "util/error.h"
 
 namespace ps {
 
 const char* mutationName(Mutation m) {
     switch (m) {
         case Mutation::Bidirectional: return "bidirectional";
+        case Mutation::LensSubpath: return "lens subpath";
         case Mutation::Lens: return "lens perturbation";
         case Mutation::MultiChain: return "multi-chain perturbation";
         case Mutation::Caustic: return "caustic perturbation";
@@ -20,6 +26,7 @@ double VeachMutations::weight(Mutation m) const {
     if (regenerate) return m == Mutation::Regenerate ? 1.0 : 0.0;
     switch (m) {
         case Mutation::Bidirectional: return bidirectional;
+        case Mutation::LensSubpath: return lensSubpath;
         case Mutation::Lens: return lens;
         case Mutation::MultiChain: return multiChain;
         case Mutation::Caustic: return caustic;
@@ -27,9 +34,40 @@ double VeachMutations::weight(Mutation m) const {
     }
 }
 
+VeachMutations parseMutationWeights(const std::string& spec) {
+    VeachMutations w;
+    std::stringstream in(spec);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        if (item.empty()) continue;
+        const size_t eq = item.find('=');
+        const std::string key = item.substr(0, eq);
+        double* target = key == "bidirectional"  ? &w.bidirectional
+                         : key == "lens-subpath" ? &w.lensSubpath
+                         : key == "lens"         ? &w.lens
+                         : key == "multi-chain"  ? &w.multiChain
+                         : key == "caustic"      ? &w.caustic
+                                                 : nullptr;
+        if (!target)
+            throw InputError("--mlt-mutations: unknown mutation \"" + key +
+                             "\" (available: bidirectional, lens-subpath, lens, multi-chain, caustic)");
+        const std::string value = eq == std::string::npos ? "" : item.substr(eq + 1);
+        char* end = nullptr;
+        const double v = std::strtod(value.c_str(), &end);
+        if (value.empty() || *end != '\0' || !(v >= 0) || !std::isfinite(v))
+            throw InputError("--mlt-mutations: \"" + item + "\" needs a weight >= 0, as in " + key + "=0.5");
+        *target = v;
+    }
+    if (!(w.bidirectional > 0))
+        throw InputError("--mlt-mutations: the bidirectional mutation needs a weight > 0 (the other mutations keep a "
+                         "path's length and specular structure, so alone they cannot reach every path)");
+    return w;
+}
+
 bool Mutator::applies(Mutation m, const MltPath& x) const {
     if (!(weights_.weight(m) > 0)) return false;
     switch (m) {
+        case Mutation::LensSubpath: return lensSubpath_.applies(x);
         case Mutation::Lens: return perturbations_.lensApplies(x);
         case Mutation::MultiChain: return perturbations_.multiChainApplies(x);
         case Mutation::Caustic: return perturbations_.causticApplies(x);
@@ -45,8 +83,8 @@ double Mutator::probability(Mutation m, const MltPath& x) const {
     return weights_.weight(m) / sum;
 }
 
-bool Mutator::mutate(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer& arena, PathStats& stats, MltPath& y,
-                     Mutation* chosen, double* ratio) const {
+bool Mutator::mutate(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer& arena,
+                     PathStats& stats, MltPath& y, Mutation* chosen, double* ratio) const {
     double sum = 0;
     for (int k = 0; k < int(Mutation::Count); ++k)
         if (applies(Mutation(k), x)) sum += weights_.weight(Mutation(k));
@@ -67,6 +105,7 @@ bool Mutator::mutate(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer& ar
             r = made ? Tyx / Txy : 0.0;
             break;
         }
+        case Mutation::LensSubpath: made = lensSubpath_.propose(x, rng, arena, stats, y, &r); break;
         case Mutation::Lens:
         case Mutation::MultiChain: made = perturbations_.lens(x, rasterX, rng, arena, stats, y, &r); break;
         case Mutation::Caustic: made = perturbations_.caustic(x, rng, arena, stats, y, &r); break;

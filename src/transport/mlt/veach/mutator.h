@@ -4,16 +4,17 @@
 // a proposal's T(y -> x) / T(x -> y) includes P(mutation | y) / P(mutation | x).
 #pragma once
 #include "transport/mlt/veach/bidirectional_mutation.h"
+#include "transport/mlt/veach/lens_subpath_mutation.h"
 #include "transport/mlt/veach/perturbations.h"
 
 namespace ps {
 
-enum class Mutation : int { Bidirectional, Lens, MultiChain, Caustic, Regenerate, Count };
+enum class Mutation : int { Bidirectional, LensSubpath, Lens, MultiChain, Caustic, Regenerate, Count };
 const char* mutationName(Mutation m);
 
 // The mutations' weights (documented defaults: each equally, over those that apply).
 struct VeachMutations {
-    double bidirectional = 1, lens = 1, multiChain = 1, caustic = 1;
+    double bidirectional = 1, lensSubpath = 1, lens = 1, multiChain = 1, caustic = 1;
     // For tests: only an independent path generated from nothing (T(x -> y) = its
     // generation density): the image must be BDPT's whatever the other mutations'
     // densities are, a check of the chain's bookkeeping alone.
@@ -21,22 +22,29 @@ struct VeachMutations {
     double weight(Mutation m) const;
 };
 
+// Weights from "KEY=VALUE,..." (keys bidirectional, lens-subpath, lens, multi-chain, caustic;
+// values >= 0; unnamed keys keep their defaults); InputError on anything else. The
+// bidirectional mutation must keep a positive weight: the others alone cannot reach every
+// path (they keep a path's length and specular structure).
+VeachMutations parseMutationWeights(const std::string& spec);
+
 class Mutator {
 public:
-    Mutator(const BidirectionalMutation& bidirectional, const Perturbations& perturbations,
-            const VeachMutations& weights)
-        : bidirectional_(bidirectional), perturbations_(perturbations), weights_(weights) {}
+    Mutator(const BidirectionalMutation& bidirectional, const LensSubpathMutation& lensSubpath,
+            const Perturbations& perturbations, const VeachMutations& weights)
+        : bidirectional_(bidirectional), lensSubpath_(lensSubpath), perturbations_(perturbations), weights_(weights) {}
     bool applies(Mutation m, const MltPath& x) const;
     // Probability of choosing m at x (0 where it does not apply).
     double probability(Mutation m, const MltPath& x) const;
     // Chooses a mutation for x (whose contribution lands at rasterX) and proposes y; *ratio
     // receives T(y -> x) / T(x -> y), the choice included. False when the proposal failed
     // (the chain stays at x); *chosen is set either way.
-    bool mutate(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer& arena, PathStats& stats, MltPath& y,
-                Mutation* chosen, double* ratio) const;
+    bool mutate(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer& arena,
+                PathStats& stats, MltPath& y, Mutation* chosen, double* ratio) const;
 
 private:
     const BidirectionalMutation& bidirectional_;
+    const LensSubpathMutation& lensSubpath_;
     const Perturbations& perturbations_;
     VeachMutations weights_;
 };

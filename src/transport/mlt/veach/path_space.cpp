@@ -234,17 +234,12 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
         // camera's importance and its direction density live) and a lens point; a kept
         // pinhole is the same point.
         ++stats.cameraPaths;
-        CameraSample cs;
-        cs.pFilm = {-margin_.x + rng.uniform() * filmSize_.x, -margin_.y + rng.uniform() * filmSize_.y};
-        cs.pLens = Vec2(rng.uniform(), rng.uniform());
-        if (pinhole_) cs.pLens = Vec2(0.5f, 0.5f);
-        ray = scene_.camera().generateRay(cs);
+        const Vec2 pFilm(-margin_.x + rng.uniform() * filmSize_.x, -margin_.y + rng.uniform() * filmSize_.y);
+        const Vec2 uLens(rng.uniform(), rng.uniform());
+        MltVertex lens;
+        ray = cameraRay(pFilm, uLens, &lens);
         if (side.empty()) {
-            MltVertex v;
-            v.kind = MltVertex::Kind::Lens;
-            v.p = ray.o;
-            v.ng = scene_.camera().forward();
-            side.push_back(v);
+            side.push_back(lens);
             --count;
         }
     } else if (!scatter(side, mode, rng, ray)) {
@@ -257,6 +252,18 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
         if (--count > 0 && !scatter(side, mode, rng, ray)) return false;
     }
     return true;
+}
+
+Ray PathSpace::cameraRay(Vec2 pFilm, Vec2 uLens, MltVertex* lens) const {
+    CameraSample cs;
+    cs.pFilm = pFilm;
+    cs.pLens = pinhole_ ? Vec2(0.5f, 0.5f) : uLens;
+    const Ray ray = scene_.camera().generateRay(cs);
+    *lens = MltVertex();
+    lens->kind = MltVertex::Kind::Lens;
+    lens->p = ray.o;
+    lens->ng = scene_.camera().forward();
+    return ray;
 }
 
 bool PathSpace::scatter(const std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const {

@@ -81,11 +81,19 @@ public:
     // ray escapes or a sample fails.
     bool walk(std::vector<MltVertex>& side, int count, TransportMode mode, Rng& rng, ScratchBuffer& arena,
               PathStats& stats) const;
-    // Whether walk can extend a side that holds `size` vertices, the last at index `last` of
-    // the path (the light endpoint is 0, the lens n - 1).
+    // Whether walk can extend a side (light or camera, by `mode`) that holds `size` vertices.
     bool canContinue(int size, TransportMode mode) const;
     // Mutual visibility of vertices a and b.
     bool visible(const MltVertex& a, const MltVertex& b, PathStats& stats) const;
+    // The next ray of a walk: a direction sampled by the BSDF at side's last vertex (which
+    // must have a predecessor in side).
+    bool scatter(const std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const;
+    // A camera ray through film point pFilm (a pinhole's lens point is fixed; a thin lens
+    // takes its point from uLens) and the lens vertex it leaves.
+    Ray cameraRay(Vec2 pFilm, Vec2 uLens, MltVertex* lens) const;
+    // The film, widened by the filter radius: where camera rays may pass.
+    Vec2 filmMargin() const { return margin_; }
+    Vec2 filmSize() const { return filmSize_; }
     // Rebuilds a surface vertex's BxDF in `arena` (a path's vertices must all live in its own).
     static void rebind(MltVertex& v, ScratchBuffer& arena);
     // Whether the light at specular vertex i of x is reflected (else transmitted).
@@ -101,8 +109,6 @@ private:
     // (unit, world), in `mode`, with the density of sampling wi from wo; specular lobes
     // matched to the direction pair.
     void bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, Spectrum* f, float* pdf) const;
-    // The next ray of a walk: a direction sampled by the BSDF at side's last vertex.
-    bool scatter(const std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const;
 
     const Scene& scene_;
     int maxDepth_;

@@ -24,10 +24,11 @@ VeachMLTIntegrator::VeachMLTIntegrator(const Scene& scene, int maxDepth, const M
                                        const VeachMutations& mutations)
     : space_(scene, maxDepth),
       bidirectional_(space_),
+      lensSubpath_(space_),
       perturbations_(space_),
       params_(params),
       mutations_(mutations),
-      mutator_(bidirectional_, perturbations_, mutations_) {}
+      mutator_(bidirectional_, lensSubpath_, perturbations_, mutations_) {}
 
 Spectrum VeachMLTIntegrator::Li(const Ray&, SampleContext&) const {
     throw std::logic_error("mlt is a Markov-chain integrator: render it with renderVeachMLT");

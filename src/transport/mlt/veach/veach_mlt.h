@@ -31,6 +31,7 @@ public:
     const PathSpace& space() const { return space_; }
     const BidirectionalMutation& bidirectional() const { return bidirectional_; }
     const Perturbations& perturbations() const { return perturbations_; }
+    const LensSubpathMutation& lensSubpath() const { return lensSubpath_; }
     const Mutator& mutator() const { return mutator_; }
     const MetropolisParams& params() const { return params_; }
     const VeachMutations& mutations() const { return mutations_; }
@@ -38,6 +39,7 @@ public:
 private:
     PathSpace space_;
     BidirectionalMutation bidirectional_;
+    LensSubpathMutation lensSubpath_;
     Perturbations perturbations_;
     MetropolisParams params_;
     VeachMutations mutations_;
