@@ -118,6 +118,24 @@ inline std::string pointLightInASphere() {
     )";
 }
 
+// The glass caustic (from a larger light, of the same power) seen through a thin glass pane
+// between the camera and the floor: paths E S D S S L, whose D vertex joins neither
+// neighbour (both specular): what the multi-chain perturbation moves. (BDPT reaches them
+// only by camera walks that hit the light.)
+inline std::string causticThroughGlass() {
+    std::string scene = glassCaustic();
+    auto replace = [&](const std::string& from, const std::string& to) { scene.replace(scene.find(from), from.size(), to); };
+    replace("-0.15 2.5 -0.15   0.15 2.5 -0.15   -0.15 2.5 0.15   0.15 2.5 0.15", "-0.4 2.5 -0.4   0.4 2.5 -0.4   -0.4 2.5 0.4   0.4 2.5 0.4");
+    replace("27 27 27", "3.8 3.8 3.8");
+    scene += R"(
+        AttributeBegin
+          Material "thindielectric" "float eta" [ 1.5 ]
+          Shape "bilinearmesh" "point3 P" [ -1.5 0.05 1.2   1.5 0.05 1.2   -1.5 1.6 1.2   1.5 1.6 1.2 ]
+        AttributeEnd
+    )";
+    return scene;
+}
+
 inline const double kPointLightInASphereExact = 0.5 + 0.25 + 0.125 + 0.0625 + 0.03125;
 
 }  // namespace ps::test

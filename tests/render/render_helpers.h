@@ -15,12 +15,17 @@
 
 namespace ps::test {
 
-// Renders with `options`, taking the sampler from the scene; progress off.
+// Renders with `options`, taking the sampler from the scene; progress off. An integrator
+// "mlt:WEIGHTS" is mlt with --mlt-mutations WEIGHTS.
 inline RenderResult renderWith(const std::string& text, RenderOptions opts, const std::string& integrator = "") {
     setWarningsQuiet(true);
     SceneDescription desc = parseSceneString(text, ".", "<test>");
     auto scene = buildScene(desc);
     if (!integrator.empty()) scene->settings().integrator = integrator;
+    if (integrator.rfind("mlt:", 0) == 0) {
+        scene->settings().integrator = "mlt";
+        scene->settings().mltMutations = integrator.substr(4);
+    }
     auto integ = createIntegrator(scene->settings().integrator, *scene);
     opts.sampler = scene->settings().sampler;
     opts.progress = false;

@@ -5,6 +5,7 @@
 // probabilities, and a chain whose proposals are whole new paths (the bookkeeping alone).
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -100,6 +101,65 @@ TEST(VeachMLT, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
     expectAgreement(AgreementCase{"light seen in a mirror", lightSeenInAMirror(), {"bdpt", "mlt"},
                                   32, 16, {{"mlt", 128}}, 0.02});
 }
+
+// Each mutation makes a correct image: the bidirectional mutation (for ergodicity) with each
+// other one alone, on the scene whose paths that mutation moves: block and image means
+// against BDPT. The other tests run every mutation together.
+struct MutationCase {
+    const char* name;
+    std::string weights;
+    std::string (*scene)();
+    int bdptSpp, mltSpp;
+    const char* applies;  // the mutation that must have been proposed and accepted
+    double detectableBias = 0.02;
+};
+
+void PrintTo(const MutationCase& c, std::ostream* os) { *os << c.name; }
+
+class VeachMutation : public ::testing::TestWithParam<MutationCase> {};
+
+TEST_P(VeachMutation, WithTheBidirectionalOneAgreesWithBDPT) {
+    const MutationCase& c = GetParam();
+    const std::string integrator = "mlt:" + c.weights;
+    expectAgreement(AgreementCase{c.name, c.scene(), {"bdpt", integrator}, c.bdptSpp, 16, {{integrator, c.mltSpp}},
+                                  c.detectableBias});
+    // The mutation under test did its part: proposed and accepted, but not always.
+    RenderResult r = renderString(c.scene(), c.mltSpp, 1, 0, integrator);
+    bool found = false;
+    for (const MetropolisStats::Kind& k : r.metropolis.kinds) {
+        const double rate = MetropolisStats::rate(k.accepted, k.proposed);
+        std::printf("  %s: %s: %lld proposed, acceptance %.3f\n", c.name, k.name.c_str(), k.proposed, rate);
+        if (k.name == c.applies) {
+            found = true;
+            EXPECT_GT(rate, 0.0) << k.name;
+            EXPECT_LT(rate, 1.0) << k.name;
+        }
+    }
+    EXPECT_TRUE(found) << c.applies;
+}
+
+std::string diffuseBox() { return box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"); }
+
+INSTANTIATE_TEST_SUITE_P(
+    Mutations, VeachMutation,
+    ::testing::Values(
+        MutationCase{"lens subpath, box", "lens-subpath=1,lens=0,multi-chain=0,caustic=0", diffuseBox, 16, 64, "lens subpath"},
+        MutationCase{"lens subpath, mirror", "lens-subpath=1,lens=0,multi-chain=0,caustic=0", lightSeenInAMirror, 32, 128,
+                     "lens subpath"},
+        MutationCase{"lens perturbation, box", "lens-subpath=0,lens=1,multi-chain=0,caustic=0", diffuseBox, 16, 64,
+                     "lens perturbation"},
+        MutationCase{"lens perturbation, mirror", "lens-subpath=0,lens=1,multi-chain=0,caustic=0", lightSeenInAMirror, 32,
+                     256, "lens perturbation"},
+        MutationCase{"caustic perturbation, caustic", "lens-subpath=0,lens=0,multi-chain=0,caustic=1", glassCaustic, 128,
+                     256, "caustic perturbation"},
+        MutationCase{"multi-chain perturbation, caustic through glass", "lens-subpath=0,lens=0,multi-chain=1,caustic=0",
+                     causticThroughGlass, 256, 256, "multi-chain perturbation", 0.03},
+        MutationCase{"all, caustic through glass", "", causticThroughGlass, 256, 256, "multi-chain perturbation", 0.03}),
+    [](const ::testing::TestParamInfo<MutationCase>& i) {
+        std::string n;
+        for (const char* p = i.param.name; *p; ++p) n += std::isalnum(static_cast<unsigned char>(*p)) ? *p : '_';
+        return n;
+    });
 
 // The chain's bookkeeping alone (bootstrap, b, expected values, the acceptance ratio with
 // T): with whole new paths as proposals, T(x -> y) is the density the bootstrap uses, and
