@@ -154,7 +154,12 @@ INSTANTIATE_TEST_SUITE_P(
                      256, "caustic perturbation"},
         MutationCase{"multi-chain perturbation, caustic through glass", "lens-subpath=0,lens=0,multi-chain=1,caustic=0",
                      causticThroughGlass, 256, 256, "multi-chain perturbation", 0.03},
-        MutationCase{"all, caustic through glass", "", causticThroughGlass, 256, 256, "multi-chain perturbation", 0.03}),
+        MutationCase{"all, caustic through glass", "", causticThroughGlass, 256, 256, "multi-chain perturbation", 0.03},
+        // Uneven weights: the probability of choosing the bidirectional mutation then differs
+        // by up to 16x between paths that admit the caustic perturbation and paths that do
+        // not, so T(y -> x) must take it at y.
+        MutationCase{"uneven weights, caustic", "lens-subpath=0.2,lens=0.2,multi-chain=0,caustic=15", glassCaustic, 128,
+                     256, "caustic perturbation"}),
     [](const ::testing::TestParamInfo<MutationCase>& i) {
         std::string n;
         for (const char* p = i.param.name; *p; ++p) n += std::isalnum(static_cast<unsigned char>(*p)) ? *p : '_';
