@@ -33,6 +33,6 @@ TEST(MeasuredRender, LightTracingAndBdptAgreeWithPathTracing) {
           Shape "sphere" "float radius" [ 0.3 ]
         AttributeEnd
     )";
-    expectAgreement(AgreementCase{"measured floor", scene, {"path", "light", "bdpt"}, 16, 16, {{"light", 64}}});
+    expectAgreement(AgreementCase{"measured floor", scene, {"path", "light", "bdpt"}, 16, 16, {{"light", 128}}});
     fs::remove_all(dir);
 }
