@@ -7,6 +7,7 @@
 
 #include "materials/image_texture.h"
 #include "materials/materials.h"
+#include "materials/measured_material.h"
 #include "materials/procedural_textures.h"
 #include "materials/shading_detail.h"
 #include "materials/textures.h"
@@ -317,6 +318,11 @@ std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet
             ms[i] = it->second;
         }
         m = std::make_shared<MixMaterial>(ms, floatParam(ps, "amount", 0.5f, reg));
+    } else if (type == "measured") {
+        std::string file = ps.getString("filename", "");
+        if (file.empty()) throw InputError(ps.loc, "measured: \"string filename\" (a .bsdf file) is required");
+        std::string path = resolvePath(base, file);
+        m = std::make_shared<MeasuredMaterial>(readNamedBy(ps.loc, [&] { return MeasuredBRDF::load(path); }));
     } else if (type == "interface" || type == "" || type == "none") {
         m = std::make_shared<InterfaceMaterial>();
     } else {

@@ -167,6 +167,32 @@ Spectrum sampledSpectrumToRGB(const std::vector<float>& lambda, const std::vecto
     return convert(s, kind);
 }
 
+std::vector<Spectrum> reflectanceSampleWeights(const std::vector<float>& lambda) {
+    const Tables& t = tables();
+    const size_t n = lambda.size();
+    std::vector<Spectrum> w(n);
+    for (size_t k = 0; k < n; ++k) {
+        // The hat function of sample k (1 at lambda[k], 0 at its neighbours), extended flat
+        // beyond the first and last sample.
+        auto hat = [&](double l) {
+            if (l <= lambda[k]) {
+                if (k == 0) return 1.0;
+                return l <= lambda[k - 1] ? 0.0 : (l - lambda[k - 1]) / (double(lambda[k]) - lambda[k - 1]);
+            }
+            if (k + 1 == n) return 1.0;
+            return l >= lambda[k + 1] ? 0.0 : (double(lambda[k + 1]) - l) / (double(lambda[k + 1]) - lambda[k]);
+        };
+        double xyz[3] = {0, 0, 0}, rgb[3];
+        for (int i = 0; i < kSamples; ++i) {
+            double v = hat(double(kLambdaMin + i)) * t.illum[i] / t.yD65;
+            for (int c = 0; c < 3; ++c) xyz[c] += v * t.cmf[i][c];
+        }
+        toRGB(xyz, rgb);
+        for (int c = 0; c < 3; ++c) w[k][c] = float(rgb[c] / t.white[c]);
+    }
+    return w;
+}
+
 Spectrum blackbodyToRGB(float kelvin) { return blackbodyToRGB(kelvin, SpectrumKind::Illuminant); }
 
 Spectrum blackbodyToRGB(float kelvin, SpectrumKind kind) {

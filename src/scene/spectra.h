@@ -21,6 +21,12 @@ namespace ps {
 //              stay non-negative (conductor eta/k, spectral IOR).
 Spectrum sampledSpectrumToRGB(const std::vector<float>& lambda, const std::vector<float>& value, SpectrumKind kind);
 
+// Linear weights for reflectance spectra tabulated at `lambda` (nm, increasing): the RGB
+// of the spectrum through (lambda[k], v[k]) is the sum of v[k] * weights[k]. Like Albedo but
+// held constant beyond the first and last sample (not zero) and without clamping, so it
+// stays linear: a flat spectrum v gives (v, v, v).
+std::vector<Spectrum> reflectanceSampleWeights(const std::vector<float>& lambda);
+
 // True when the piecewise-linear spectrum has one value over the whole visible range
 // [360, 830] nm (it is zero outside its samples, so it must cover that range).
 bool sampledSpectrumIsConstant(const std::vector<float>& lambda, const std::vector<float>& value);

@@ -86,3 +86,9 @@ TEST(PbrtShapesReference, BumpAndNormalMaps) {
 TEST(PbrtShapesReference, RealisticCamera) {
     expectPbrtReference("realistic-camera.pbrt", "realistic-camera-4096spp.exr", 4096, 64);
 }
+
+// coatedconductor (pbrt-v4's layered BSDF: a smooth dielectric coating over a rough grey
+// conductor, and one with a scattering layer over a smooth conductor).
+TEST(PbrtShapesReference, CoatedConductor) {
+    expectPbrtReference("coated-conductor.pbrt", "coated-conductor-4096spp.exr", 4096, 64);
+}
