@@ -311,12 +311,16 @@ TEST(Hair, AbsorptionConversions) {
     EXPECT_NEAR(s.r, 1.3 * 0.419 + 0.5 * 0.187, 1e-6);
     EXPECT_NEAR(s.g, 1.3 * 0.697 + 0.5 * 0.4, 1e-6);
     EXPECT_NEAR(s.b, 1.3 * 1.37 + 0.5 * 1.05, 1e-6);
-    // (ln c / (5.969 - 0.215 b + 2.532 b^2 - 10.73 b^3 + 5.574 b^4 + 0.245 b^5))^2 at b = 0.3.
-    Spectrum r = HairBxDF::sigmaAFromReflectance(Spectrum(0.5f, 0.25f, 1.0f), 0.3f);
-    const double d = 5.969 - 0.215 * 0.3 + 2.532 * 0.09 - 10.73 * 0.027 + 5.574 * 0.0081 + 0.245 * 0.00243;
-    EXPECT_NEAR(r.r, std::pow(std::log(0.5) / d, 2), 1e-6);
-    EXPECT_NEAR(r.g, std::pow(std::log(0.25) / d, 2), 1e-6);
-    EXPECT_EQ(r.b, 0);
+    // (ln c / (5.969 - 0.215 b + 2.532 b^2 - 10.73 b^3 + 5.574 b^4 + 0.245 b^5))^2, at a
+    // beta_n where every coefficient matters.
+    for (double b : {0.3, 0.9}) {
+        Spectrum r = HairBxDF::sigmaAFromReflectance(Spectrum(0.5f, 0.25f, 1.0f), float(b));
+        const double d = 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * b * b * b + 5.574 * b * b * b * b + 0.245 * b * b * b * b * b;
+        const double er = std::pow(std::log(0.5) / d, 2), eg = std::pow(std::log(0.25) / d, 2);
+        EXPECT_NEAR(r.r, er, 1e-5 * er) << b;
+        EXPECT_NEAR(r.g, eg, 1e-5 * eg) << b;
+        EXPECT_EQ(r.b, 0);
+    }
 }
 
 TEST_F(HairMaterialTest, DefaultsAndPrecedence) {
