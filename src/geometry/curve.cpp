@@ -196,7 +196,7 @@ RTCGeometry Curve::buildGeometry(RTCDevice device) const {
         rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, cpNormal_.data(), 0,
                                    3 * sizeof(float), nVertices);
     if (type_ == CurveType::Flat) rtcSetGeometryTessellationRate(g, float(tessellationRate()));
-    if (type_ == CurveType::Flat)
+    if (type_ != CurveType::Ribbon)
         installHitFilter(g);  // self hits, see isSelfHit
     else
         installAlphaFilter(g);
@@ -207,10 +207,12 @@ RTCGeometry Curve::buildGeometry(RTCDevice device) const {
 // A ray leaving a flat curve must not find it again where it starts: the curve turns to face
 // every ray, so a ray starting on it (spawned a hair's breadth off it) can pass within the
 // radius of the centre line near its own origin, or further along when it leaves at a grazing
-// angle (measured: 0.5% of the rays leaving a straight flat curve without this test; ribbons
-// and tubes, real surfaces, are not found again). So a flat segment's hits are rejected when
-// the ray starts within the radius of its centre line; like a tube, a flat curve that curls
-// back within one segment does not shadow itself.
+// angle (measured: 0.5% of the rays leaving a straight flat curve without this test; ribbons,
+// real strips, are not found again). So a flat segment's hits are rejected when the ray
+// starts within the radius of its centre line; like a tube, a flat curve that curls back
+// within one segment does not shadow itself. pbrt-v4's cylinder curves are such ray-facing
+// strips too, shaded as tubes: a ray leaving one into the tube (a hair BSDF's transmission
+// through the fibre) passes, where our real tube would stop it at its far wall.
 bool Curve::isSelfHit(Vec3 o, int seg, float u) const {
     const float* q = &cp_[16 * size_t(seg)];
     const float tolAbs = 4e-5f * (1 + std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z)}));
@@ -233,7 +235,7 @@ bool Curve::isSelfHit(Vec3 o, int seg, float u) const {
 }
 
 bool Curve::acceptsHit(const Ray& r, float t, int embreePrim, float u, float v) const {
-    return !(type_ == CurveType::Flat && isSelfHit(r.o, embreePrim, u)) && keepsHit(r, t, embreePrim, u, v);
+    return !(type_ != CurveType::Ribbon && isSelfHit(r.o, embreePrim, u)) && keepsHit(r, t, embreePrim, u, v);
 }
 
 // pbrt-v4's hit data: u along the segment; v across it from 0 to 1, increasing towards

@@ -5,6 +5,8 @@
 #include <atomic>
 #include <type_traits>
 
+#include "materials/hair_bxdf.h"
+#include "materials/hair_material.h"
 #include "materials/image_texture.h"
 #include "materials/materials.h"
 #include "materials/measured_material.h"
@@ -109,6 +111,35 @@ void conductorParams(const ParamSet& ps, const TextureRegistry& reg, const std::
     if (reflectance) return;
     if (!eta) eta = constantSpectrum(*namedSpectrumToRGB("metal-Cu-eta", U));
     if (!k) k = constantSpectrum(*namedSpectrumToRGB("metal-Cu-k", U));
+}
+
+// pbrt-v4's hair parameters: sigma_a wins over reflectance (alias "color"), which wins over
+// the melanin concentrations, each ignored with a warning; none of them means eumelanin 1.3.
+HairTextures hairParams(const ParamSet& ps, const TextureRegistry& reg) {
+    HairTextures t;
+    t.sigmaA = spectrumParam(ps, "sigma_a", std::nullopt, SpectrumKind::Unbounded, reg);
+    const char* reflName = ps.has("reflectance") ? "reflectance" : "color";
+    t.reflectance = spectrumParam(ps, reflName, std::nullopt, SpectrumKind::Albedo, reg);
+    if (ps.has("eumelanin")) t.eumelanin = floatParam(ps, "eumelanin", 0, reg);
+    if (ps.has("pheomelanin")) t.pheomelanin = floatParam(ps, "pheomelanin", 0, reg);
+    const std::string why = t.sigmaA ? "sigma_a" : t.reflectance ? reflName : "";
+    auto ignore = [&](auto& tex, const std::string& name) {
+        if (!tex) return;
+        warning(locOf(ps, name), "hair: \"" + name + "\" is ignored since \"" + why + "\" is given");
+        tex = nullptr;
+    };
+    if (t.sigmaA) ignore(t.reflectance, reflName);
+    if (!why.empty()) {
+        ignore(t.eumelanin, "eumelanin");
+        ignore(t.pheomelanin, "pheomelanin");
+    }
+    if (!t.sigmaA && !t.reflectance && !t.eumelanin && !t.pheomelanin)
+        t.sigmaA = constantSpectrum(HairBxDF::sigmaAFromConcentration(1.3f, 0));
+    t.eta = floatParam(ps, "eta", 1.55f, reg);
+    t.betaM = floatParam(ps, "beta_m", 0.3f, reg);
+    t.betaN = floatParam(ps, "beta_n", 0.3f, reg);
+    t.alpha = floatParam(ps, "alpha", 2, reg);
+    return t;
 }
 
 std::shared_ptr<Material> defaultDiffuse() { return std::make_shared<DiffuseMaterial>(constantSpectrum(Spectrum(0.5f))); }
@@ -236,7 +267,7 @@ std::shared_ptr<typename TextureOf<T>::type> createTexture(const TextureEntity& 
 std::shared_ptr<const ShadingDetail> shadingDetailParam(const std::string& type, const ParamSet& ps,
                                                         const TextureRegistry& reg, const std::string& base) {
     if (!ps.has("normalmap") && !ps.has("displacement")) return nullptr;
-    if (type == "mix" || type == "interface" || type == "" || type == "none") {
+    if (type == "mix" || type == "interface" || type == "" || type == "none" || type == "hair") {
         // mix chooses a member first, whose own map then applies; interface does not scatter.
         const char* name = ps.has("normalmap") ? "normalmap" : "displacement";
         ps.getString("normalmap", "");
@@ -323,6 +354,8 @@ std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet
         if (file.empty()) throw InputError(ps.loc, "measured: \"string filename\" (a .bsdf file) is required");
         std::string path = resolvePath(base, file);
         m = std::make_shared<MeasuredMaterial>(readNamedBy(ps.loc, [&] { return MeasuredBRDF::load(path); }));
+    } else if (type == "hair") {
+        m = std::make_shared<HairMaterial>(hairParams(ps, reg));
     } else if (type == "interface" || type == "" || type == "none") {
         m = std::make_shared<InterfaceMaterial>();
     } else {

@@ -212,7 +212,7 @@ TEST_F(Materials, InterfaceAndUnknown) {
     EXPECT_EQ(bxdf(*i), nullptr);
     EXPECT_TRUE(make("none", Params())->isInterface());
     int before = warningCount();
-    auto u = make("hair", Params().f("eumelanin", 1.3));
+    auto u = make("subsurface", Params().f("eta", 1.33));
     EXPECT_EQ(warningCount(), before + 1);  // one warning naming the type
     EXPECT_NEAR(bxdf(*u)->f(kUp, kOblique, TransportMode::Radiance).g, 0.5f / kPi, 1e-6f);
     // Unknown parameters of known materials warn.

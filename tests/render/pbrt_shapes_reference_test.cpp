@@ -25,7 +25,9 @@ double luminance(Spectrum c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b
 // scene file in tests/data/pbrt-v4, with no allowance: every block within 4 sigma, and the
 // image's mean luminance within 4 sigma with sigma under 0.5%. Texture and lens paths in the
 // file are relative to it.
-void expectPbrtReference(const std::string& sceneFile, const std::string& refFile, int refSpp, int spp) {
+// `allowance` (relative, 0 by default) widens each block's and the image's test where the two
+// renderers are known to differ slightly (the caller says why).
+void expectPbrtReference(const std::string& sceneFile, const std::string& refFile, int refSpp, int spp, double allowance = 0) {
     const fs::path dir = fs::path(PATHSPACE_SOURCE_DIR) / "tests" / "data" / "pbrt-v4";
     std::ifstream in(dir / sceneFile);
     std::stringstream text;
@@ -57,14 +59,14 @@ void expectPbrtReference(const std::string& sceneFile, const std::string& refFil
             const double z = (ours.mean[i] - r) / se;
             std::printf("  block (%d,%d): ours %.5f pbrt-v4 %.5f (%+.2f%%, %+.2f sigma)\n", bx, by, ours.mean[i], r,
                         100 * (ours.mean[i] / r - 1), z);
-            if (std::fabs(z) > 4) ++outside;
+            if (std::fabs(ours.mean[i] - r) > 4 * se + allowance * r) ++outside;
         }
     EXPECT_EQ(outside, 0);
     const double se = ours.imageStdErr * std::hypot(1.0, refScale);
     std::printf("  image: ours %.5f pbrt-v4 %.5f, ratio %.4f +- %.4f (%+.2f sigma)\n", ours.imageMean, refImage,
                 ours.imageMean / refImage, se / refImage, (ours.imageMean - refImage) / se);
     EXPECT_LT(se / refImage, 0.005) << "too noisy to detect a 2% change";
-    EXPECT_NEAR(ours.imageMean, refImage, 4 * se);
+    EXPECT_NEAR(ours.imageMean, refImage, 4 * se + allowance * refImage);
 }
 
 }  // namespace
@@ -91,4 +93,20 @@ TEST(PbrtShapesReference, RealisticCamera) {
 // conductor, and one with a scattering layer over a smooth conductor).
 TEST(PbrtShapesReference, CoatedConductor) {
     expectPbrtReference("coated-conductor.pbrt", "coated-conductor-4096spp.exr", 4096, 64);
+}
+
+// Material "hair" (grey sigma_a and reflectance; default and changed roughness, tilt and
+// index) on a sphere and a bilinear patch, where h = -1 + 2v is the same for both renderers.
+TEST(PbrtShapesReference, HairOnSurfaces) {
+    expectPbrtReference("hair-surfaces.pbrt", "hair-surfaces-4096spp.exr", 4096, 64);
+}
+
+// Material "hair" on cylinder, ribbon and flat curves (and a sphere), whose v gives h. An
+// allowance of 1.5% per block: pbrt-v4's ribbons and tubes are ray-facing strips while ours
+// are Embree's true ribbons and swept circles, whose coverage at oblique views and at the
+// curve ends differs slightly (measured: blocks within 1.2%, the image within 0.35%, with no
+// visible difference in per-fibre profiles under a distant light). It still sees a tube that
+// shadows its own transmission (13% in the tubes' blocks).
+TEST(PbrtShapesReference, HairOnCurves) {
+    expectPbrtReference("hair-curves.pbrt", "hair-curves-4096spp.exr", 4096, 64, 0.015);
 }

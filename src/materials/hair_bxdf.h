@@ -1,0 +1,70 @@
+// pbrt-v4's hair scattering model (Chiang et al. 2016, on d'Eon et al. 2011): a fibre seen
+// as a rough dielectric cylinder. The local frame has the fibre along +x and the surface
+// normal on +z; h in [-1, 1] is where across the fibre's width the ray hit it.
+//
+// Scattering is a sum of lobes p = 0 (reflection), 1 (transmission through), 2 (one internal
+// reflection) and 3 (all longer paths): each a longitudinal lobe Mp (the von Mises-Fisher
+// cone with Bessel I0, variance from beta_m, tilted by the cuticle angle alpha), an azimuthal
+// lobe Np (a trimmed logistic of width from beta_n around the refracted exit azimuth, uniform
+// for p = 3) and an attenuation Ap (Fresnel and absorption sigma_a along the internal path).
+// f |cos wi| is the sum of the lobes, so with sigma_a = 0 the albedo is exactly 1.
+//
+// The model is not reciprocal (Ap, the tilts and the exit azimuth depend on wo only), so
+// TransportMode::Importance returns the adjoint f*(wo, wi) = f(wi, wo): light tracing and
+// BDPT then estimate the image path tracing does. No radiance scaling of refraction enters:
+// light that refracts into the fibre refracts out again, the eta^2 factors cancel (the sample's
+// eta is 1). Sampling follows the radiance form (lobe by Ap, Mp and Np exactly); in
+// importance mode the azimuth is mirrored, where the adjoint's lobes lie (its exit azimuths
+// are those of f(wo, .) reflected, e.g. +2 gamma_o for the reflection instead of -2 gamma_o).
+// pdf() is the exact density of each mode's sampling.
+//
+// h is taken as given. Where it is a property of the surface point (ribbons, meshes) the
+// adjoint is exact. On flat and cylinder curves pbrt-v4 derives h from the ray that found
+// the hit, so a light-tracing vertex has the light ray's h, not the camera side's.
+#pragma once
+#include <array>
+#include "materials/bxdf.h"
+
+namespace ps {
+
+struct HairParams {
+    float h = 0;            // offset across the fibre, -1 .. 1
+    float eta = 1.55f;      // index of refraction of the fibre
+    Spectrum sigmaA;        // absorption per unit of the fibre's radius
+    float betaM = 0.3f;     // longitudinal roughness, 0.01 .. 1
+    float betaN = 0.3f;     // azimuthal roughness, 0.01 .. 1
+    float alphaDegrees = 2; // tilt of the cuticle scales
+};
+
+class HairBxDF final : public BxDF {
+public:
+    static constexpr int kPMax = 3;  // lobes 0 .. kPMax - 1 explicitly, kPMax for the rest
+
+    explicit HairBxDF(const HairParams& p);
+    uint8_t flags() const override { return kReflection | kGlossy; }
+    Spectrum f(Vec3 wo, Vec3 wi, TransportMode mode) const override;
+    std::optional<BSDFSample> sample(Vec3 wo, float uc, Vec2 u, TransportMode mode) const override;
+    float pdf(Vec3 wo, Vec3 wi, TransportMode mode) const override;
+
+    // pbrt-v4's absorption of melanin concentrations, given in RGB (as pbrt-v4 states them
+    // before its conversion to a spectrum).
+    static Spectrum sigmaAFromConcentration(float eumelanin, float pheomelanin);
+    // The absorption that gives a fibre of azimuthal roughness betaN the multiply-scattered
+    // colour c (Chiang et al.'s fit), per channel.
+    static Spectrum sigmaAFromReflectance(const Spectrum& c, float betaN);
+
+private:
+    struct Lobes;  // everything that depends on wo only (hair_bxdf.cpp)
+    Lobes lobes(Vec3 wo) const;
+    // pbrt-v4's f(wo, wi), the radiance form.
+    Spectrum radiance(const Lobes& L, Vec3 wi) const;
+    double density(const Lobes& L, double sinThetaI, double cosThetaI, double dphi) const;
+
+    double h_, eta_, gammaO_;
+    std::array<double, 3> sigmaA_;
+    std::array<double, kPMax + 1> v_;  // longitudinal variance per lobe
+    double s_;                         // logistic scale of Np
+    std::array<double, kPMax> sin2kAlpha_, cos2kAlpha_;
+};
+
+}  // namespace ps
