@@ -275,14 +275,16 @@ int RenderCommand::run() {
     CheckpointState resumed;
     if (!resume_.empty()) {
         // Rank 0 reads it (the others need not see its file system) and says where it stands.
-        std::vector<int64_t> where{0, 1};
+        std::vector<int64_t> where{0, 1, 0};
         if (root) {
             resumed = readCheckpoint(resume_, checkpointSettings);
-            where = {resumed.samplesPerPixel, resumed.passSize};
+            where = {resumed.samplesPerPixel, resumed.passSize, int64_t(resumed.partial.size())};
         }
         distributed::broadcastFromRoot(where);
         resumed.samplesPerPixel = int(where[0]);
         resumed.passSize = int(where[1]);
+        resumed.partial.resize(size_t(where[2]));
+        distributed::broadcastFromRoot(resumed.partial);
     }
     if (!checkpoint_.empty() && root) {
         const std::string probe = checkpoint_ + ".tmp";

@@ -159,9 +159,36 @@ void sumToRoot(std::vector<__int128>& v) {
 #endif
 }
 
+void orToRoot(std::vector<uint64_t>& v) {
+#if PATHSPACE_HAVE_MPI
+    if (gSize <= 1) return;
+    Timed t(double(v.size() * sizeof(uint64_t)));
+    inChunks(v.size(), [&](size_t at, int n) {
+        void* send = gRank == 0 ? MPI_IN_PLACE : v.data() + at;
+        check(MPI_Reduce(send, v.data() + at, n, MPI_UINT64_T, MPI_BOR, 0, MPI_COMM_WORLD), "reduce");
+    });
+#else
+    (void)v;
+#endif
+}
+
 void broadcastFromRoot(std::vector<int64_t>& v) {
 #if PATHSPACE_HAVE_MPI
-    if (gSize > 1) check(MPI_Bcast(v.data(), int(v.size()), MPI_INT64_T, 0, MPI_COMM_WORLD), "broadcast");
+    if (gSize > 1)
+        inChunks(v.size(), [&](size_t at, int n) {
+            check(MPI_Bcast(v.data() + at, n, MPI_INT64_T, 0, MPI_COMM_WORLD), "broadcast");
+        });
+#else
+    (void)v;
+#endif
+}
+
+void broadcastFromRoot(std::vector<uint64_t>& v) {
+#if PATHSPACE_HAVE_MPI
+    if (gSize > 1)
+        inChunks(v.size(), [&](size_t at, int n) {
+            check(MPI_Bcast(v.data() + at, n, MPI_UINT64_T, 0, MPI_COMM_WORLD), "broadcast");
+        });
 #else
     (void)v;
 #endif

@@ -22,18 +22,39 @@ namespace ps {
 
 namespace {
 
+// Where a uniform render stands: passes [0, s0) whole, the next (or current) pass of `pass`
+// samples per pixel, of which the samples in `partial` (per pixel, bit k: index s0 + k; empty:
+// none) are already in the film.
+struct UniformProgress {
+    int s0 = 0, pass = 1;
+    std::vector<uint64_t> partial;
+};
+
 // Passes of growing size: an early stop leaves every pixel with a similar count, and each
 // pixel is normalised by its own weights, so the image stays unbiased. Processes of one
-// render agree after every pass whether to go on. A resumed render starts at (s0, pass);
-// afterPass(s1, next pass) runs after every whole pass but the last.
-bool renderUniform(SamplePasses& passes, Film& film, int spp, int s0, int pass,
+// render agree after every pass whether to go on. afterPass(s1, next pass) runs after every
+// whole pass but the last. With `track`, a pass that stops leaves in at.partial the samples
+// this process took of it (with those taken before), for a last checkpoint.
+bool renderUniform(SamplePasses& passes, Film& film, int spp, UniformProgress& at, bool track,
                    const std::function<void(int, int)>& afterPass) {
-    while (s0 < spp) {
-        int s1 = std::min(spp, s0 + pass);
-        if (distributed::anyOf(!passes.run(film, [&](size_t) { return SampleSpan{s0, s1}; }))) return false;
-        s0 = s1;
-        pass = std::min(pass * 2, 64);
-        if (s0 < spp) afterPass(s0, pass);
+    std::vector<uint64_t> taken;
+    while (at.s0 < spp) {
+        const int s1 = std::min(spp, at.s0 + at.pass);
+        if (track) taken.assign(passes.pixelCount(), 0);
+        const bool whole = passes.run(
+            film, [&](size_t p) { return SampleSpan{at.s0, s1, at.partial.empty() ? 0 : at.partial[p]}; },
+            SamplePasses::Stream::Main, track ? &taken : nullptr);
+        if (distributed::anyOf(!whole)) {
+            if (track) {
+                if (at.partial.empty()) at.partial.assign(taken.size(), 0);
+                for (size_t i = 0; i < taken.size(); ++i) at.partial[i] |= taken[i];
+            }
+            return false;
+        }
+        at.partial.clear();
+        at.s0 = s1;
+        at.pass = std::min(at.pass * 2, 64);
+        if (at.s0 < spp) afterPass(at.s0, at.pass);
     }
     return true;
 }
@@ -146,7 +167,13 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     bool complete = false;
     // Where a resumed render stands (its sums join the film on rank 0 at the end).
     const CheckpointState* resume = options.resume;
-    const int s0 = resume ? std::min(resume->samplesPerPixel, spp) : 0;
+    UniformProgress at;
+    if (resume) {
+        at = {std::min(resume->samplesPerPixel, spp), resume->passSize, resume->partial};
+        if (!at.partial.empty() && at.partial.size() != film.pixelCount())
+            throw InputError("--resume: the checkpoint's partial pass has another size than this render's film");
+    }
+    const int s0 = at.s0;
     result.resumedSpp = s0;
     // After a whole pass, once checkpointEvery seconds have passed (the processes agree): the
     // films' sums, with the resumed ones, to rank 0, which writes them.
@@ -173,7 +200,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
                         (bounds.area() * (spp - s0) + ranks - 1) / ranks);
         switch (options.adaptive) {
             case AdaptiveMode::None:
-                complete = renderUniform(passes, film, spp, s0, resume ? resume->passSize : 1, afterPass);
+                complete = renderUniform(passes, film, spp, at, bool(options.checkpoint), afterPass);
                 break;
             case AdaptiveMode::Sequential: complete = renderSequential(passes, film, monitor, spp); break;
             case AdaptiveMode::TwoStage: complete = renderTwoStage(passes, film, monitor, spp); break;
@@ -181,7 +208,23 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
         result.seconds = monitor.elapsed();
     }
     result.stats = passes.stats();
+    // Stopped early (a signal, --time): a last checkpoint, of everything taken so far, the
+    // stopped pass's samples included, so that no finished work is lost.
+    const bool finalCheckpoint = !complete && options.checkpoint && options.adaptive == AdaptiveMode::None;
+    if (finalCheckpoint) distributed::orToRoot(at.partial);
     if (!reduceToRoot(film, passes, result, resume)) return result;
+    if (finalCheckpoint) {
+        CheckpointState state;
+        state.samplesPerPixel = at.s0;
+        state.passSize = at.pass;
+        state.partial = std::move(at.partial);
+        state.sums = film.accumulators();
+        state.samples = std::accumulate(result.distributed.rankSamples.begin(), result.distributed.rankSamples.end(), 0LL) +
+                        (resume ? resume->samples : 0);
+        state.stats = result.stats;
+        options.checkpoint(state);
+        ++result.checkpoints;
+    }
     // Every camera sample traced one light path; the imaging ratio scales splats as well.
     const float imagingRatio = scene.settings().imagingRatio;
     const double lightPaths = imagingRatio > 0 ? film.meanSamplesPerPixel() * double(bounds.area()) / imagingRatio : 0.0;

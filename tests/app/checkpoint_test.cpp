@@ -134,3 +134,60 @@ TEST_F(Checkpoint, RefusedWhereNotSupported) {
         EXPECT_FALSE(fs::exists(path("ck")));
     }
 }
+
+// A render with --checkpoint stopped early (SIGINT, SIGTERM, --time; one process, or SIGINT to
+// one of 2 processes) writes a last checkpoint at once, --checkpoint-every notwithstanding, of
+// everything taken so far, the samples of the pass it stopped in included: resumed, the image
+// is the uninterrupted render's bit for bit, and the two runs together took exactly the
+// uninterrupted render's samples (none lost, none taken twice).
+TEST_F(Checkpoint, StoppedEarlyWritesALastCheckpoint) {
+    const std::string spp = "2048";
+    ASSERT_EQ(render("full", "--threads 2 --spp " + spp).status, 0);
+    const long long fullSamples = stats("full.json")["camera_paths"].get<long long>();
+    std::string noMpi;
+    mpirunPath(noMpi);
+    for (const std::string how : {"SIGINT", "SIGTERM", "--time", "SIGINT to one of 2 processes"}) {
+        SCOPED_TRACE(how);
+        fs::remove(path("ck"));
+        const std::vector<std::string> args{"render", "--quiet", "--threads", "1", "--spp", spp, scene(), "-o",
+                                            path("part.pfm"), "--stats", path("part.json"), "--checkpoint", path("ck"),
+                                            "--checkpoint-every", "1000"};
+        if (how == "--time") {
+            std::vector<std::string> a = args;
+            a.insert(a.end(), {"--time", "0.1"});
+            std::string line;
+            for (const std::string& s : a) line += s + " ";
+            ASSERT_EQ(runPathspace(line).status, 0);
+        } else if (how == "SIGINT to one of 2 processes") {
+            if (!noMpi.empty()) {
+                std::printf("%s: not tested, %s\n", how.c_str(), noMpi.c_str());
+                continue;
+            }
+            RunningMpiJob job(2, args);
+            ASSERT_TRUE(job.waitUntilRendering(cpuSeconds(0.05))) << "the job ended or hung before rendering";
+            kill(job.ranks().back(), SIGINT);
+            ASSERT_EQ(job.wait(), 130);
+        } else {
+            RunningPathspace p(args);
+            ASSERT_TRUE(p.waitUntilRendering(cpuSeconds(0.1))) << "pathspace exited or hung before rendering";
+            EXPECT_TRUE(p.signalAndWaitTaken(how == "SIGINT" ? SIGINT : SIGTERM));
+            ASSERT_EQ(p.wait(), 130);
+        }
+        nlohmann::json part = stats("part.json");
+        EXPECT_TRUE(part["stopped_early"].get<bool>()) << "the render was not stopped before its end";
+        EXPECT_EQ(part["checkpoints"], 1) << "no last checkpoint counted";
+        ASSERT_TRUE(fs::exists(path("ck"))) << "no last checkpoint written";
+
+        ASSERT_EQ(render("resumed", "--threads 2 --spp " + spp + " --resume " + path("ck")).status, 0);
+        nlohmann::json r = stats("resumed.json");
+        const long long before = part["camera_paths"].get<long long>(), after = r["rank_samples"][0].get<long long>();
+        std::printf("%s: stopped at %.2f spp, resumed from %d spp + a part of the next pass; samples %lld + %lld = %lld "
+                    "(uninterrupted %lld)\n",
+                    how.c_str(), part["spp_mean"].get<double>(), r["resumed_spp"].get<int>(), before, after,
+                    before + after, fullSamples);
+        EXPECT_EQ(before + after, fullSamples) << "samples lost or taken twice";
+        EXPECT_EQ(r["camera_paths"].get<long long>(), fullSamples);
+        EXPECT_TRUE(bytes(path("resumed.pfm")) == bytes(path("full.pfm")))
+            << "the image resumed from the last checkpoint differs from the uninterrupted one";
+    }
+}
