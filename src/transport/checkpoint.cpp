@@ -43,11 +43,31 @@ nlohmann::json statsJson(const PathStats& s) {
     return {s.cameraPaths, s.lightPaths, s.rays, s.shadowRays, s.guarded};
 }
 
+// For a setting that maps file names to hashes: each file that differs.
+std::string fileDifferences(const nlohmann::json& want, const nlohmann::json& have) {
+    std::string d;
+    auto add = [&](const std::string& s) { d += (d.empty() ? "" : "; ") + s; };
+    for (const auto& [file, hash] : want.items()) {
+        const auto it = have.find(file);
+        if (it == have.end()) add("the scene reads \"" + file + "\", which the checkpoint's render did not read");
+        else if (*it != hash)
+            add("\"" + file + "\" has changed since the checkpoint (hash " + hash.dump() + " here, " + it->dump() + " then)");
+    }
+    for (const auto& [file, hash] : have.items())
+        if (!want.contains(file)) add("the checkpoint's render read \"" + file + "\", which the scene no longer reads");
+    return d;
+}
+
 // "spp 64 here, 32 in the checkpoint; integrator ..." for every setting that differs.
 std::string differences(const nlohmann::json& want, const nlohmann::json& have) {
     std::string d;
     for (const auto& [key, value] : want.items()) {
         const auto it = have.find(key);
+        if (value.is_object() && it != have.end() && it->is_object()) {
+            const std::string f = fileDifferences(value, *it);
+            if (!f.empty()) d += (d.empty() ? "" : "; ") + f;
+            continue;
+        }
         const std::string old = it == have.end() ? "absent" : it->dump();
         if (it == have.end() || *it != value)
             d += (d.empty() ? "" : "; ") + key + " " + value.dump() + " here, " + old + " in the checkpoint";

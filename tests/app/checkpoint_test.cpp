@@ -191,3 +191,46 @@ TEST_F(Checkpoint, StoppedEarlyWritesALastCheckpoint) {
             << "the image resumed from the last checkpoint differs from the uninterrupted one";
     }
 }
+
+// The checkpoint covers every file the scene reads, not only the scene file: when an
+// included scene file or a PLY mesh has changed since, --resume refuses, naming that file,
+// and nothing is written; with the files as they were, it resumes.
+TEST_F(Checkpoint, RefusesWhenAFileTheSceneReadsChanged) {
+    std::string main = kSkyScene;
+    main.replace(main.find("Material"), std::string::npos, "Include \"sub/object.pbrt\"\n");
+    write("main.pbrt", main);
+    fs::create_directories(dir / "sub");
+    const std::string object = "Material \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n"
+                               "Shape \"sphere\" \"float radius\" [ 1 ]\n"
+                               "Shape \"plymesh\" \"string filename\" \"sub/quad.ply\"\n";
+    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                            "-2 -2 -1\n2 -2 -1\n0 2 -1\n3 0 1 2\n";
+    write("sub/object.pbrt", object);
+    write("sub/quad.ply", ply);
+    const std::string run = "render --quiet " + path("main.pbrt") + " --spp 8 -o " + path("out.pfm");
+    ASSERT_EQ(runPathspace(run + " --checkpoint " + path("ck") + " --checkpoint-every 0").status, 0);
+
+    struct Case {
+        std::string what, file, text;
+    };
+    auto replaced = [](std::string text, const std::string& a, const std::string& b) {
+        return text.replace(text.find(a), a.size(), b);
+    };
+    for (const Case& c : std::vector<Case>{{"included scene file", "sub/object.pbrt", replaced(object, "0.5 0.5 0.5", "0.6 0.5 0.5")},
+                                           {"PLY mesh", "sub/quad.ply", replaced(ply, "0 2 -1", "0 3 -1")}}) {
+        SCOPED_TRACE(c.what);
+        const std::string before = bytes(path(c.file));
+        ASSERT_NE(c.text, before);
+        write(c.file, c.text);
+        std::ofstream(path("out.pfm")) << "keep";
+        const Result r = runPathspace(run + " --resume " + path("ck"));
+        EXPECT_EQ(r.status, 2) << r.out;
+        EXPECT_NE(r.out.find("\"" + c.file + "\" has changed since the checkpoint"), std::string::npos) << r.out;
+        EXPECT_TRUE(bytes(path("out.pfm")) == "keep") << "the output was overwritten";
+        std::printf("%s changed: %s", c.what.c_str(), r.out.c_str());
+        write(c.file, before);
+    }
+    const Result same = runPathspace(run + " --resume " + path("ck"));
+    EXPECT_EQ(same.status, 0) << "with the files as they were: " << same.out;
+}
