@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "image/image.h"
@@ -147,4 +149,49 @@ TEST_F(Mpi, RefusesWhatItCannotSplit) {
         Result one = runMpi(1, "render --quiet --spp 4 " + scene() + " -o " + path("r1.pfm") + " " + opts);
         EXPECT_EQ(one.status, 0) << one.out;
     }
+}
+
+// A process killed outright (SIGKILL: a crash, a lost node) ends the whole job with a failure
+// status, and nothing hangs (the job has a 60 s watchdog, and must end well within it); the
+// last checkpoint survives, and resumed on one process gives the uninterrupted image bit for
+// bit (path tracer).
+TEST_F(Mpi, KilledProcessEndsTheJobAndItsCheckpointResumes) {
+    PS_SKIP_WITHOUT_MPI();
+    const std::string spp = "8192";
+    render(0, "full", "--threads 2 --spp " + spp);
+    const std::string ck = path("ck");
+    double secondsToEnd = 0;
+    {
+        RunningMpiJob job(2, {"render", "--quiet", "--threads", "1", "--spp", spp, scene(), "-o", path("killed.pfm"),
+                              "--checkpoint", ck, "--checkpoint-every", "0"});
+        ASSERT_TRUE(job.waitUntilRendering(0.01)) << "the job ended or hung before rendering";
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+        while (!fs::exists(ck) && std::chrono::steady_clock::now() < deadline)
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        ASSERT_TRUE(fs::exists(ck)) << "no checkpoint written";
+        ASSERT_TRUE(job.waitUntilRendering(cpuSeconds(0.1))) << "the job ended before the kill";
+        const auto killed = std::chrono::steady_clock::now();
+        ASSERT_EQ(kill(job.ranks().back(), SIGKILL), 0);
+        const int status = job.wait();
+        secondsToEnd = std::chrono::duration<double>(std::chrono::steady_clock::now() - killed).count();
+        std::printf("job status %d\n", status);
+        EXPECT_NE(status, 0) << "the job succeeded with a process killed";
+        EXPECT_NE(status, 124) << "the job hung until its watchdog (timeout 60) ended it";
+        EXPECT_LT(secondsToEnd, 30.0);
+    }
+    EXPECT_FALSE(fs::exists(path("killed.pfm"))) << "an image was written by a job that lost a process";
+    for (const fs::directory_entry& e : fs::directory_iterator(dir))
+        EXPECT_NE(e.path().filename().string().rfind("ck.tmp", 0), 0u) << "a temporary checkpoint was left behind";
+
+    Result r = runPathspace("render --quiet " + scene() + " --threads 2 --spp " + spp + " --resume " + ck + " -o " +
+                            path("resumed.pfm") + " --stats " + path("resumed.json"));
+    ASSERT_EQ(r.status, 0) << r.out;
+    const int from = stats("resumed.json")["resumed_spp"].get<int>();
+    std::printf("job ended %.2f s after the kill; resumed on one process from %d of %s spp\n", secondsToEnd, from,
+                spp.c_str());
+    EXPECT_GT(from, 0);
+    EXPECT_LT(from, std::stoi(spp));
+    EXPECT_EQ(stats("resumed.json")["camera_paths"], stats("full.json")["camera_paths"]);
+    EXPECT_TRUE(bytes(path("resumed.pfm")) == bytes(path("full.pfm")))
+        << "resumed from the killed job's checkpoint, the image differs from the uninterrupted one";
 }
