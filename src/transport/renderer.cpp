@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <numeric>
 
 #include <tbb/task_arena.h>
@@ -143,10 +144,10 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
         throw InputError("adaptive sampling needs an integrator whose pixels come from their own samples "
                          "(path); light tracing, BDPT and Metropolis splat onto the whole film");
     auto* mlt = dynamic_cast<const MetropolisIntegrator*>(&integrator);
-    if (distributed::size() > 1 && (mlt || options.adaptive != AdaptiveMode::None))
-        throw InputError(std::string(mlt ? "Metropolis (pssmlt, mmlt)" : "adaptive sampling (--adaptive)") +
+    if (distributed::size() > 1 && (mlt || options.adaptive == AdaptiveMode::Sequential))
+        throw InputError(std::string(mlt ? "Metropolis (pssmlt, mmlt)" : "sequential adaptive sampling (--adaptive sequential)") +
                          " does not yet run over several processes: render it with one (without mpirun, or -n 1); "
-                         "path, light and bdpt with uniform sampling do");
+                         "path, light and bdpt with uniform or two-stage adaptive sampling do");
     if ((options.resume || options.checkpoint) && (mlt || options.adaptive != AdaptiveMode::None))
         throw InputError(std::string(mlt ? "Metropolis (pssmlt, mmlt)" : "adaptive sampling (--adaptive)") +
                          " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling do");
@@ -194,6 +195,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     };
     // One progress bar, rank 0's, over its share; the clocks of all processes start together.
     const int ranks = distributed::size();
+    std::unique_ptr<Film> pilot;  // a two-stage render's first stage
     distributed::barrier();
     {
         Monitor monitor(options.progress && distributed::isRoot(), options.timeLimit, options.cancel, stop, samplesDone,
@@ -203,7 +205,11 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
                 complete = renderUniform(passes, film, spp, at, bool(options.checkpoint), afterPass);
                 break;
             case AdaptiveMode::Sequential: complete = renderSequential(passes, film, monitor, spp); break;
-            case AdaptiveMode::TwoStage: complete = renderTwoStage(passes, film, monitor, spp); break;
+            case AdaptiveMode::TwoStage:
+                pilot = std::make_unique<Film>(film.xRes(), film.yRes(), film.bounds());
+                pilot->setMaxComponentValue(film.maxComponentValue(), 1);  // its pixels may stand in for the film's
+                complete = renderTwoStage(passes, film, *pilot, monitor, spp);
+                break;
         }
         result.seconds = monitor.elapsed();
     }
@@ -213,6 +219,8 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     const bool finalCheckpoint = !complete && options.checkpoint && options.adaptive == AdaptiveMode::None;
     if (finalCheckpoint) distributed::orToRoot(at.partial);
     if (!reduceToRoot(film, passes, result, resume)) return result;
+    // Pixels a stop left without second-stage samples: the (whole) pilot's stand in.
+    if (pilot) film.adoptEmptyPixels(*pilot);
     if (finalCheckpoint) {
         CheckpointState state;
         state.samplesPerPixel = at.s0;

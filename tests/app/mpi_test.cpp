@@ -78,6 +78,39 @@ TEST_F(Mpi, PathTracerImageIndependentOfProcessesAndThreads) {
     }
 }
 
+// Two-stage adaptive sampling over 2 and 3 processes: the pilot's exact sums are added on
+// rank 0, which allocates the second stage and sends the allocation to the others; every
+// process takes its share of both stages, so the image, its variance and the per-pixel counts
+// (hence the statistics) are one process's bit for bit. Also under --time (a sample budget
+// from the rate measured on rank 0, the same on every process): the exact image within 4 sigma.
+TEST_F(Mpi, TwoStageAdaptiveSamplingImageIndependentOfProcesses) {
+    PS_SKIP_WITHOUT_MPI();
+    const std::string opts = "--spp 64 --adaptive twostage --integrator path";
+    render(0, "plain", opts + " --threads 2");
+    for (int k : {2, 3}) {
+        const std::string name = "k" + std::to_string(k);
+        SCOPED_TRACE(name);
+        render(k, name, opts + " --threads 1");
+        expectSameBits(name, "plain");
+        nlohmann::json j = stats(name + ".json"), plain = stats("plain.json");
+        EXPECT_EQ(j["ranks"], k);
+        EXPECT_EQ(j["camera_paths"], plain["camera_paths"]);
+        EXPECT_EQ(j["spp_mean"], plain["spp_mean"]);
+        for (const auto& n : j["rank_samples"])
+            EXPECT_NEAR(n.get<double>(), plain["camera_paths"].get<double>() / k, 0.02 * plain["camera_paths"].get<double>() / k)
+                << "an uneven share";
+        std::printf("%d processes: samples %s of %s\n", k, j["rank_samples"].dump().c_str(),
+                    plain["camera_paths"].dump().c_str());
+    }
+    render(2, "timed", "--spp 100000000 --adaptive twostage --threads 1 --time 0.6");
+    expectExactSkyImage(ps::readImage(path("timed.pfm")), "two-stage, --time, 2 processes");
+    // The budget, turned into samples from the measured rate, ends the render near its time.
+    nlohmann::json t = stats("timed.json");
+    EXPECT_LT(t["spp_mean"].get<double>(), 1e8);
+    for (const auto& sec : t["rank_seconds"]) EXPECT_LT(sec.get<double>(), 5.0);
+    for (const auto& n : t["rank_samples"]) EXPECT_GT(n.get<long long>(), 32 * 24 * 8);
+}
+
 // Light tracing and BDPT splat onto the whole film, in fixed point: the same bits too.
 TEST_F(Mpi, SplattingIntegratorsImageIndependentOfProcesses) {
     PS_SKIP_WITHOUT_MPI();
@@ -137,7 +170,7 @@ TEST_F(Mpi, SignalStopsEveryProcess) {
 // What does not yet run over several processes says so, and nothing is rendered.
 TEST_F(Mpi, RefusesWhatItCannotSplit) {
     PS_SKIP_WITHOUT_MPI();
-    for (const std::string& opts : {std::string("--adaptive twostage"), std::string("--integrator pssmlt --bootstrap 1000 --chains 16"),
+    for (const std::string& opts : {std::string("--adaptive sequential"), std::string("--integrator pssmlt --bootstrap 1000 --chains 16"),
                                    "--integrator bdpt --bdpt-strategies " + path("st")}) {
         SCOPED_TRACE(opts);
         fs::remove(path("r.pfm"));
