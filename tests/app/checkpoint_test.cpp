@@ -141,7 +141,7 @@ TEST_F(Checkpoint, RefusedWhereNotSupported) {
 // is the uninterrupted render's bit for bit, and the two runs together took exactly the
 // uninterrupted render's samples (none lost, none taken twice).
 TEST_F(Checkpoint, StoppedEarlyWritesALastCheckpoint) {
-    const std::string spp = "2048";
+    const std::string spp = "4096";
     ASSERT_EQ(render("full", "--threads 2 --spp " + spp).status, 0);
     const long long fullSamples = stats("full.json")["camera_paths"].get<long long>();
     std::string noMpi;
@@ -169,7 +169,7 @@ TEST_F(Checkpoint, StoppedEarlyWritesALastCheckpoint) {
             ASSERT_EQ(job.wait(), 130);
         } else {
             RunningPathspace p(args);
-            ASSERT_TRUE(p.waitUntilRendering(cpuSeconds(0.1))) << "pathspace exited or hung before rendering";
+            ASSERT_TRUE(p.waitUntilRendering(cpuSeconds(0.05))) << "pathspace exited or hung before rendering";
             EXPECT_TRUE(p.signalAndWaitTaken(how == "SIGINT" ? SIGINT : SIGTERM));
             ASSERT_EQ(p.wait(), 130);
         }
