@@ -60,26 +60,65 @@ bool renderUniform(SamplePasses& passes, Film& film, int spp, UniformProgress& a
     return true;
 }
 
-// The sums of every process's film into `sums` on rank 0 (false elsewhere), plus the resumed
-// render's: a checkpoint's, or the finished render's. `samples` and `stats`: this process's.
-bool sumAllToRoot(Film::Accumulators& sums, long long& samples, PathStats& stats, const CheckpointState* resume) {
+// Every process's film sums, plus a resumed render's, summed on rank 0 a chunk of pixels at
+// a time through a small buffer, so that no process copies its whole film (for a large film
+// the copy, new memory, costs many times the reduction: bench/README). Rank 0 gets each
+// chunk as take(first pixel, end pixel, sums, counts) in Film::accumulators()'s layout, then
+// the counts after the pixels' (splats, rejected samples) as take(pixels, pixels, {}, counts).
+template <class Take>
+void sumFilmToRoot(const Film& film, const CheckpointState* resume, Take take) {
+    constexpr size_t kChunk = 4096;  // pixels: 640 KB of sums
+    const size_t n = film.pixelCount(), k = Film::kPixelSums;
+    if (resume && distributed::isRoot() && (resume->sums.fixed.size() != n * k || resume->sums.counts.size() != n + film.otherCounts().size()))
+        throw InputError("--resume: the checkpoint's film has another size than this render's");
+    std::vector<Fixed> fixed;
+    std::vector<int64_t> counts;
+    for (size_t b = 0; b < n; b += kChunk) {
+        const size_t e = std::min(n, b + kChunk);
+        fixed.resize((e - b) * k);
+        counts.resize(e - b);
+        film.pixelSums(b, e, fixed.data(), counts.data());
+        distributed::sumToRoot(fixed);
+        distributed::sumToRoot(counts);
+        if (!distributed::isRoot()) continue;
+        if (resume) {
+            for (size_t i = 0; i < fixed.size(); ++i) fixed[i] += resume->sums.fixed[b * k + i];
+            for (size_t i = 0; i < counts.size(); ++i) counts[i] += resume->sums.counts[b + i];
+        }
+        take(b, e, fixed, counts);
+    }
+    counts = film.otherCounts();
+    distributed::sumToRoot(counts);
+    if (!distributed::isRoot()) return;
+    if (resume)
+        for (size_t i = 0; i < counts.size(); ++i) counts[i] += resume->sums.counts[n + i];
+    take(n, n, std::vector<Fixed>{}, counts);
+}
+
+// The samples and path statistics of every process (`samples` and `stats`: this process's),
+// plus a resumed render's, summed on rank 0; false elsewhere.
+bool sumCountsToRoot(long long& samples, PathStats& stats, const CheckpointState* resume) {
     std::vector<int64_t> n{samples, int64_t(stats.cameraPaths), int64_t(stats.lightPaths), int64_t(stats.rays),
                            int64_t(stats.shadowRays), int64_t(stats.guarded)};
-    distributed::sumToRoot(sums.fixed);
-    distributed::sumToRoot(sums.counts);
     distributed::sumToRoot(n);
     if (!distributed::isRoot()) return false;
-    samples = n[0];
+    samples = n[0] + (resume ? resume->samples : 0);
     stats = {uint64_t(n[1]), uint64_t(n[2]), uint64_t(n[3]), uint64_t(n[4]), uint64_t(n[5])};
-    if (resume) {
-        if (resume->sums.fixed.size() != sums.fixed.size() || resume->sums.counts.size() != sums.counts.size())
-            throw InputError("--resume: the checkpoint's film has another size than this render's");
-        for (size_t i = 0; i < sums.fixed.size(); ++i) sums.fixed[i] += resume->sums.fixed[i];
-        for (size_t i = 0; i < sums.counts.size(); ++i) sums.counts[i] += resume->sums.counts[i];
-        samples += resume->samples;
-        stats += resume->stats;
-    }
+    if (resume) stats += resume->stats;
     return true;
+}
+
+// A checkpoint's sums: every process's film and the resumed render's, on rank 0 (false elsewhere).
+bool sumAllToRoot(const Film& film, CheckpointState& state, const CheckpointState* resume) {
+    if (distributed::isRoot()) {
+        state.sums.fixed.reserve(film.pixelCount() * Film::kPixelSums);
+        state.sums.counts.reserve(film.pixelCount() + 1);
+    }
+    sumFilmToRoot(film, resume, [&](size_t, size_t, const std::vector<Fixed>& fixed, const std::vector<int64_t>& counts) {
+        state.sums.fixed.insert(state.sums.fixed.end(), fixed.begin(), fixed.end());
+        state.sums.counts.insert(state.sums.counts.end(), counts.begin(), counts.end());
+    });
+    return sumCountsToRoot(state.samples, state.stats, resume);
 }
 
 // Before the film is made: its bytes against the memory limit, named by the Film directive.
@@ -111,12 +150,14 @@ bool reduceToRoot(Film& film, const SamplePasses& passes, RenderResult& result, 
     d.rankSeconds = distributed::gatherToRoot(result.seconds);
     if (d.ranks == 1 && !resume) return true;
     const distributed::Traffic before = distributed::traffic();
-    Film::Accumulators sums = film.accumulators();
+    sumFilmToRoot(film, resume, [&](size_t b, size_t e, const std::vector<Fixed>& fixed, const std::vector<int64_t>& counts) {
+        if (b < e) film.setPixelSums(b, e, fixed.data(), counts.data());
+        else film.setOtherCounts(counts);
+    });
     long long samples = passes.samplesDone();
-    const bool root = sumAllToRoot(sums, samples, result.stats, resume);
+    const bool root = sumCountsToRoot(samples, result.stats, resume);
     d.reductionBytes = distributed::traffic().bytes - before.bytes;
     d.reductionSeconds = distributed::traffic().seconds - before.seconds;
-    if (root) film.setAccumulators(sums);
     return root;
 }
 
@@ -186,10 +227,9 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
         CheckpointState state;
         state.samplesPerPixel = s1;
         state.passSize = nextPass;
-        state.sums = film.accumulators();
         state.samples = passes.samplesDone();
         state.stats = passes.stats();
-        if (sumAllToRoot(state.sums, state.samples, state.stats, resume)) options.checkpoint(state);
+        if (sumAllToRoot(film, state, resume)) options.checkpoint(state);
         ++result.checkpoints;
         lastCheckpoint = std::chrono::steady_clock::now();
     };
