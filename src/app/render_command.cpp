@@ -22,6 +22,7 @@
 #include "transport/checkpoint.h"
 #include "transport/renderer.h"
 #include "util/error.h"
+#include "util/input_files.h"
 #include "util/memory_limit.h"
 
 namespace ps {
@@ -94,6 +95,22 @@ CLI::Validator countCheck() {
 std::string variancePath(const std::string& output) {
     std::filesystem::path p(output);
     return (p.parent_path() / (p.stem().string() + ".variance" + p.extension().string())).string();
+}
+
+// Every other file the scene read (included scene files, meshes, images, lens and spectrum
+// files): its path relative to the scene file's directory -> the hash of its bytes.
+nlohmann::json inputFileHashes(const std::string& sceneFile) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path scene = fs::weakly_canonical(sceneFile, ec);
+    const fs::path base = scene.parent_path();
+    nlohmann::json files = nlohmann::json::object();
+    for (const std::string& f : inputFiles()) {
+        const fs::path p = fs::weakly_canonical(f, ec);
+        if (p == scene) continue;
+        files[p.lexically_relative(base).generic_string()] = fileHash(f);
+    }
+    return files;
 }
 
 }  // namespace
@@ -277,8 +294,10 @@ int RenderCommand::run() {
                                                                     : "Metropolis (pssmlt, mmlt, mlt)") +
                          " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling do");
     const PixelBounds& bounds = scene->pixelBounds();
+    const bool checkpointing = !checkpoint_.empty() || !resume_.empty();
     const nlohmann::json checkpointSettings = {
-        {"scene_file_hash", checkpoint_.empty() && resume_.empty() ? "" : fileHash(scene_)},
+        {"scene_file_hash", checkpointing ? fileHash(scene_) : ""},
+        {"input_files", checkpointing ? inputFileHashes(scene_) : nlohmann::json::object()},
         {"integrator", settings.integrator},
         {"spp", settings.spp},
         {"seed", settings.seed},
@@ -290,14 +309,16 @@ int RenderCommand::run() {
     CheckpointState resumed;
     if (!resume_.empty()) {
         // Rank 0 reads it (the others need not see its file system) and says where it stands.
-        std::vector<int64_t> where{0, 1};
+        std::vector<int64_t> where{0, 1, 0};
         if (root) {
             resumed = readCheckpoint(resume_, checkpointSettings);
-            where = {resumed.samplesPerPixel, resumed.passSize};
+            where = {resumed.samplesPerPixel, resumed.passSize, int64_t(resumed.partial.size())};
         }
         distributed::broadcastFromRoot(where);
         resumed.samplesPerPixel = int(where[0]);
         resumed.passSize = int(where[1]);
+        resumed.partial.resize(size_t(where[2]));
+        distributed::broadcastFromRoot(resumed.partial);
     }
     if (!checkpoint_.empty() && root) {
         const std::string probe = checkpoint_ + ".tmp";

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "util/error.h"
+#include "util/input_files.h"
 
 namespace ps {
 
@@ -86,6 +87,7 @@ std::vector<LensInterface> parseLensDescription(const std::string& text, const s
 std::vector<LensInterface> readLensFile(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path + ": cannot open lens file: " + std::strerror(errno));
+    noteInputFile(path);
     std::ostringstream ss;
     ss << in.rdbuf();
     return parseLensDescription(ss.str(), path);

@@ -234,16 +234,11 @@ double Film::meanSamplesPerPixel() const {
 
 Film::Accumulators Film::accumulators() const {
     Accumulators a;
-    a.fixed.reserve(pixels_.size() * kFixedPerPixel);
-    a.counts.reserve(pixels_.size() + (splatFilter_ ? size_t(bounds_.area()) * 6 : 0) + 1);
-    for (const Pixel& p : pixels_) {
-        a.fixed.insert(a.fixed.end(), {p.sum[0], p.sum[1], p.sum[2], p.weight, p.sumY, p.sumY2, p.halfY[0], p.halfY[1],
-                                       p.halfWeight[0], p.halfWeight[1]});
-        a.counts.push_back(p.samples);
-    }
-    const std::vector<int64_t> splats = mergedSplats();
-    a.counts.insert(a.counts.end(), splats.begin(), splats.end());
-    a.counts.push_back(rejected_.load());
+    a.fixed.resize(pixels_.size() * kFixedPerPixel);
+    a.counts.resize(pixels_.size());
+    pixelSums(0, pixels_.size(), a.fixed.data(), a.counts.data());
+    const std::vector<int64_t> other = otherCounts();
+    a.counts.insert(a.counts.end(), other.begin(), other.end());
     return a;
 }
 
@@ -251,21 +246,46 @@ void Film::setAccumulators(const Accumulators& a) {
     const size_t splatCount = splatFilter_ ? size_t(bounds_.area()) * 6 : 0;
     if (a.fixed.size() != pixels_.size() * kFixedPerPixel || a.counts.size() != pixels_.size() + splatCount + 1)
         throw std::logic_error("Film::setAccumulators: sums of another film's size");
-    for (size_t i = 0; i < pixels_.size(); ++i) {
-        const Fixed* f = &a.fixed[i * kFixedPerPixel];
+    setPixelSums(0, pixels_.size(), a.fixed.data(), a.counts.data());
+    setOtherCounts(std::vector<int64_t>(a.counts.begin() + std::ptrdiff_t(pixels_.size()), a.counts.end()));
+}
+
+void Film::pixelSums(size_t begin, size_t end, Fixed* fixed, int64_t* counts) const {
+    for (size_t i = begin; i < end; ++i, fixed += kFixedPerPixel) {
+        const Pixel& p = pixels_[i];
+        const Fixed f[kFixedPerPixel] = {p.sum[0], p.sum[1], p.sum[2], p.weight, p.sumY, p.sumY2,
+                                         p.halfY[0], p.halfY[1], p.halfWeight[0], p.halfWeight[1]};
+        std::copy(f, f + kFixedPerPixel, fixed);
+        *counts++ = p.samples;
+    }
+}
+
+void Film::setPixelSums(size_t begin, size_t end, const Fixed* f, const int64_t* counts) {
+    for (size_t i = begin; i < end; ++i, f += kFixedPerPixel) {
         Pixel& p = pixels_[i];
         p.sum[0] = f[0], p.sum[1] = f[1], p.sum[2] = f[2], p.weight = f[3], p.sumY = f[4], p.sumY2 = f[5];
         p.halfY[0] = f[6], p.halfY[1] = f[7], p.halfWeight[0] = f[8], p.halfWeight[1] = f[9];
-        p.samples = a.counts[i];
+        p.samples = *counts++;
     }
+}
+
+std::vector<int64_t> Film::otherCounts() const {
+    std::vector<int64_t> c = mergedSplats();
+    c.push_back(rejected_.load());
+    return c;
+}
+
+void Film::setOtherCounts(const std::vector<int64_t>& c) {
+    const size_t splatCount = splatFilter_ ? size_t(bounds_.area()) * 6 : 0;
+    if (c.size() != splatCount + 1) throw std::logic_error("Film::setOtherCounts: counts of another film's size");
     if (splatFilter_) {
         // The sums now live in one shared array: the per-thread copies are dropped.
         perThreadSplats_ = false;
         threadSplats_.clear();
         splats_.reset(new std::atomic<int64_t>[splatCount]);
-        for (size_t i = 0; i < splatCount; ++i) splats_[i].store(a.counts[pixels_.size() + i], std::memory_order_relaxed);
+        for (size_t i = 0; i < splatCount; ++i) splats_[i].store(c[i], std::memory_order_relaxed);
     }
-    rejected_.store(a.counts.back());
+    rejected_.store(c.back());
 }
 
 }  // namespace ps

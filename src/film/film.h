@@ -156,6 +156,14 @@ public:
     Accumulators accumulators() const;
     // Replaces every sum with `a` (as accumulators() gives them, for a film of the same bounds).
     void setAccumulators(const Accumulators& a);
+    // The same, a range of pixels at a time (a reduction through a small buffer, without a
+    // copy of the whole film): pixels [begin, end)'s kPixelSums sums and one count each, in
+    // accumulators()'s order; and the counts after the pixels' (splat sums, rejected samples).
+    static constexpr size_t kPixelSums = 10;
+    void pixelSums(size_t begin, size_t end, Fixed* fixed, int64_t* counts) const;
+    void setPixelSums(size_t begin, size_t end, const Fixed* fixed, const int64_t* counts);
+    std::vector<int64_t> otherCounts() const;
+    void setOtherCounts(const std::vector<int64_t>& counts);
 
 private:
     // Every sum is a 128-bit fixed-point integer, exact and so independent of the order in
@@ -189,7 +197,7 @@ private:
         Fixed sumY = 0, sumY2 = 0;  // luminance moments
         Fixed halfY[2] = {0, 0}, halfWeight[2] = {0, 0};  // splatting films only
     };
-    static constexpr size_t kFixedPerPixel = 10;  // Pixel's Fixed members, in accumulators()'s order
+    static constexpr size_t kFixedPerPixel = kPixelSums;  // Pixel's Fixed members, in accumulators()'s order
     // Variance of pixel i's mean luminance and that mean (the half-buffer estimate when splatting).
     double pixelVariance(size_t i, double lightPaths, const std::vector<int64_t>& splats, double& mean) const;
     static constexpr double kSplatFixedPoint = 268435456.0;  // 2^28 units per radiance unit

@@ -11,6 +11,7 @@
 #include "util/error.h"
 #include "util/memory_limit.h"
 #include "util/path.h"
+#include "util/input_files.h"
 
 namespace ps {
 
@@ -57,6 +58,7 @@ FileFormat sniff(const unsigned char* b, size_t n, const std::string& ext) {
 Image readImage(const std::string& path, ColorEncoding pngEncoding) {
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), std::fclose);
     if (!f) throw InputError(path + ": cannot open image: " + std::strerror(errno));
+    noteInputFile(path);
     struct stat st;
     if (fstat(fileno(f.get()), &st) != 0) throw InputError(path + ": cannot open image: " + std::strerror(errno));
     if (S_ISDIR(st.st_mode)) throw InputError(path + ": cannot open image: is a directory");

@@ -29,8 +29,12 @@ bool anyOf(bool local);
 // are left unspecified). Integer sums, so the result does not depend on the order.
 void sumToRoot(std::vector<int64_t>& v);
 void sumToRoot(std::vector<__int128>& v);
+// Bitwise OR over processes into rank 0's vector (same length everywhere; others' left
+// unspecified): which samples any process took.
+void orToRoot(std::vector<uint64_t>& v);
 // Rank 0's values on every process (same length everywhere).
 void broadcastFromRoot(std::vector<int64_t>& v);
+void broadcastFromRoot(std::vector<uint64_t>& v);
 // Every process's value, in rank order, on rank 0 (elsewhere: empty).
 std::vector<double> gatherToRoot(double x);
 

@@ -25,6 +25,7 @@
 #include <utility>
 
 #include "util/memory_limit.h"
+#include "util/input_files.h"
 
 namespace ps {
 
@@ -587,6 +588,9 @@ private:
 
 }  // namespace
 
-PlyMesh readPly(const std::string& path) { return PlyReader(path).read(); }
+PlyMesh readPly(const std::string& path) {
+    noteInputFile(path);
+    return PlyReader(path).read();
+}
 
 }  // namespace ps

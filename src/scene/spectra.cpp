@@ -1,4 +1,5 @@
 #include "scene/spectra.h"
+#include "util/input_files.h"
 
 #include <algorithm>
 #include <array>
@@ -209,6 +210,7 @@ std::string readSpectrumFile(const std::string& path, std::vector<float>& lambda
     value.clear();
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) return "\"" + path + "\" is not a readable file";
+    noteInputFile(path);
     FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) return "cannot open \"" + path + "\"";
     std::string text;

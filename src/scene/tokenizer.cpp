@@ -1,4 +1,5 @@
 #include "scene/tokenizer.h"
+#include "util/input_files.h"
 
 #include <zlib.h>
 
@@ -81,6 +82,7 @@ Tokenizer::Tokenizer(std::string text, std::string name) : text_(std::move(text)
 std::unique_ptr<Tokenizer> Tokenizer::fromFile(const std::string& path) {
     // Files are also recognised by the gzip magic number, whatever their name.
     requireRegularFile(path);
+    noteInputFile(path);
     std::string text = hasGzipExtension(path) ? readGzip(path) : readPlain(path);
     if (!hasGzipExtension(path) && text.size() >= 2 && (unsigned char)text[0] == 0x1F && (unsigned char)text[1] == 0x8B)
         text = readGzip(path);

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "render/distributed.h"
 #include "transport/sample_allocation.h"
 #include "util/error.h"
 
@@ -21,32 +22,51 @@ namespace {
 // The first, uniform share of the budget: a quarter, and at least enough for a variance.
 int firstShare(int sppBudget) { return std::max(4, sppBudget / 4); }
 
-// The average samples per pixel the budget allows: spp, or fewer if at the rate measured
-// so far the time limit would come first.
-int sppBudget(int spp, const SamplePasses& passes, const Monitor& monitor, size_t pixels) {
-    if (monitor.timeLimit() <= 0) return spp;
-    double rate = double(passes.samplesDone()) / std::max(monitor.elapsed(), 1e-6);
-    double affordable = rate * monitor.timeLimit() / double(pixels);
-    return int(std::clamp(affordable, 1.0, double(spp)));
+// Camera samples taken so far by all processes, on rank 0 (elsewhere: this process's).
+long long samplesOnRoot(const SamplePasses& passes) {
+    std::vector<int64_t> n{passes.samplesDone()};
+    distributed::sumToRoot(n);
+    return n[0];
 }
 
-// Brings every pixel of `film` up to target(i) samples, continuing its sample indices, in
-// sub-passes of at most 64 samples per pixel (starting from 1 on an empty film, doubling),
-// so that a stop request is honoured soon and leaves every pixel near the same count.
+// The average samples per pixel the budget allows: spp, or fewer if at the rate measured
+// so far the time limit would come first. Decided on rank 0, the same on every process.
+int sppBudget(int spp, const SamplePasses& passes, const Monitor& monitor, size_t pixels) {
+    if (monitor.timeLimit() <= 0) return spp;
+    std::vector<int64_t> budget{samplesOnRoot(passes)};
+    double rate = double(budget[0]) / std::max(monitor.elapsed(), 1e-6);
+    double affordable = rate * monitor.timeLimit() / double(pixels);
+    budget[0] = int64_t(std::clamp(affordable, 1.0, double(spp)));
+    distributed::broadcastFromRoot(budget);
+    return int(budget[0]);
+}
+
+// Every process's film summed into rank 0's (elsewhere left as it is).
+void sumToRoot(Film& film) {
+    if (distributed::size() == 1) return;
+    Film::Accumulators sums = film.accumulators();
+    distributed::sumToRoot(sums.fixed);
+    distributed::sumToRoot(sums.counts);
+    if (distributed::isRoot()) film.setAccumulators(sums);
+}
+
+// Brings every pixel of `film` up to target(i) samples, continuing its sample indices from
+// have[i] (the samples it has from all processes, which each film holds only its share of;
+// updated), in sub-passes of at most 64 samples per pixel (starting from 1 on an empty film,
+// doubling), so that a stop request is honoured soon and leaves every pixel near the same
+// count. The processes agree after every sub-pass whether to go on.
 template <class Target>
-bool fillTo(SamplePasses& passes, Film& film, SamplePasses::Stream stream, Target target) {
-    int chunk = film.meanSamplesPerPixel() == 0 ? 1 : 64;
+bool fillTo(SamplePasses& passes, Film& film, std::vector<int>& have, SamplePasses::Stream stream, Target target) {
+    int chunk = std::all_of(have.begin(), have.end(), [](int n) { return n == 0; }) ? 1 : 64;
     for (bool more = true; more; chunk = std::min(2 * chunk, 64)) {
         std::atomic<bool> unfinished{false};
-        bool ok = passes.run(
-            film,
-            [&](size_t i) {
-                int n = int(film.pixelEstimate(i).samples), t = int(target(i));
-                if (t > n + chunk) unfinished.store(true, std::memory_order_relaxed);
-                return SampleSpan{n, std::max(n, std::min(t, n + chunk))};
-            },
-            stream);
-        if (!ok) return false;
+        auto span = [&](size_t i) {
+            int n = have[i], t = int(target(i));
+            if (t > n + chunk) unfinished.store(true, std::memory_order_relaxed);
+            return SampleSpan{n, std::max(n, std::min(t, n + chunk))};
+        };
+        if (distributed::anyOf(!passes.run(film, span, stream))) return false;
+        for (size_t i = 0; i < have.size(); ++i) have[i] = span(i).end;
         more = unfinished.load();
     }
     return true;
@@ -95,11 +115,12 @@ std::vector<double> twoStageWeights(const Film& pilot) {
 bool renderSequential(SamplePasses& passes, Film& film, const Monitor& monitor, int spp) {
     using Stream = SamplePasses::Stream;
     const size_t pixels = film.pixelCount();
+    std::vector<int> have(pixels, 0);
     // With a time limit, a short first pass measures the rate that sizes the rest.
     const int calibration = monitor.timeLimit() > 0 ? std::min(4, firstShare(spp)) : firstShare(spp);
-    if (!fillTo(passes, film, Stream::Main, [&](size_t) { return calibration; })) return false;
+    if (!fillTo(passes, film, have, Stream::Main, [&](size_t) { return calibration; })) return false;
     const int budget = sppBudget(spp, passes, monitor, pixels);
-    if (!fillTo(passes, film, Stream::Main, [&](size_t) { return std::max(calibration, firstShare(budget)); }))
+    if (!fillTo(passes, film, have, Stream::Main, [&](size_t) { return std::max(calibration, firstShare(budget)); }))
         return false;
     // Under a time limit the rounds go on until it stops them (or spp is reached).
     const long long total = (long long)(monitor.timeLimit() > 0 ? spp : budget) * (long long)pixels;
@@ -113,46 +134,51 @@ bool renderSequential(SamplePasses& passes, Film& film, const Monitor& monitor, 
         long long remaining = total - passes.samplesDone();
         size_t k = std::min<size_t>(perRound, size_t(remaining));
         int add = int(std::min<long long>(step, remaining / (long long)k));
-        std::vector<long long> target(pixels);
-        for (size_t i = 0; i < pixels; ++i) target[i] = film.pixelEstimate(i).samples;
+        std::vector<long long> target(have.begin(), have.end());
         for (size_t i : largestK(error, k)) target[i] += add;
-        if (!fillTo(passes, film, Stream::Main, [&](size_t i) { return target[i]; })) return false;
+        if (!fillTo(passes, film, have, Stream::Main, [&](size_t i) { return target[i]; })) return false;
     }
     return true;
 }
 
-bool renderTwoStage(SamplePasses& passes, Film& film, const Monitor& monitor, int spp) {
+bool renderTwoStage(SamplePasses& passes, Film& film, Film& pilot, const Monitor& monitor, int spp) {
     using Stream = SamplePasses::Stream;
     const size_t pixels = film.pixelCount();
-    Film pilot(film.xRes(), film.yRes(), film.bounds());
-    pilot.setMaxComponentValue(film.maxComponentValue(), 1);  // its pixels may stand in for the film's
+    std::vector<int> have(pixels, 0);
     const int calibration = monitor.timeLimit() > 0 ? std::min(4, firstShare(spp)) : firstShare(spp);
-    if (!fillTo(passes, pilot, Stream::Pilot, [&](size_t) { return calibration; })) {
-        film.adoptEmptyPixels(pilot);
+    if (!fillTo(passes, pilot, have, Stream::Pilot, [&](size_t) { return calibration; })) {
+        sumToRoot(pilot);
         return false;
     }
     const int budget = sppBudget(spp, passes, monitor, pixels);
-    if (!fillTo(passes, pilot, Stream::Pilot, [&](size_t) { return std::max(calibration, firstShare(budget)); })) {
-        film.adoptEmptyPixels(pilot);
+    if (!fillTo(passes, pilot, have, Stream::Pilot, [&](size_t) { return std::max(calibration, firstShare(budget)); })) {
+        sumToRoot(pilot);
         return false;
     }
-    const std::vector<double> weight = twoStageWeights(pilot);
-    long long secondStage = (long long)budget * (long long)pixels - passes.samplesDone();
-    if (monitor.timeLimit() > 0) {
-        double rate = double(passes.samplesDone()) / std::max(monitor.elapsed(), 1e-6);
-        secondStage = std::min(secondStage, (long long)(rate * std::max(0.0, monitor.timeLimit() - monitor.elapsed())));
+    // The allocation from the whole pilot (its exact sums: the same as one process's), on
+    // rank 0, which sends it to the others.
+    sumToRoot(pilot);
+    const long long pilotSamples = samplesOnRoot(passes);
+    std::vector<int64_t> alloc(pixels);
+    if (distributed::isRoot()) {
+        const std::vector<double> weight = twoStageWeights(pilot);
+        long long secondStage = (long long)budget * (long long)pixels - pilotSamples;
+        if (monitor.timeLimit() > 0) {
+            double rate = double(pilotSamples) / std::max(monitor.elapsed(), 1e-6);
+            secondStage = std::min(secondStage, (long long)(rate * std::max(0.0, monitor.timeLimit() - monitor.elapsed())));
+        }
+        const std::vector<int> n = proportionalAllocation(weight, secondStage, 1);
+        std::copy(n.begin(), n.end(), alloc.begin());
     }
-    const std::vector<int> alloc = proportionalAllocation(weight, secondStage, 1);
+    distributed::broadcastFromRoot(alloc);
     // In growing passes, so a time limit leaves every pixel near the same fraction of its
     // allocation; where it leaves a pixel none, the pilot stands in (still unbiased: which
     // pixels those are depends on the clock, not on the samples).
-    bool complete = true;
-    for (double f : {0.125, 0.25, 0.5, 1.0}) {
-        complete = fillTo(passes, film, Stream::Main, [&](size_t i) { return std::max(1.0, std::ceil(alloc[i] * f)); });
-        if (!complete) break;
-    }
-    film.adoptEmptyPixels(pilot);
-    return complete;
+    std::fill(have.begin(), have.end(), 0);
+    for (double f : {0.125, 0.25, 0.5, 1.0})
+        if (!fillTo(passes, film, have, Stream::Main, [&](size_t i) { return std::max(1.0, std::ceil(double(alloc[i]) * f)); }))
+            return false;
+    return true;
 }
 
 }  // namespace ps

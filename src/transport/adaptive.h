@@ -28,7 +28,15 @@ AdaptiveMode parseAdaptiveMode(const std::string& name);
 // per pixel on average, or less if the monitor's time limit comes first (the time budget is
 // turned into a sample budget from the rate measured in the first pass). Returns false if
 // stopped early (time limit or cancellation); the film is then still a correct image.
+// Over several processes (render/distributed.h) every process calls them and takes its share
+// of every pass; the processes agree after every pass whether to stop.
+// Sequential: one process only (its rounds rank the pixels by the film's error).
 bool renderSequential(SamplePasses& passes, Film& film, const Monitor& monitor, int spp);
-bool renderTwoStage(SamplePasses& passes, Film& film, const Monitor& monitor, int spp);
+// `pilot`: an empty film of film's pixels, for the first stage. Rank 0 sums every process's
+// pilot, computes the allocation from it and sends it to the others, so it is one process's
+// allocation, and the image too, bit for bit. On return rank 0's pilot is the whole pilot:
+// once the films are summed, film.adoptEmptyPixels(pilot) there fills the pixels a stop left
+// without second-stage samples.
+bool renderTwoStage(SamplePasses& passes, Film& film, Film& pilot, const Monitor& monitor, int spp);
 
 }  // namespace ps

@@ -15,16 +15,16 @@ namespace ps {
 namespace {
 
 constexpr char kMagic[8] = {'P', 'S', 'C', 'K', 'P', 'T', '\n', '\0'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 2: the partial pass
 constexpr uint32_t kByteOrder = 0x01020304;  // read back otherwise on a machine of the other order
 
 struct Header {
     char magic[8];
     uint32_t version, byteOrder;
-    uint64_t metadataBytes, fixedCount, countCount;
+    uint64_t metadataBytes, fixedCount, countCount, partialCount;
     uint64_t checksum;  // of every byte after the header
 };
-static_assert(sizeof(Header) == 48);
+static_assert(sizeof(Header) == 56);
 
 // A 64-bit hash, eight bytes at a time: not cryptographic, it catches a damaged file.
 uint64_t hashBytes(const char* data, size_t n, uint64_t h) {
@@ -43,11 +43,31 @@ nlohmann::json statsJson(const PathStats& s) {
     return {s.cameraPaths, s.lightPaths, s.rays, s.shadowRays, s.guarded};
 }
 
+// For a setting that maps file names to hashes: each file that differs.
+std::string fileDifferences(const nlohmann::json& want, const nlohmann::json& have) {
+    std::string d;
+    auto add = [&](const std::string& s) { d += (d.empty() ? "" : "; ") + s; };
+    for (const auto& [file, hash] : want.items()) {
+        const auto it = have.find(file);
+        if (it == have.end()) add("the scene reads \"" + file + "\", which the checkpoint's render did not read");
+        else if (*it != hash)
+            add("\"" + file + "\" has changed since the checkpoint (hash " + hash.dump() + " here, " + it->dump() + " then)");
+    }
+    for (const auto& [file, hash] : have.items())
+        if (!want.contains(file)) add("the checkpoint's render read \"" + file + "\", which the scene no longer reads");
+    return d;
+}
+
 // "spp 64 here, 32 in the checkpoint; integrator ..." for every setting that differs.
 std::string differences(const nlohmann::json& want, const nlohmann::json& have) {
     std::string d;
     for (const auto& [key, value] : want.items()) {
         const auto it = have.find(key);
+        if (value.is_object() && it != have.end() && it->is_object()) {
+            const std::string f = fileDifferences(value, *it);
+            if (!f.empty()) d += (d.empty() ? "" : "; ") + f;
+            continue;
+        }
         const std::string old = it == have.end() ? "absent" : it->dump();
         if (it == have.end() || *it != value)
             d += (d.empty() ? "" : "; ") + key + " " + value.dump() + " here, " + old + " in the checkpoint";
@@ -78,6 +98,7 @@ void writeCheckpoint(const std::string& path, const nlohmann::json& settings, co
                                      .dump();
     const auto& fixed = state.sums.fixed;
     const auto& counts = state.sums.counts;
+    const auto& partial = state.partial;
     Header h{};
     std::memcpy(h.magic, kMagic, 8);
     h.version = kVersion;
@@ -85,14 +106,17 @@ void writeCheckpoint(const std::string& path, const nlohmann::json& settings, co
     h.metadataBytes = metadata.size();
     h.fixedCount = fixed.size();
     h.countCount = counts.size();
+    h.partialCount = partial.size();
     uint64_t c = hashBytes(metadata.data(), metadata.size(), 1);
     c = hashBytes(reinterpret_cast<const char*>(fixed.data()), fixed.size() * sizeof(Fixed), c);
-    h.checksum = hashBytes(reinterpret_cast<const char*>(counts.data()), counts.size() * sizeof(int64_t), c);
+    c = hashBytes(reinterpret_cast<const char*>(counts.data()), counts.size() * sizeof(int64_t), c);
+    h.checksum = hashBytes(reinterpret_cast<const char*>(partial.data()), partial.size() * sizeof(uint64_t), c);
 
     auto bytes = [](const void* p, size_t n) { return std::span<const char>(static_cast<const char*>(p), n); };
     writeFileAtomically(path,
                         {bytes(&h, sizeof h), bytes(metadata.data(), metadata.size()),
-                         bytes(fixed.data(), fixed.size() * sizeof(Fixed)), bytes(counts.data(), counts.size() * sizeof(int64_t))},
+                         bytes(fixed.data(), fixed.size() * sizeof(Fixed)), bytes(counts.data(), counts.size() * sizeof(int64_t)),
+                         bytes(partial.data(), partial.size() * sizeof(uint64_t))},
                         "checkpoint");
 }
 
@@ -110,13 +134,18 @@ CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& se
                          std::to_string(kVersion));
     // Sizes first (a truncated file), in a way no huge count in a damaged header overflows.
     const long double expected = (long double)sizeof h + h.metadataBytes + (long double)h.fixedCount * sizeof(Fixed) +
-                                 (long double)h.countCount * sizeof(int64_t);
+                                 (long double)h.countCount * sizeof(int64_t) + (long double)h.partialCount * sizeof(uint64_t);
     if (expected != (long double)bytes.size())
         refuse(path, "truncated or damaged: its header announces " + std::to_string((unsigned long long)expected) +
                          " bytes, the file has " + std::to_string(bytes.size()));
-    if (hashBytes(bytes.data() + sizeof h + h.metadataBytes + h.fixedCount * sizeof(Fixed), h.countCount * sizeof(int64_t),
-                  hashBytes(bytes.data() + sizeof h + h.metadataBytes, h.fixedCount * sizeof(Fixed),
-                            hashBytes(bytes.data() + sizeof h, h.metadataBytes, 1))) != h.checksum)
+    const char* at = bytes.data() + sizeof h;
+    const char* fixedAt = at + h.metadataBytes;
+    const char* countsAt = fixedAt + h.fixedCount * sizeof(Fixed);
+    const char* partialAt = countsAt + h.countCount * sizeof(int64_t);
+    uint64_t c = hashBytes(at, h.metadataBytes, 1);
+    c = hashBytes(fixedAt, h.fixedCount * sizeof(Fixed), c);
+    c = hashBytes(countsAt, h.countCount * sizeof(int64_t), c);
+    if (hashBytes(partialAt, h.partialCount * sizeof(uint64_t), c) != h.checksum)
         refuse(path, "corrupt (its checksum does not match its contents)");
     CheckpointState s;
     try {
@@ -125,6 +154,7 @@ CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& se
         if (!diff.empty()) refuse(path, "made for another render (" + diff + ")");
         s.samplesPerPixel = m.at("samples_per_pixel").get<int>();
         s.passSize = m.at("pass_size").get<int>();
+        if (s.passSize < 1 || s.passSize > 64) refuse(path, "damaged: pass size " + std::to_string(s.passSize));
         s.samples = m.at("samples").get<long long>();
         const auto& st = m.at("stats");
         s.stats = {st.at(0).get<uint64_t>(), st.at(1).get<uint64_t>(), st.at(2).get<uint64_t>(), st.at(3).get<uint64_t>(),
@@ -134,9 +164,10 @@ CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& se
     }
     s.sums.fixed.resize(h.fixedCount);
     s.sums.counts.resize(h.countCount);
-    std::memcpy(s.sums.fixed.data(), bytes.data() + sizeof h + h.metadataBytes, h.fixedCount * sizeof(Fixed));
-    std::memcpy(s.sums.counts.data(), bytes.data() + sizeof h + h.metadataBytes + h.fixedCount * sizeof(Fixed),
-                h.countCount * sizeof(int64_t));
+    s.partial.resize(h.partialCount);
+    std::memcpy(s.sums.fixed.data(), fixedAt, h.fixedCount * sizeof(Fixed));
+    std::memcpy(s.sums.counts.data(), countsAt, h.countCount * sizeof(int64_t));
+    std::memcpy(s.partial.data(), partialAt, h.partialCount * sizeof(uint64_t));
     return s;
 }
 

@@ -1,11 +1,13 @@
 // Checkpoints of a uniform render (path, light, bdpt): the film's exact sums after the last
-// whole pass, enough to continue it, on any number of processes, to the image one
+// whole pass (and, when the render stopped early, the samples of the pass it stopped in),
+// enough to continue it, on any number of processes, to the image one
 // uninterrupted run gives. The file: a fixed binary header (magic, version, section sizes, a
 // checksum of everything after it), JSON metadata (the settings that shape the image, where
 // the render stands), then the sums as raw integers.
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -16,7 +18,11 @@ namespace ps {
 
 struct CheckpointState {
     int samplesPerPixel = 0;  // every pixel has taken sample indices [0, samplesPerPixel)
-    int passSize = 1;         // the next pass's size (the growing pass schedule goes on)
+    int passSize = 1;         // the next pass's size (the growing pass schedule goes on), <= 64
+    // A pass stopped part-way (the last checkpoint of a render stopped early): per pixel of
+    // the crop region (row-major), bit k set when sample samplesPerPixel + k is in the sums
+    // too, so that the resumed render takes only the others. Empty: no partial pass.
+    std::vector<uint64_t> partial;
     long long samples = 0;    // camera samples in the sums
     PathStats stats;          // of those samples
     Film::Accumulators sums;  // over all processes (Film::accumulators)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <numeric>
 
 #include <tbb/task_arena.h>
@@ -23,42 +24,102 @@ namespace ps {
 
 namespace {
 
+// Where a uniform render stands: passes [0, s0) whole, the next (or current) pass of `pass`
+// samples per pixel, of which the samples in `partial` (per pixel, bit k: index s0 + k; empty:
+// none) are already in the film.
+struct UniformProgress {
+    int s0 = 0, pass = 1;
+    std::vector<uint64_t> partial;
+};
+
 // Passes of growing size: an early stop leaves every pixel with a similar count, and each
 // pixel is normalised by its own weights, so the image stays unbiased. Processes of one
-// render agree after every pass whether to go on. A resumed render starts at (s0, pass);
-// afterPass(s1, next pass) runs after every whole pass but the last.
-bool renderUniform(SamplePasses& passes, Film& film, int spp, int s0, int pass,
+// render agree after every pass whether to go on. afterPass(s1, next pass) runs after every
+// whole pass but the last. With `track`, a pass that stops leaves in at.partial the samples
+// this process took of it (with those taken before), for a last checkpoint.
+bool renderUniform(SamplePasses& passes, Film& film, int spp, UniformProgress& at, bool track,
                    const std::function<void(int, int)>& afterPass) {
-    while (s0 < spp) {
-        int s1 = std::min(spp, s0 + pass);
-        if (distributed::anyOf(!passes.run(film, [&](size_t) { return SampleSpan{s0, s1}; }))) return false;
-        s0 = s1;
-        pass = std::min(pass * 2, 64);
-        if (s0 < spp) afterPass(s0, pass);
+    std::vector<uint64_t> taken;
+    while (at.s0 < spp) {
+        const int s1 = std::min(spp, at.s0 + at.pass);
+        if (track) taken.assign(passes.pixelCount(), 0);
+        const bool whole = passes.run(
+            film, [&](size_t p) { return SampleSpan{at.s0, s1, at.partial.empty() ? 0 : at.partial[p]}; },
+            SamplePasses::Stream::Main, track ? &taken : nullptr);
+        if (distributed::anyOf(!whole)) {
+            if (track) {
+                if (at.partial.empty()) at.partial.assign(taken.size(), 0);
+                for (size_t i = 0; i < taken.size(); ++i) at.partial[i] |= taken[i];
+            }
+            return false;
+        }
+        at.partial.clear();
+        at.s0 = s1;
+        at.pass = std::min(at.pass * 2, 64);
+        if (at.s0 < spp) afterPass(at.s0, at.pass);
     }
     return true;
 }
 
-// The sums of every process's film into `sums` on rank 0 (false elsewhere), plus the resumed
-// render's: a checkpoint's, or the finished render's. `samples` and `stats`: this process's.
-bool sumAllToRoot(Film::Accumulators& sums, long long& samples, PathStats& stats, const CheckpointState* resume) {
+// Every process's film sums, plus a resumed render's, summed on rank 0 a chunk of pixels at
+// a time through a small buffer, so that no process copies its whole film (for a large film
+// the copy, new memory, costs many times the reduction: bench/README). Rank 0 gets each
+// chunk as take(first pixel, end pixel, sums, counts) in Film::accumulators()'s layout, then
+// the counts after the pixels' (splats, rejected samples) as take(pixels, pixels, {}, counts).
+template <class Take>
+void sumFilmToRoot(const Film& film, const CheckpointState* resume, Take take) {
+    constexpr size_t kChunk = 4096;  // pixels: 640 KB of sums
+    const size_t n = film.pixelCount(), k = Film::kPixelSums;
+    if (resume && distributed::isRoot() && (resume->sums.fixed.size() != n * k || resume->sums.counts.size() != n + film.otherCounts().size()))
+        throw InputError("--resume: the checkpoint's film has another size than this render's");
+    std::vector<Fixed> fixed;
+    std::vector<int64_t> counts;
+    for (size_t b = 0; b < n; b += kChunk) {
+        const size_t e = std::min(n, b + kChunk);
+        fixed.resize((e - b) * k);
+        counts.resize(e - b);
+        film.pixelSums(b, e, fixed.data(), counts.data());
+        distributed::sumToRoot(fixed);
+        distributed::sumToRoot(counts);
+        if (!distributed::isRoot()) continue;
+        if (resume) {
+            for (size_t i = 0; i < fixed.size(); ++i) fixed[i] += resume->sums.fixed[b * k + i];
+            for (size_t i = 0; i < counts.size(); ++i) counts[i] += resume->sums.counts[b + i];
+        }
+        take(b, e, fixed, counts);
+    }
+    counts = film.otherCounts();
+    distributed::sumToRoot(counts);
+    if (!distributed::isRoot()) return;
+    if (resume)
+        for (size_t i = 0; i < counts.size(); ++i) counts[i] += resume->sums.counts[n + i];
+    take(n, n, std::vector<Fixed>{}, counts);
+}
+
+// The samples and path statistics of every process (`samples` and `stats`: this process's),
+// plus a resumed render's, summed on rank 0; false elsewhere.
+bool sumCountsToRoot(long long& samples, PathStats& stats, const CheckpointState* resume) {
     std::vector<int64_t> n{samples, int64_t(stats.cameraPaths), int64_t(stats.lightPaths), int64_t(stats.rays),
                            int64_t(stats.shadowRays), int64_t(stats.guarded)};
-    distributed::sumToRoot(sums.fixed);
-    distributed::sumToRoot(sums.counts);
     distributed::sumToRoot(n);
     if (!distributed::isRoot()) return false;
-    samples = n[0];
+    samples = n[0] + (resume ? resume->samples : 0);
     stats = {uint64_t(n[1]), uint64_t(n[2]), uint64_t(n[3]), uint64_t(n[4]), uint64_t(n[5])};
-    if (resume) {
-        if (resume->sums.fixed.size() != sums.fixed.size() || resume->sums.counts.size() != sums.counts.size())
-            throw InputError("--resume: the checkpoint's film has another size than this render's");
-        for (size_t i = 0; i < sums.fixed.size(); ++i) sums.fixed[i] += resume->sums.fixed[i];
-        for (size_t i = 0; i < sums.counts.size(); ++i) sums.counts[i] += resume->sums.counts[i];
-        samples += resume->samples;
-        stats += resume->stats;
-    }
+    if (resume) stats += resume->stats;
     return true;
+}
+
+// A checkpoint's sums: every process's film and the resumed render's, on rank 0 (false elsewhere).
+bool sumAllToRoot(const Film& film, CheckpointState& state, const CheckpointState* resume) {
+    if (distributed::isRoot()) {
+        state.sums.fixed.reserve(film.pixelCount() * Film::kPixelSums);
+        state.sums.counts.reserve(film.pixelCount() + 1);
+    }
+    sumFilmToRoot(film, resume, [&](size_t, size_t, const std::vector<Fixed>& fixed, const std::vector<int64_t>& counts) {
+        state.sums.fixed.insert(state.sums.fixed.end(), fixed.begin(), fixed.end());
+        state.sums.counts.insert(state.sums.counts.end(), counts.begin(), counts.end());
+    });
+    return sumCountsToRoot(state.samples, state.stats, resume);
 }
 
 // Before the film is made: its bytes against the memory limit, named by the Film directive.
@@ -90,12 +151,14 @@ bool reduceToRoot(Film& film, const SamplePasses& passes, RenderResult& result, 
     d.rankSeconds = distributed::gatherToRoot(result.seconds);
     if (d.ranks == 1 && !resume) return true;
     const distributed::Traffic before = distributed::traffic();
-    Film::Accumulators sums = film.accumulators();
+    sumFilmToRoot(film, resume, [&](size_t b, size_t e, const std::vector<Fixed>& fixed, const std::vector<int64_t>& counts) {
+        if (b < e) film.setPixelSums(b, e, fixed.data(), counts.data());
+        else film.setOtherCounts(counts);
+    });
     long long samples = passes.samplesDone();
-    const bool root = sumAllToRoot(sums, samples, result.stats, resume);
+    const bool root = sumCountsToRoot(samples, result.stats, resume);
     d.reductionBytes = distributed::traffic().bytes - before.bytes;
     d.reductionSeconds = distributed::traffic().seconds - before.seconds;
-    if (root) film.setAccumulators(sums);
     return root;
 }
 
@@ -124,10 +187,11 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
                          "(path); light tracing, BDPT and Metropolis splat onto the whole film");
     auto* veach = dynamic_cast<const VeachMLTIntegrator*>(&integrator);
     auto* mlt = dynamic_cast<const MetropolisIntegrator*>(&integrator);
-    if (distributed::size() > 1 && (mlt || veach || options.adaptive != AdaptiveMode::None))
-        throw InputError(std::string(mlt || veach ? "Metropolis (pssmlt, mmlt, mlt)" : "adaptive sampling (--adaptive)") +
+    if (distributed::size() > 1 && (mlt || veach || options.adaptive == AdaptiveMode::Sequential))
+        throw InputError(std::string(mlt || veach ? "Metropolis (pssmlt, mmlt, mlt)"
+                                                  : "sequential adaptive sampling (--adaptive sequential)") +
                          " does not yet run over several processes: render it with one (without mpirun, or -n 1); "
-                         "path, light and bdpt with uniform sampling do");
+                         "path, light and bdpt with uniform or two-stage adaptive sampling do");
     if ((options.resume || options.checkpoint) && (mlt || veach || options.adaptive != AdaptiveMode::None))
         throw InputError(std::string(mlt || veach ? "Metropolis (pssmlt, mmlt, mlt)" : "adaptive sampling (--adaptive)") +
                          " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling do");
@@ -149,7 +213,13 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     bool complete = false;
     // Where a resumed render stands (its sums join the film on rank 0 at the end).
     const CheckpointState* resume = options.resume;
-    const int s0 = resume ? std::min(resume->samplesPerPixel, spp) : 0;
+    UniformProgress at;
+    if (resume) {
+        at = {std::min(resume->samplesPerPixel, spp), resume->passSize, resume->partial};
+        if (!at.partial.empty() && at.partial.size() != film.pixelCount())
+            throw InputError("--resume: the checkpoint's partial pass has another size than this render's film");
+    }
+    const int s0 = at.s0;
     result.resumedSpp = s0;
     // After a whole pass, once checkpointEvery seconds have passed (the processes agree): the
     // films' sums, with the resumed ones, to rank 0, which writes them.
@@ -161,30 +231,52 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
         CheckpointState state;
         state.samplesPerPixel = s1;
         state.passSize = nextPass;
-        state.sums = film.accumulators();
         state.samples = passes.samplesDone();
         state.stats = passes.stats();
-        if (sumAllToRoot(state.sums, state.samples, state.stats, resume)) options.checkpoint(state);
+        if (sumAllToRoot(film, state, resume)) options.checkpoint(state);
         ++result.checkpoints;
         lastCheckpoint = std::chrono::steady_clock::now();
     };
     // One progress bar, rank 0's, over its share; the clocks of all processes start together.
     const int ranks = distributed::size();
+    std::unique_ptr<Film> pilot;  // a two-stage render's first stage
     distributed::barrier();
     {
         Monitor monitor(options.progress && distributed::isRoot(), options.timeLimit, options.cancel, stop, samplesDone,
                         (bounds.area() * (spp - s0) + ranks - 1) / ranks);
         switch (options.adaptive) {
             case AdaptiveMode::None:
-                complete = renderUniform(passes, film, spp, s0, resume ? resume->passSize : 1, afterPass);
+                complete = renderUniform(passes, film, spp, at, bool(options.checkpoint), afterPass);
                 break;
             case AdaptiveMode::Sequential: complete = renderSequential(passes, film, monitor, spp); break;
-            case AdaptiveMode::TwoStage: complete = renderTwoStage(passes, film, monitor, spp); break;
+            case AdaptiveMode::TwoStage:
+                pilot = std::make_unique<Film>(film.xRes(), film.yRes(), film.bounds());
+                pilot->setMaxComponentValue(film.maxComponentValue(), 1);  // its pixels may stand in for the film's
+                complete = renderTwoStage(passes, film, *pilot, monitor, spp);
+                break;
         }
         result.seconds = monitor.elapsed();
     }
     result.stats = passes.stats();
+    // Stopped early (a signal, --time): a last checkpoint, of everything taken so far, the
+    // stopped pass's samples included, so that no finished work is lost.
+    const bool finalCheckpoint = !complete && options.checkpoint && options.adaptive == AdaptiveMode::None;
+    if (finalCheckpoint) distributed::orToRoot(at.partial);
     if (!reduceToRoot(film, passes, result, resume)) return result;
+    // Pixels a stop left without second-stage samples: the (whole) pilot's stand in.
+    if (pilot) film.adoptEmptyPixels(*pilot);
+    if (finalCheckpoint) {
+        CheckpointState state;
+        state.samplesPerPixel = at.s0;
+        state.passSize = at.pass;
+        state.partial = std::move(at.partial);
+        state.sums = film.accumulators();
+        state.samples = std::accumulate(result.distributed.rankSamples.begin(), result.distributed.rankSamples.end(), 0LL) +
+                        (resume ? resume->samples : 0);
+        state.stats = result.stats;
+        options.checkpoint(state);
+        ++result.checkpoints;
+    }
     // Every camera sample traced one light path; the imaging ratio scales splats as well.
     const float imagingRatio = scene.settings().imagingRatio;
     const double lightPaths = imagingRatio > 0 ? film.meanSamplesPerPixel() * double(bounds.area()) / imagingRatio : 0.0;

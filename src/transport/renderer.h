@@ -30,7 +30,8 @@ struct RenderOptions {
     // Checkpoints (transport/checkpoint.h; uniform sampling, not Metropolis): continue from
     // `resume` (on rank 0 its sums; on every process where it stands), and after a whole pass,
     // once `checkpointEvery` seconds (>= 0) have passed since the last, sum the films on rank 0
-    // and hand them to `checkpoint` there.
+    // and hand them to `checkpoint` there; and once more when the render stops early, with
+    // the samples of the pass it stopped in (CheckpointState::partial).
     const CheckpointState* resume = nullptr;
     double checkpointEvery = -1;
     std::function<void(const CheckpointState&)> checkpoint;

@@ -41,7 +41,8 @@ SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, con
     prototypes_[1] = createSampler(options.sampler, mix64(options.seed ^ 0x5bd1e9955bd1e995ULL), spp, resolution);
 }
 
-bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& spanOf, Stream stream) {
+bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& spanOf, Stream stream,
+                       std::vector<uint64_t>* taken) {
     const Filter& filter = scene_.filter();
     const PixelBounds& b = film.bounds();
     std::atomic<bool> skipped{false};
@@ -54,7 +55,7 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
             ThreadState& st = states_.local();
             Sampler& sampler = *st.samplers[int(stream)];
             const Tile& t = tiles_[ti];
-            long long taken = 0;
+            long long count = 0;
             for (int py = t.y0; py < t.y1; ++py)
                 for (int px = t.x0; px < t.x1; ++px) {
                     const size_t pixel = size_t(py - b.y0) * size_t(b.width()) + size_t(px - b.x0);
@@ -63,7 +64,12 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                     const int first = span.begin + int((size_t(share_.index) + size_t(share_.count) -
                                                         (pixel + size_t(span.begin)) % size_t(share_.count)) %
                                                        size_t(share_.count));
+                    uint64_t mine = 0;
                     for (int si = first; si < span.end; si += share_.count) {
+                        const int k = si - span.begin;
+                        if (k < 64 && (span.taken >> k & 1)) continue;
+                        if (taken) mine |= uint64_t(1) << k;
+                        ++count;
                         sampler.startPixelSample(px, py, si);
                         FilterSample fs = filter.sample(sampler.getPixel2D());
                         CameraSample cs;
@@ -78,9 +84,9 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                         st.scratch.reset();
                         film.addSample(px, py, L * imagingRatio_, fs.weight, si);
                     }
-                    if (span.end > first) taken += (span.end - first + share_.count - 1) / share_.count;
+                    if (taken) (*taken)[pixel] |= mine;
                 }
-            samplesDone_.fetch_add(taken, std::memory_order_relaxed);
+            samplesDone_.fetch_add(count, std::memory_order_relaxed);
         });
     });
     return !skipped.load();

@@ -7,6 +7,7 @@
 // evenly, and the films of all processes add up to the film of one (Film::accumulators).
 #pragma once
 #include <atomic>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -24,6 +25,9 @@ struct RenderOptions;
 
 struct SampleSpan {
     int begin = 0, end = 0;  // sample indices [begin, end) of one pixel
+    // Bit k set: index begin + k was taken before (by an interrupted pass a checkpoint
+    // recorded) and is skipped. Only for spans of at most 64 indices.
+    uint64_t taken = 0;
 };
 
 class SamplePasses {
@@ -37,9 +41,14 @@ public:
 
     // spanOf(pixel index in the crop region, row-major) -> the indices to take there.
     // Tiles not started when `stop` is raised are skipped; returns false if that happened.
-    bool run(Film& film, const std::function<SampleSpan(size_t pixel)>& spanOf, Stream stream = Stream::Main);
+    // `taken` (one entry per pixel, spans of at most 64 indices): gains the bits, relative to
+    // each span's begin, of the samples this process took, so that an interrupted pass can
+    // be continued exactly (by any number of processes).
+    bool run(Film& film, const std::function<SampleSpan(size_t pixel)>& spanOf, Stream stream = Stream::Main,
+             std::vector<uint64_t>* taken = nullptr);
     bool stopped() const { return stop_.load(); }
     long long samplesDone() const { return samplesDone_.load(); }
+    size_t pixelCount() const { return size_t(scene_.pixelBounds().area()); }
     PathStats stats() const;
     // This process's share: samples with (pixel + index) mod count == index.
     struct Share {

@@ -134,3 +134,103 @@ TEST_F(Checkpoint, RefusedWhereNotSupported) {
         EXPECT_FALSE(fs::exists(path("ck")));
     }
 }
+
+// A render with --checkpoint stopped early (SIGINT, SIGTERM, --time; one process, or SIGINT to
+// one of 2 processes) writes a last checkpoint at once, --checkpoint-every notwithstanding, of
+// everything taken so far, the samples of the pass it stopped in included: resumed, the image
+// is the uninterrupted render's bit for bit, and the two runs together took exactly the
+// uninterrupted render's samples (none lost, none taken twice).
+TEST_F(Checkpoint, StoppedEarlyWritesALastCheckpoint) {
+    const std::string spp = "4096";
+    ASSERT_EQ(render("full", "--threads 2 --spp " + spp).status, 0);
+    const long long fullSamples = stats("full.json")["camera_paths"].get<long long>();
+    std::string noMpi;
+    mpirunPath(noMpi);
+    for (const std::string how : {"SIGINT", "SIGTERM", "--time", "SIGINT to one of 2 processes"}) {
+        SCOPED_TRACE(how);
+        fs::remove(path("ck"));
+        const std::vector<std::string> args{"render", "--quiet", "--threads", "1", "--spp", spp, scene(), "-o",
+                                            path("part.pfm"), "--stats", path("part.json"), "--checkpoint", path("ck"),
+                                            "--checkpoint-every", "1000"};
+        if (how == "--time") {
+            std::vector<std::string> a = args;
+            a.insert(a.end(), {"--time", "0.1"});
+            std::string line;
+            for (const std::string& s : a) line += s + " ";
+            ASSERT_EQ(runPathspace(line).status, 0);
+        } else if (how == "SIGINT to one of 2 processes") {
+            if (!noMpi.empty()) {
+                std::printf("%s: not tested, %s\n", how.c_str(), noMpi.c_str());
+                continue;
+            }
+            RunningMpiJob job(2, args);
+            ASSERT_TRUE(job.waitUntilRendering(cpuSeconds(0.05))) << "the job ended or hung before rendering";
+            kill(job.ranks().back(), SIGINT);
+            ASSERT_EQ(job.wait(), 130);
+        } else {
+            RunningPathspace p(args);
+            ASSERT_TRUE(p.waitUntilRendering(cpuSeconds(0.05))) << "pathspace exited or hung before rendering";
+            EXPECT_TRUE(p.signalAndWaitTaken(how == "SIGINT" ? SIGINT : SIGTERM));
+            ASSERT_EQ(p.wait(), 130);
+        }
+        nlohmann::json part = stats("part.json");
+        EXPECT_TRUE(part["stopped_early"].get<bool>()) << "the render was not stopped before its end";
+        EXPECT_EQ(part["checkpoints"], 1) << "no last checkpoint counted";
+        ASSERT_TRUE(fs::exists(path("ck"))) << "no last checkpoint written";
+
+        ASSERT_EQ(render("resumed", "--threads 2 --spp " + spp + " --resume " + path("ck")).status, 0);
+        nlohmann::json r = stats("resumed.json");
+        const long long before = part["camera_paths"].get<long long>(), after = r["rank_samples"][0].get<long long>();
+        std::printf("%s: stopped at %.2f spp, resumed from %d spp + a part of the next pass; samples %lld + %lld = %lld "
+                    "(uninterrupted %lld)\n",
+                    how.c_str(), part["spp_mean"].get<double>(), r["resumed_spp"].get<int>(), before, after,
+                    before + after, fullSamples);
+        EXPECT_EQ(before + after, fullSamples) << "samples lost or taken twice";
+        EXPECT_EQ(r["camera_paths"].get<long long>(), fullSamples);
+        EXPECT_TRUE(bytes(path("resumed.pfm")) == bytes(path("full.pfm")))
+            << "the image resumed from the last checkpoint differs from the uninterrupted one";
+    }
+}
+
+// The checkpoint covers every file the scene reads, not only the scene file: when an
+// included scene file or a PLY mesh has changed since, --resume refuses, naming that file,
+// and nothing is written; with the files as they were, it resumes.
+TEST_F(Checkpoint, RefusesWhenAFileTheSceneReadsChanged) {
+    std::string main = kSkyScene;
+    main.replace(main.find("Material"), std::string::npos, "Include \"sub/object.pbrt\"\n");
+    write("main.pbrt", main);
+    fs::create_directories(dir / "sub");
+    const std::string object = "Material \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n"
+                               "Shape \"sphere\" \"float radius\" [ 1 ]\n"
+                               "Shape \"plymesh\" \"string filename\" \"sub/quad.ply\"\n";
+    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                            "-2 -2 -1\n2 -2 -1\n0 2 -1\n3 0 1 2\n";
+    write("sub/object.pbrt", object);
+    write("sub/quad.ply", ply);
+    const std::string run = "render --quiet " + path("main.pbrt") + " --spp 8 -o " + path("out.pfm");
+    ASSERT_EQ(runPathspace(run + " --checkpoint " + path("ck") + " --checkpoint-every 0").status, 0);
+
+    struct Case {
+        std::string what, file, text;
+    };
+    auto replaced = [](std::string text, const std::string& a, const std::string& b) {
+        return text.replace(text.find(a), a.size(), b);
+    };
+    for (const Case& c : std::vector<Case>{{"included scene file", "sub/object.pbrt", replaced(object, "0.5 0.5 0.5", "0.6 0.5 0.5")},
+                                           {"PLY mesh", "sub/quad.ply", replaced(ply, "0 2 -1", "0 3 -1")}}) {
+        SCOPED_TRACE(c.what);
+        const std::string before = bytes(path(c.file));
+        ASSERT_NE(c.text, before);
+        write(c.file, c.text);
+        std::ofstream(path("out.pfm")) << "keep";
+        const Result r = runPathspace(run + " --resume " + path("ck"));
+        EXPECT_EQ(r.status, 2) << r.out;
+        EXPECT_NE(r.out.find("\"" + c.file + "\" has changed since the checkpoint"), std::string::npos) << r.out;
+        EXPECT_TRUE(bytes(path("out.pfm")) == "keep") << "the output was overwritten";
+        std::printf("%s changed: %s", c.what.c_str(), r.out.c_str());
+        write(c.file, before);
+    }
+    const Result same = runPathspace(run + " --resume " + path("ck"));
+    EXPECT_EQ(same.status, 0) << "with the files as they were: " << same.out;
+}

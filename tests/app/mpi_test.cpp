@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "image/image.h"
@@ -76,6 +78,39 @@ TEST_F(Mpi, PathTracerImageIndependentOfProcessesAndThreads) {
     }
 }
 
+// Two-stage adaptive sampling over 2 and 3 processes: the pilot's exact sums are added on
+// rank 0, which allocates the second stage and sends the allocation to the others; every
+// process takes its share of both stages, so the image, its variance and the per-pixel counts
+// (hence the statistics) are one process's bit for bit. Also under --time (a sample budget
+// from the rate measured on rank 0, the same on every process): the exact image within 4 sigma.
+TEST_F(Mpi, TwoStageAdaptiveSamplingImageIndependentOfProcesses) {
+    PS_SKIP_WITHOUT_MPI();
+    const std::string opts = "--spp 64 --adaptive twostage --integrator path";
+    render(0, "plain", opts + " --threads 2");
+    for (int k : {2, 3}) {
+        const std::string name = "k" + std::to_string(k);
+        SCOPED_TRACE(name);
+        render(k, name, opts + " --threads 1");
+        expectSameBits(name, "plain");
+        nlohmann::json j = stats(name + ".json"), plain = stats("plain.json");
+        EXPECT_EQ(j["ranks"], k);
+        EXPECT_EQ(j["camera_paths"], plain["camera_paths"]);
+        EXPECT_EQ(j["spp_mean"], plain["spp_mean"]);
+        for (const auto& n : j["rank_samples"])
+            EXPECT_NEAR(n.get<double>(), plain["camera_paths"].get<double>() / k, 0.02 * plain["camera_paths"].get<double>() / k)
+                << "an uneven share";
+        std::printf("%d processes: samples %s of %s\n", k, j["rank_samples"].dump().c_str(),
+                    plain["camera_paths"].dump().c_str());
+    }
+    render(2, "timed", "--spp 100000000 --adaptive twostage --threads 1 --time 0.6");
+    expectExactSkyImage(ps::readImage(path("timed.pfm")), "two-stage, --time, 2 processes");
+    // The budget, turned into samples from the measured rate, ends the render near its time.
+    nlohmann::json t = stats("timed.json");
+    EXPECT_LT(t["spp_mean"].get<double>(), 1e8);
+    for (const auto& sec : t["rank_seconds"]) EXPECT_LT(sec.get<double>(), 5.0);
+    for (const auto& n : t["rank_samples"]) EXPECT_GT(n.get<long long>(), 32 * 24 * 8);
+}
+
 // Light tracing and BDPT splat onto the whole film, in fixed point: the same bits too.
 TEST_F(Mpi, SplattingIntegratorsImageIndependentOfProcesses) {
     PS_SKIP_WITHOUT_MPI();
@@ -135,7 +170,7 @@ TEST_F(Mpi, SignalStopsEveryProcess) {
 // What does not yet run over several processes says so, and nothing is rendered.
 TEST_F(Mpi, RefusesWhatItCannotSplit) {
     PS_SKIP_WITHOUT_MPI();
-    for (const std::string& opts : {std::string("--adaptive twostage"), std::string("--integrator pssmlt --bootstrap 1000 --chains 16"),
+    for (const std::string& opts : {std::string("--adaptive sequential"), std::string("--integrator pssmlt --bootstrap 1000 --chains 16"),
                                    "--integrator bdpt --bdpt-strategies " + path("st")}) {
         SCOPED_TRACE(opts);
         fs::remove(path("r.pfm"));
@@ -147,4 +182,49 @@ TEST_F(Mpi, RefusesWhatItCannotSplit) {
         Result one = runMpi(1, "render --quiet --spp 4 " + scene() + " -o " + path("r1.pfm") + " " + opts);
         EXPECT_EQ(one.status, 0) << one.out;
     }
+}
+
+// A process killed outright (SIGKILL: a crash, a lost node) ends the whole job with a failure
+// status, and nothing hangs (the job has a 60 s watchdog, and must end well within it); the
+// last checkpoint survives, and resumed on one process gives the uninterrupted image bit for
+// bit (path tracer).
+TEST_F(Mpi, KilledProcessEndsTheJobAndItsCheckpointResumes) {
+    PS_SKIP_WITHOUT_MPI();
+    const std::string spp = "8192";
+    render(0, "full", "--threads 2 --spp " + spp);
+    const std::string ck = path("ck");
+    double secondsToEnd = 0;
+    {
+        RunningMpiJob job(2, {"render", "--quiet", "--threads", "1", "--spp", spp, scene(), "-o", path("killed.pfm"),
+                              "--checkpoint", ck, "--checkpoint-every", "0"});
+        ASSERT_TRUE(job.waitUntilRendering(0.01)) << "the job ended or hung before rendering";
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+        while (!fs::exists(ck) && std::chrono::steady_clock::now() < deadline)
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        ASSERT_TRUE(fs::exists(ck)) << "no checkpoint written";
+        ASSERT_TRUE(job.waitUntilRendering(cpuSeconds(0.1))) << "the job ended before the kill";
+        const auto killed = std::chrono::steady_clock::now();
+        ASSERT_EQ(kill(job.ranks().back(), SIGKILL), 0);
+        const int status = job.wait();
+        secondsToEnd = std::chrono::duration<double>(std::chrono::steady_clock::now() - killed).count();
+        std::printf("job status %d\n", status);
+        EXPECT_NE(status, 0) << "the job succeeded with a process killed";
+        EXPECT_NE(status, 124) << "the job hung until its watchdog (timeout 60) ended it";
+        EXPECT_LT(secondsToEnd, 30.0);
+    }
+    EXPECT_FALSE(fs::exists(path("killed.pfm"))) << "an image was written by a job that lost a process";
+    for (const fs::directory_entry& e : fs::directory_iterator(dir))
+        EXPECT_NE(e.path().filename().string().rfind("ck.tmp", 0), 0u) << "a temporary checkpoint was left behind";
+
+    Result r = runPathspace("render --quiet " + scene() + " --threads 2 --spp " + spp + " --resume " + ck + " -o " +
+                            path("resumed.pfm") + " --stats " + path("resumed.json"));
+    ASSERT_EQ(r.status, 0) << r.out;
+    const int from = stats("resumed.json")["resumed_spp"].get<int>();
+    std::printf("job ended %.2f s after the kill; resumed on one process from %d of %s spp\n", secondsToEnd, from,
+                spp.c_str());
+    EXPECT_GT(from, 0);
+    EXPECT_LT(from, std::stoi(spp));
+    EXPECT_EQ(stats("resumed.json")["camera_paths"], stats("full.json")["camera_paths"]);
+    EXPECT_TRUE(bytes(path("resumed.pfm")) == bytes(path("full.pfm")))
+        << "resumed from the killed job's checkpoint, the image differs from the uninterrupted one";
 }
