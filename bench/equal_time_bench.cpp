@@ -60,7 +60,8 @@ int main(int argc, char** argv) {
     app.add_option("--time", seconds, "Render time per integrator, seconds (Metropolis: bootstrap included)");
     app.add_option("--threads", threads, "Worker threads");
     app.add_option("--seeds", seeds, "Renders per integrator (seeds 1..N): mean error and the image mean's spread");
-    app.add_option("--integrators", integrators, "Integrators to compare");
+    app.add_option("--integrators", integrators,
+                   "Integrators to compare (mlt:KEY=VALUE,... is mlt with those --mlt-mutations weights)");
     app.add_option("--json", jsonPath, "Write the results as JSON");
     int chains = 0, bootstrap = 0;
     double largeStep = -1, sigma = 0;
@@ -97,7 +98,10 @@ int main(int argc, char** argv) {
                     "relMSE", "mean/ref", "acceptance", "relMSE ratio to first");
         double firstRelMse = 0;
         for (const std::string& name : integrators) {
-            auto integrator = createIntegrator(name, *scene);
+            // "mlt:WEIGHTS": mlt with --mlt-mutations WEIGHTS (for the mutations' ablation).
+            const bool weighted = name.rfind("mlt:", 0) == 0;
+            scene->settings().mltMutations = weighted ? name.substr(4) : "";
+            auto integrator = createIntegrator(weighted ? "mlt" : name, *scene);
             double sumRelMse = 0, sumMean = 0, sumMean2 = 0;
             for (int k = 1; k <= seeds; ++k) {
                 RenderOptions o;

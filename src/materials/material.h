@@ -23,6 +23,10 @@ public:
     // `mix` resolves to one of its members; everything else returns itself.
     virtual const Material* resolve(const MaterialEvalContext& ctx) const { (void)ctx; return this; }
     virtual bool isInterface() const { return false; }
+    // Whether its BxDF's f and pdf are stochastic estimates (layered materials, whose pdf
+    // only approximates how they sample): fine for estimators and MIS, not for the exact
+    // transition densities of path-space mutations.
+    virtual bool stochasticBxDF() const { return false; }
     // The BxDF when it is the same at every point (all textures constant), built once, so
     // the render loop neither evaluates textures nor builds one per hit; null otherwise.
     const BxDF* constantBxDF() const { return constant_.get(); }

@@ -87,6 +87,7 @@ class CoatedDiffuseMaterial final : public Material {
 public:
     explicit CoatedDiffuseMaterial(CoatedDiffuseParams p) : p_(std::move(p)) {}
     const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override;
+    bool stochasticBxDF() const override { return true; }
 
 private:
     CoatedDiffuseParams p_;
@@ -107,6 +108,7 @@ class CoatedConductorMaterial final : public Material {
 public:
     explicit CoatedConductorMaterial(CoatedConductorParams p) : p_(std::move(p)) {}
     const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override;
+    bool stochasticBxDF() const override { return true; }
 
 private:
     CoatedConductorParams p_;
@@ -120,6 +122,7 @@ public:
     }
     const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override { return resolve(ctx)->bxdf(ctx, buf); }
     const Material* resolve(const MaterialEvalContext& ctx) const override;
+    bool stochasticBxDF() const override { return m_[0]->stochasticBxDF() || m_[1]->stochasticBxDF(); }
 
 private:
     std::array<std::shared_ptr<Material>, 2> m_;

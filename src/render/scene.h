@@ -62,6 +62,7 @@ public:
 
     const std::vector<std::unique_ptr<Light>>& lights() const { return lights_; }
     const std::vector<const Light*>& infiniteLights() const { return infiniteLights_; }
+    const std::vector<std::shared_ptr<Material>>& materials() const { return materials_; }
     const Camera& camera() const { return *camera_; }
     Camera& camera() { return *camera_; }
     const Filter& filter() const { return *filter_; }

@@ -260,3 +260,38 @@ TEST(VeachMLT, MutationChoiceProbabilitiesAreDistributions) {
     }
 }
 
+
+// What mlt cannot do yet is refused with a clear error, never rendered wrongly: infinite
+// lights (a path's light vertex at infinity), layered materials (stochastic f and pdf),
+// motion blur.
+TEST(VeachMLT, RefusesWhatItCannotRenderExactly) {
+    const std::string base = R"(
+        LookAt 0 0.5 2  0 0.5 0  0 1 0
+        Camera "perspective" "float fov" [ 30 ]
+        Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+          Shape "bilinearmesh" "point3 P" [ -0.2 1 -0.2   0.2 1 -0.2   -0.2 1 0.2   0.2 1 0.2 ]
+        AttributeEnd
+    )";
+    auto refused = [](const std::string& scene, const std::string& why) {
+        try {
+            renderString(scene, 1, 1, 0, "mlt");
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+            return;
+        }
+        ADD_FAILURE() << "not refused: " << why;
+    };
+    refused(base + "LightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\n", "infinite");
+    refused(base + "Material \"coateddiffuse\"\nShape \"sphere\" \"float radius\" [ 0.2 ]\n", "coateddiffuse");
+    refused(base + "MakeNamedMaterial \"c\" \"string type\" \"coatedconductor\"\nMakeNamedMaterial \"d\" \"string type\" "
+                   "\"diffuse\"\nMaterial \"mix\" \"string materials\" [ \"c\" \"d\" ]\nShape \"sphere\" \"float radius\" [ 0.2 ]\n",
+            "coateddiffuse and coatedconductor");
+    refused(base + "AttributeBegin\nActiveTransform EndTime\nTranslate 0.1 0 0\nActiveTransform All\nShape \"sphere\" "
+                   "\"float radius\" [ 0.2 ]\nAttributeEnd\n",
+            "motion blur");
+    // The plain scene renders.
+    EXPECT_NO_THROW(renderString(base + "Shape \"sphere\" \"float radius\" [ 0.2 ]\n", 1, 1, 0, "mlt"));
+}

@@ -124,6 +124,11 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         if (light->atInfinity() || light->type() == LightType::DeltaDirection)
             throw InputError("integrator \"mlt\" does not support infinite or distant lights yet; "
                              "render the scene with mmlt, bdpt or path");
+    for (const auto& m : scene.materials())
+        if (m && m->stochasticBxDF())
+            throw InputError("integrator \"mlt\" does not support coateddiffuse and coatedconductor yet: their f and "
+                             "pdf are stochastic estimates, and a path-space mutation's acceptance needs the exact "
+                             "density with which it generates a path; render the scene with mmlt, bdpt or path");
     if (std::isfinite(scene.settings().maxComponentValue))
         warning("mlt: Film \"maxcomponentvalue\" is not applied to Metropolis renders (a chain's splats are not "
                 "camera samples); the image is not clamped");
