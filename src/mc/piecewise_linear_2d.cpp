@@ -147,8 +147,7 @@ PiecewiseLinear2D::Result PiecewiseLinear2D::sample(Vec2 u, const float* param) 
     uint32_t col = findInterval(nx_, [&](uint32_t i) { return conditional(i) < u.x; });
     u.x -= conditional(col);
     const uint32_t at = rowStart + col;
-    float v00 = lookup(data_, s, at, n), v10 = lookup(data_, s, at + 1, n);
-    float v01 = lookup(data_, s, at + nx_, n), v11 = lookup(data_, s, at + nx_ + 1, n);
+    const auto [v00, v10, v01, v11] = cornersAt(s, at);
     float c0 = (1 - ty) * v00 + ty * v01, c1 = (1 - ty) * v10 + ty * v11;
     const float tx = solveLinearCdf(c0, c1, u.x);
     return {Vec2((col + tx) / float(nx_ - 1), (row + ty) / float(ny_ - 1)), ((1 - tx) * c0 + tx * c1) * float(nx_ - 1) * float(ny_ - 1)};
@@ -162,8 +161,7 @@ PiecewiseLinear2D::Result PiecewiseLinear2D::invert(Vec2 p, const float* param) 
     const float fx = q.fx, fy = q.fy;
 
     const uint32_t at = row * nx_ + col;
-    float v00 = lookup(data_, s, at, n), v10 = lookup(data_, s, at + 1, n);
-    float v01 = lookup(data_, s, at + nx_, n), v11 = lookup(data_, s, at + nx_ + 1, n);
+    const auto [v00, v10, v01, v11] = cornersAt(s, at);
     float c0 = (1 - fy) * v00 + fy * v01, c1 = (1 - fy) * v10 + fy * v11;
     float pdf = (1 - fx) * c0 + fx * c1;
 
@@ -180,13 +178,11 @@ PiecewiseLinear2D::Result PiecewiseLinear2D::invert(Vec2 p, const float* param) 
 
 float PiecewiseLinear2D::evaluate(Vec2 p, const float* param) const {
     const Slices s = slicesAt(param);
-    const uint32_t n = uint32_t(nx_) * ny_;
     const Patch q = patchAt(p, nx_, ny_);
     const uint32_t col = q.col, row = q.row;
     const float fx = q.fx, fy = q.fy;
     const uint32_t at = row * nx_ + col;
-    float v00 = lookup(data_, s, at, n), v10 = lookup(data_, s, at + 1, n);
-    float v01 = lookup(data_, s, at + nx_, n), v11 = lookup(data_, s, at + nx_ + 1, n);
+    const auto [v00, v10, v01, v11] = cornersAt(s, at);
     float v = (1 - fy) * ((1 - fx) * v00 + fx * v10) + fy * ((1 - fx) * v01 + fx * v11);
     return marginal_.empty() ? v : v * float(nx_ - 1) * float(ny_ - 1);
 }

@@ -61,6 +61,15 @@ private:
         for (int k = 0; k < s.n; ++k) v += s.weight[k] * a[s.index[k] * stride + i];
         return v;
     }
+    // The density's values at the four corners of the cell whose first corner is value `at`.
+    struct Corners {
+        float v00, v10, v01, v11;
+    };
+    Corners cornersAt(const Slices& s, uint32_t at) const {
+        const uint32_t n = uint32_t(nx_) * uint32_t(ny_);
+        return {lookup(data_, s, at, n), lookup(data_, s, at + 1, n), lookup(data_, s, at + nx_, n),
+                lookup(data_, s, at + nx_ + 1, n)};
+    }
 
     int nx_ = 0, ny_ = 0;
     std::vector<std::vector<float>> params_;

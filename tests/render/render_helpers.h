@@ -41,6 +41,22 @@ inline RenderResult renderString(const std::string& text, int spp, uint64_t seed
     return renderWith(text, opts, integrator);
 }
 
+// Pixels of two images of one size that differ in any bit, and pixels of the first that are
+// not finite.
+struct PixelComparison {
+    int differ = 0, nonFinite = 0;
+};
+inline PixelComparison comparePixels(const Image& a, const Image& b) {
+    PixelComparison c;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const Spectrum p = a.get(x, y), q = b.get(x, y);
+            c.differ += (p.r != q.r || p.g != q.g || p.b != q.b);
+            c.nonFinite += !p.isFinite();
+        }
+    return c;
+}
+
 struct RegionStats {
     double mean[3] = {0, 0, 0};
     double stdErr[3] = {0, 0, 0};

@@ -205,15 +205,9 @@ TEST(VeachMLT, SameBitsWhateverTheThreadCount) {
     const std::string scene = box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1");
     RenderResult a = renderString(scene, 4, 9, 1, "mlt"), b = renderString(scene, 4, 9, 4, "mlt");
     ASSERT_EQ(a.image.width, b.image.width);
-    int differ = 0, nonFinite = 0;
-    for (int y = 0; y < a.image.height; ++y)
-        for (int x = 0; x < a.image.width; ++x) {
-            Spectrum p = a.image.get(x, y), q = b.image.get(x, y);
-            differ += (p.r != q.r || p.g != q.g || p.b != q.b);
-            nonFinite += !p.isFinite();
-        }
-    EXPECT_EQ(differ, 0);
-    EXPECT_EQ(nonFinite, 0);
+    const PixelComparison d = comparePixels(a.image, b.image);
+    EXPECT_EQ(d.differ, 0);
+    EXPECT_EQ(d.nonFinite, 0);
     EXPECT_EQ(a.metropolis.mutations, 4LL * 24 * 24);
     // Every mutation is counted once, and each one this scene's paths admit (the box has no
     // specular surface: no caustic or multi-chain perturbation) is sometimes accepted and

@@ -251,6 +251,15 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     }
     for (MetropolisStats::Depth& d : ms.depths) d.share = ms.mutations > 0 ? d.share / double(ms.mutations) : 0.0;
     for (const ChainEvaluator& ev : evaluators) result.stats += ev.stats;
+    const double lightPaths = finishChains(scene, film, options, total, bootstrapCancelled, result);
+    for (const auto& f : depthFilms) result.depthImages.push_back(f->image(lightPaths));
+    return result;
+}
+
+double finishChains(const Scene& scene, const Film& film, const RenderOptions& options, long long total,
+                    bool bootstrapCancelled, RenderResult& result) {
+    const MetropolisStats& ms = result.metropolis;
+    const PixelBounds& bounds = scene.pixelBounds();
     // Splats are normalised by "light paths" (Film::image): mutations / b per unit of the
     // target's integral, with the imaging ratio as for BDPT's splats.
     const float imagingRatio = scene.settings().imagingRatio;
@@ -261,8 +270,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     result.stoppedEarly = bootstrapCancelled || (ms.mutations < total && ms.b > 0);
     result.pixelSamples.assign(size_t(bounds.area()), 0);
     filmResults(film, lightPaths, scene.settings(), result);
-    for (const auto& f : depthFilms) result.depthImages.push_back(f->image(lightPaths));
-    return result;
+    return lightPaths;
 }
 
 }  // namespace ps

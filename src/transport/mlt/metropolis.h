@@ -121,6 +121,12 @@ protected:
     Vec2 margin_, filmSize_;
 };
 
+// The end of every Markov-chain render: the image from the film's splats scaled by
+// b / mutations (result.metropolis holds both), the sample counts and whether it stopped
+// early (`total`: the mutations asked); returns the film's "light paths" normalisation.
+double finishChains(const Scene& scene, const Film& film, const RenderOptions& options, long long total,
+                    bool bootstrapCancelled, RenderResult& result);
+
 // The Markov-chain driver: options.spp is the number of mutations per film pixel (crop
 // region); threads, seed, time limit, cancellation and progress as for render().
 RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& integrator, const RenderOptions& options);

@@ -264,14 +264,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         ms.mutations += ch.counts.done;
     }
     for (const PathStats& s : threadStats) result.stats += s;
-    const float imagingRatio = scene.settings().imagingRatio;
-    const double lightPaths =
-        ms.b > 0 && imagingRatio > 0 && ms.mutations > 0 ? double(ms.mutations) / (ms.b * imagingRatio) : 0.0;
-    result.targetSpp = std::max(1, options.spp);
-    result.meanSpp = double(ms.mutations) / double(bounds.area());
-    result.stoppedEarly = bootstrapCancelled || (ms.mutations < total && ms.b > 0);
-    result.pixelSamples.assign(size_t(bounds.area()), 0);
-    filmResults(film, lightPaths, scene.settings(), result);
+    finishChains(scene, film, options, total, bootstrapCancelled, result);
     return result;
 }
 
