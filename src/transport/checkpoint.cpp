@@ -35,7 +35,7 @@ uint64_t hashBytes(const char* data, size_t n, uint64_t h) {
         h = mix64(h ^ w) + i;
     }
     uint64_t tail = 0;
-    std::memcpy(&tail, data + i, n - i);
+    if (n > i) std::memcpy(&tail, data + i, n - i);  // data may be null when n is 0
     return mix64(h ^ tail ^ (uint64_t(n) << 3));
 }
 
