@@ -165,9 +165,13 @@ CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& se
     s.sums.fixed.resize(h.fixedCount);
     s.sums.counts.resize(h.countCount);
     s.partial.resize(h.partialCount);
-    std::memcpy(s.sums.fixed.data(), fixedAt, h.fixedCount * sizeof(Fixed));
-    std::memcpy(s.sums.counts.data(), countsAt, h.countCount * sizeof(int64_t));
-    std::memcpy(s.partial.data(), partialAt, h.partialCount * sizeof(uint64_t));
+    // An empty vector's data() may be null, which memcpy must not get even for 0 bytes.
+    auto copy = [](void* to, const char* from, size_t bytes) {
+        if (bytes > 0) std::memcpy(to, from, bytes);
+    };
+    copy(s.sums.fixed.data(), fixedAt, h.fixedCount * sizeof(Fixed));
+    copy(s.sums.counts.data(), countsAt, h.countCount * sizeof(int64_t));
+    copy(s.partial.data(), partialAt, h.partialCount * sizeof(uint64_t));
     return s;
 }
 
