@@ -2,19 +2,9 @@
 
 namespace ps {
 
-namespace {
-
-bool isD(const MltVertex& v) { return v.kind == MltVertex::Kind::Surface && v.bxdf && !v.delta; }
-bool isS(const MltVertex& v) { return v.kind == MltVertex::Kind::Surface && v.bxdf && v.delta; }
-
-}  // namespace
-
 int LensSubpathMutation::subpathStart(const MltPath& x) const {
-    const int k = int(x.size()) - 1;
-    int m = k - 1;
-    while (m > 0 && isS(x[size_t(m)])) --m;
-    if (m == 0) return x[0].light && !x[0].delta ? 0 : -1;  // the new subpath must be able to hit the light
-    return isD(x[size_t(m)]) && space_.connectible(x, m - 1) ? m : -1;
+    const int m = space_.specularChainEnd(x, int(x.size()) - 2);
+    return m == 0 || (m > 0 && space_.connectible(x, m - 1)) ? m : -1;
 }
 
 bool LensSubpathMutation::applies(const MltPath& x) const { return subpathStart(x) >= 0; }
@@ -43,9 +33,9 @@ bool LensSubpathMutation::propose(const MltPath& x, Rng& rng, ScratchBuffer& are
         if (!space_.trace(ray, arena, stats, v)) return false;
         camera.push_back(v);
         if (m == 0 ? v.light != nullptr : !v.delta) break;  // the subpath's end
-        if (!isS(v) || !space_.scatter(camera, TransportMode::Radiance, rng, ray)) return false;
+        if (!v.isSpecularSurface() || !space_.scatter(camera, TransportMode::Radiance, rng, ray)) return false;
     }
-    if (m > 0 && !isD(camera.back())) return false;
+    if (m > 0 && !camera.back().isNonSpecularSurface()) return false;
     y.assign(x.begin(), x.begin() + m);
     for (MltVertex& v : y) PathSpace::rebind(v, arena);
     y.insert(y.end(), camera.rbegin(), camera.rend());

@@ -75,19 +75,20 @@ bool Mutator::applies(Mutation m, const MltPath& x) const {
     }
 }
 
-double Mutator::probability(Mutation m, const MltPath& x) const {
-    if (!applies(m, x)) return 0;
+double Mutator::applicableWeight(const MltPath& x) const {
     double sum = 0;
     for (int k = 0; k < int(Mutation::Count); ++k)
         if (applies(Mutation(k), x)) sum += weights_.weight(Mutation(k));
-    return weights_.weight(m) / sum;
+    return sum;
+}
+
+double Mutator::probability(Mutation m, const MltPath& x) const {
+    return applies(m, x) ? weights_.weight(m) / applicableWeight(x) : 0.0;
 }
 
 bool Mutator::mutate(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer& arena,
                      PathStats& stats, MltPath& y, Mutation* chosen, double* ratio) const {
-    double sum = 0;
-    for (int k = 0; k < int(Mutation::Count); ++k)
-        if (applies(Mutation(k), x)) sum += weights_.weight(Mutation(k));
+    const double sum = applicableWeight(x);
     double u = rng.uniformDouble() * sum;
     Mutation m = Mutation::Count;
     for (int k = 0; k < int(Mutation::Count); ++k)
@@ -119,7 +120,7 @@ bool Mutator::mutate(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer& ar
     }
     if (!made) return false;
     // The choice itself: made at x forwards, at y for the way back.
-    *ratio = r * probability(m, y) / probability(m, x);
+    *ratio = r * probability(m, y) / (weights_.weight(m) / sum);
     return true;
 }
 

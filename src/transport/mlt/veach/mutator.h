@@ -43,6 +43,9 @@ public:
                 PathStats& stats, MltPath& y, Mutation* chosen, double* ratio) const;
 
 private:
+    // The sum of the weights of the mutations that apply to x.
+    double applicableWeight(const MltPath& x) const;
+
     const BidirectionalMutation& bidirectional_;
     const LensSubpathMutation& lensSubpath_;
     const Perturbations& perturbations_;

@@ -136,8 +136,14 @@ bool PathSpace::connectible(const MltPath& x, int i) const {
     const int k = int(x.size()) - 1;
     if (i == 0) return x[0].light != nullptr;  // distant lights are refused by the integrator
     if (i == k) return x[size_t(k)].kind == MltVertex::Kind::Lens;
-    const MltVertex& v = x[size_t(i)];
-    return v.kind == MltVertex::Kind::Surface && v.bxdf && !v.delta;
+    return x[size_t(i)].isNonSpecularSurface();
+}
+
+int PathSpace::specularChainEnd(const MltPath& x, int from) const {
+    int m = from;
+    while (m > 0 && x[size_t(m)].isSpecularSurface()) --m;
+    if (m == 0) return x[0].light && !x[0].delta ? 0 : -1;
+    return x[size_t(m)].isNonSpecularSurface() ? m : -1;
 }
 
 bool PathSpace::canContinue(int size, TransportMode mode) const {

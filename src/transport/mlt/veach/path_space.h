@@ -39,6 +39,10 @@ struct MltVertex {
     const Light* light = nullptr;  // the emitter at x0 (a light vertex or an emitting surface)
     const BxDF* bxdf = nullptr;    // surfaces, built in the owning path's arena
     SurfaceInteraction si;         // surfaces: the hit as traced, to rebuild bxdf in another arena
+
+    // A scattering vertex with a diffuse or glossy lobe (D), or with specular lobes only (S).
+    bool isNonSpecularSurface() const { return kind == Kind::Surface && bxdf && !delta; }
+    bool isSpecularSurface() const { return kind == Kind::Surface && bxdf && delta; }
 };
 
 using MltPath = std::vector<MltVertex>;
@@ -72,6 +76,11 @@ public:
     // Whether a connection (a deterministic edge) can end at vertex i of x: the light
     // endpoint, the lens, or a surface with a non-specular lobe.
     bool connectible(const MltPath& x, int i) const;
+    // Counting down from vertex `from` over specular surfaces, the first vertex that is not
+    // one: its index m, or -1 if it is neither a non-specular surface nor (m = 0) a light
+    // that a ray can hit (the end of a specular chain that a retraced or new chain of
+    // camera rays must reach).
+    int specularChainEnd(const MltPath& x, int from) const;
 
     // Walks that append `count` vertices to `side`, a subpath in walk order: from the light
     // (Importance: side[0] is x0) or from the lens (Radiance: side[0] is xk). An empty side

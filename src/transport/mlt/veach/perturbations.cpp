@@ -4,24 +4,9 @@
 
 namespace ps {
 
-namespace {
-
-bool isD(const MltVertex& v) { return v.kind == MltVertex::Kind::Surface && v.bxdf && !v.delta; }
-bool isS(const MltVertex& v) { return v.kind == MltVertex::Kind::Surface && v.bxdf && v.delta; }
-
-}  // namespace
-
 Perturbations::Perturbations(const PathSpace& space, const PerturbationSizes& sizes) : space_(space), sizes_(sizes) {
     const Camera::Params& c = space.scene().camera().params();
     r2_ = std::sqrt(sizes.imageFraction * double(c.xRes) * double(c.yRes) / kPi);
-}
-
-int Perturbations::lensChainEnd(const MltPath& x) const {
-    const int k = int(x.size()) - 1;
-    int m = k - 1;
-    while (m > 0 && isS(x[size_t(m)])) --m;
-    if (m > 0 && !isD(x[size_t(m)])) return -1;
-    return m;
 }
 
 // The lens ray and every specular chain after it, up to a D vertex that connects to its
@@ -32,16 +17,11 @@ namespace {
 // The index where the retraced part of x ends (the D vertex joined to its predecessor, or 0
 // for a light reached by the last chain), or -1; *chains receives the number of chains.
 int retracedEnd(const MltPath& x, const PathSpace& space, int* chains) {
-    const int k = int(x.size()) - 1;
-    int m = k - 1;
     *chains = 0;
-    while (true) {
+    for (int m = int(x.size()) - 2;; --m) {
         ++*chains;
-        while (m > 0 && isS(x[size_t(m)])) --m;
-        if (m == 0) return (x[0].light && !x[0].delta) ? 0 : -1;  // the chain must be able to hit the light
-        if (!isD(x[size_t(m)])) return -1;
-        if (space.connectible(x, m - 1)) return m;
-        --m;  // a specular predecessor: the next chain starts there
+        m = space.specularChainEnd(x, m);
+        if (m <= 0 || space.connectible(x, m - 1)) return m;  // else a specular predecessor: the next chain starts there
     }
 }
 
@@ -50,8 +30,9 @@ double retracedDensity(const MltPath& z, const PathSpace& space, int end) {
     const int k = int(z.size()) - 1;
     double p = 1;
     for (int i = k - 1; i >= end && p > 0; --i)
-        p *= (i + 1 < k && isD(z[size_t(i + 1)])) ? PathSpace::areaFactor(z, i + 1, i)
-                                                   : space.cameraDensity(z, i, PathSpace::Lobes::Forced);
+        p *= (i + 1 < k && z[size_t(i + 1)].isNonSpecularSurface())
+                 ? PathSpace::areaFactor(z, i + 1, i)
+                 : space.cameraDensity(z, i, PathSpace::Lobes::Forced);
     return p;
 }
 
@@ -104,11 +85,11 @@ bool Perturbations::lens(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer
         y[size_t(i)] = v;
         if (i == 0) {
             if (!v.light) return false;  // the last chain must end on an emitter
-        } else if (isS(old)) {
-            if (!isS(v) || !space_.followSpecular(v, ray, PathSpace::reflects(x, i), TransportMode::Radiance, ray))
+        } else if (old.isSpecularSurface()) {
+            if (!v.isSpecularSurface() || !space_.followSpecular(v, ray, PathSpace::reflects(x, i), TransportMode::Radiance, ray))
                 return false;
         } else {
-            if (!isD(v)) return false;
+            if (!v.isNonSpecularSurface()) return false;
             if (i > end) ray = spawnRay(v.p, v.ng, perturbDirection(normalize(x[size_t(i - 1)].p - old.p), rng), 0);
         }
     }
@@ -121,10 +102,10 @@ bool Perturbations::lens(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer
 
 bool Perturbations::causticApplies(const MltPath& x) const {
     const int k = int(x.size()) - 1;
-    if (k < 3 || !isD(x[size_t(k - 1)]) || !isS(x[size_t(k - 2)])) return false;
+    if (k < 3 || !x[size_t(k - 1)].isNonSpecularSurface() || !x[size_t(k - 2)].isSpecularSurface()) return false;
     int m = k - 2;
-    while (m > 0 && isS(x[size_t(m)])) --m;
-    return m == 0 || isD(x[size_t(m)]);
+    while (m > 0 && x[size_t(m)].isSpecularSurface()) --m;
+    return m == 0 || x[size_t(m)].isNonSpecularSurface();
 }
 
 bool Perturbations::caustic(const MltPath& x, Rng& rng, ScratchBuffer& arena, PathStats& stats, MltPath& y,
@@ -132,7 +113,7 @@ bool Perturbations::caustic(const MltPath& x, Rng& rng, ScratchBuffer& arena, Pa
     if (!causticApplies(x)) return false;
     const int k = int(x.size()) - 1;
     int m = k - 2;
-    while (m > 0 && isS(x[size_t(m)])) --m;
+    while (m > 0 && x[size_t(m)].isSpecularSurface()) --m;
     arena.reset();
     y = x;
     for (MltVertex& v : y) PathSpace::rebind(v, arena);
@@ -143,9 +124,9 @@ bool Perturbations::caustic(const MltPath& x, Rng& rng, ScratchBuffer& arena, Pa
         if (!space_.trace(ray, arena, stats, v)) return false;
         y[size_t(i)] = v;
         if (i < k - 1) {
-            if (!isS(v) || !space_.followSpecular(v, ray, PathSpace::reflects(x, i), TransportMode::Importance, ray))
+            if (!v.isSpecularSurface() || !space_.followSpecular(v, ray, PathSpace::reflects(x, i), TransportMode::Importance, ray))
                 return false;
-        } else if (!isD(v)) {
+        } else if (!v.isNonSpecularSurface()) {
             return false;
         }
     }

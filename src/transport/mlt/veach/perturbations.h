@@ -45,8 +45,6 @@ public:
     double r2() const { return r2_; }
 
 private:
-    // The index of the first non-specular vertex before the lens (counting down), or -1.
-    int lensChainEnd(const MltPath& x) const;
     Vec3 perturbDirection(Vec3 w, Rng& rng) const;
 
     const PathSpace& space_;

@@ -83,14 +83,17 @@ double bootstrapSample(const VeachMLTIntegrator& integrator, uint64_t seed, int6
                        : !(space.connectible(y, s - 1) && space.connectible(y, s) && space.visible(y[size_t(s - 1)], y[size_t(s)], stats)))
                 continue;
             Vec2 pRaster;
-            const double f = space.contribution(y, &pRaster).luminance();
+            const Spectrum C = space.contribution(y, &pRaster);
+            const double f = C.luminance();
             // The densities of the n splits, each chosen with probability 1 / n by insertedDensity.
             const double p = integrator.bidirectional().insertedDensity(y, 0, n) * n;
             const double w = f / p;
             if (!(f > 0) || !(w > 0) || !std::isfinite(w)) continue;
             if (pick >= total && pick < total + w) {
                 out.path = y;
-                evaluate(space, out);
+                out.C = C;
+                out.pRaster = pRaster;
+                out.f = f;
             }
             total += w;
         }
@@ -250,16 +253,17 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         result.seconds += monitor.elapsed();
     }
 
-    for (int m = 0; m < int(Mutation::Count); ++m)
-        if (integrator.mutations().weight(Mutation(m)) > 0) ms.kinds.push_back({mutationName(Mutation(m))});
+    for (int m = 0; m < int(Mutation::Count); ++m) {
+        if (!(integrator.mutations().weight(Mutation(m)) > 0)) continue;
+        MetropolisStats::Kind kind{mutationName(Mutation(m))};
+        for (const Chain& ch : all) {
+            kind.proposed += ch.counts.proposed[m];
+            kind.failed += ch.counts.failed[m];
+            kind.accepted += ch.counts.accepted[m];
+        }
+        ms.kinds.push_back(kind);
+    }
     for (const Chain& ch : all) {
-        for (MetropolisStats::Kind& kind : ms.kinds)
-            for (int m = 0; m < int(Mutation::Count); ++m)
-                if (kind.name == mutationName(Mutation(m))) {
-                    kind.proposed += ch.counts.proposed[m];
-                    kind.failed += ch.counts.failed[m];
-                    kind.accepted += ch.counts.accepted[m];
-                }
         ms.invalidProposals += ch.counts.invalid;
         ms.mutations += ch.counts.done;
     }
