@@ -136,6 +136,35 @@ inline std::string causticThroughGlass() {
     return scene;
 }
 
+// A door ajar (thesis §11.5's test scene, small): two closed diffuse rooms divided by a wall
+// whose only opening is a narrow slit; the light, on the far room's ceiling, reaches the
+// camera's room only through it, so every lit path squeezes through the slit.
+inline std::string doorAjar() {
+    return std::string(R"(
+        LookAt 0 0.6 -1.9  0 0.4 0  0 1 0
+        Camera "perspective" "float fov" [ 60 ]
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        PixelFilter "box"
+        )") + mltIntegrator(200000) + R"(
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 12 12 12 ]
+          Shape "bilinearmesh" "point3 P" [ -0.3 1.19 0.4   0.3 1.19 0.4   -0.3 1.19 0.8   0.3 1.19 0.8 ]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]
+        Shape "bilinearmesh" "point3 P" [ -1 0 1   1 0 1   -1 0 -2   1 0 -2 ]
+        Shape "bilinearmesh" "point3 P" [ -1 1.2 -2   1 1.2 -2   -1 1.2 1   1 1.2 1 ]
+        Shape "bilinearmesh" "point3 P" [ -1 0 -2   -1 0 1   -1 1.2 -2   -1 1.2 1 ]
+        Shape "bilinearmesh" "point3 P" [ 1 0 1   1 0 -2   1 1.2 1   1 1.2 -2 ]
+        Shape "bilinearmesh" "point3 P" [ -1 0 -2   1 0 -2   -1 1.2 -2   1 1.2 -2 ]
+        Shape "bilinearmesh" "point3 P" [ -1 0 1   1 0 1   -1 1.2 1   1 1.2 1 ]
+        Material "diffuse" "rgb reflectance" [ 0.6 0.5 0.4 ]
+        Shape "bilinearmesh" "point3 P" [ -1 0 0   0.2 0 0   -1 1.2 0   0.2 1.2 0 ]
+        Shape "bilinearmesh" "point3 P" [ 0.35 0 0   1 0 0   0.35 1.2 0   1 1.2 0 ]
+        Shape "bilinearmesh" "point3 P" [ 0.2 1 0   0.35 1 0   0.2 1.2 0   0.35 1.2 0 ]
+    )";
+}
+
 inline const double kPointLightInASphereExact = 0.5 + 0.25 + 0.125 + 0.0625 + 0.03125;
 
 }  // namespace ps::test

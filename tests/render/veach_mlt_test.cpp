@@ -155,6 +155,12 @@ INSTANTIATE_TEST_SUITE_P(
         MutationCase{"multi-chain perturbation, caustic through glass", "lens-subpath=0,lens=0,multi-chain=1,caustic=0",
                      causticThroughGlass, 256, 256, "multi-chain perturbation", 0.03},
         MutationCase{"all, caustic through glass", "", causticThroughGlass, 256, 256, "multi-chain perturbation", 0.03},
+        // Light through a slit: the paths the perturbations keep near the slit once found.
+        MutationCase{"lens subpath, door ajar", "lens-subpath=1,lens=0,multi-chain=0,caustic=0", doorAjar, 64, 128,
+                     "lens subpath", 0.03},
+        MutationCase{"lens perturbation, door ajar", "lens-subpath=0,lens=1,multi-chain=0,caustic=0", doorAjar, 64, 128,
+                     "lens perturbation", 0.03},
+        MutationCase{"all, door ajar", "", doorAjar, 64, 128, "lens perturbation", 0.03},
         // Uneven weights: the probability of choosing the bidirectional mutation then differs
         // by up to 16x between paths that admit the caustic perturbation and paths that do
         // not, so T(y -> x) must take it at y.

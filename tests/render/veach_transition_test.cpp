@@ -1,0 +1,213 @@
+// The transition densities of Veach's mutations against the mutations' own sampling: on a
+// scene small enough to bin (a light quad over a floor, a back wall, a pinhole), the
+// vertices a mutation really proposes are histogrammed over a surface and compared, by a
+// chi-square test, with the density T(x -> y) the acceptance uses, integrated over each bin.
+// A T that is off by a constant factor, misses a split of the bidirectional mutation, or
+// weights one side's density wrongly, fails here even where the image tests' 4 sigma would
+// need far longer renders to see it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "../materials/stats.h"
+#include "mc/estimator.h"
+#include "render_helpers.h"
+#include "transport/mlt/veach/veach_mlt.h"
+
+using namespace ps;
+using namespace ps::test;
+
+namespace {
+
+// Floor y = 0 and back wall z = 2, each [-2, 2] wide; a quad light at y = 1.5 facing down.
+const char* kScene = R"(
+    LookAt 0 1 -3  0 0.6 2  0 1 0
+    Camera "perspective" "float fov" [ 60 ]
+    Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 32 ]
+    PixelFilter "box"
+    WorldBegin
+    AttributeBegin
+      AreaLightSource "diffuse" "rgb L" [ 4 4 4 ]
+      Shape "bilinearmesh" "point3 P" [ -0.3 1.5 0.5   0.3 1.5 0.5   -0.3 1.5 1.1   0.3 1.5 1.1 ]
+    AttributeEnd
+    Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+    Shape "bilinearmesh" "point3 P" [ -2 0 2   2 0 2   -2 0 -2   2 0 -2 ]
+    Shape "bilinearmesh" "point3 P" [ -2 0 2   -2 2 2   2 0 2   2 2 2 ]
+)";
+
+// Which surface a histogram covers: the floor (bins over x, z) or the wall (bins over x, y).
+enum class Surface { Floor, Wall };
+constexpr int kBins = 12;
+
+struct PathSetup {
+    std::unique_ptr<Scene> scene;
+    std::unique_ptr<VeachMLTIntegrator> integrator;
+    ScratchBuffer arena;
+    MltPath x;  // light, floor, wall, lens
+
+    PathSetup() {
+        setWarningsQuiet(true);
+        scene = buildScene(parseSceneString(kScene, ".", "<test>"));
+        integrator = std::make_unique<VeachMLTIntegrator>(*scene, 5, MetropolisParams{});
+        const PathSpace& space = integrator->space();
+        PathStats stats;
+        Rng rng(3);
+        std::vector<MltVertex> light;
+        EXPECT_TRUE(space.walk(light, 1, TransportMode::Importance, rng, arena, stats));
+        MltVertex lens, wall, floor;
+        Ray ray = space.cameraRay(Vec2(16.5f, 9.5f), Vec2(0.5f, 0.5f), &lens);
+        EXPECT_TRUE(space.trace(ray, arena, stats, wall));
+        EXPECT_NEAR(wall.p.z, 2.0f, 1e-3f) << "the pixel must see the wall";
+        EXPECT_TRUE(space.trace(spawnRay(wall.p, wall.ng, normalize(Vec3(0.2f, 0, 0.8f) - wall.p), 0), arena, stats, floor));
+        EXPECT_NEAR(floor.p.y, 0.0f, 1e-3f);
+        x = {light[0], floor, wall, lens};
+        Vec2 raster;
+        EXPECT_GT(space.contribution(x, &raster).luminance(), 0.0f);
+    }
+
+    // x with vertex i moved to point (u, v) of the surface (traced from just in front of it),
+    // or nothing if the point cannot be joined to its neighbours.
+    MltPath moved(int i, Surface s, float u, float v, ScratchBuffer& a) const {
+        PathStats stats;
+        MltVertex hit;
+        const Ray ray = s == Surface::Floor ? Ray{Vec3(u, 1, v), Vec3(0, -1, 0)} : Ray{Vec3(u, v, 1), Vec3(0, 0, 1)};
+        MltPath y = x;
+        if (!integrator->space().trace(ray, a, stats, hit)) return {};
+        y[size_t(i)] = hit;
+        // A proposal reaches the point only along unblocked edges (the ray that made it and
+        // the join to the other side).
+        const PathSpace& space = integrator->space();
+        if (!space.visible(y[size_t(i - 1)], hit, stats) || !space.visible(hit, y[size_t(i + 1)], stats)) return {};
+        return y;
+    }
+};
+
+int binOf(Surface s, Vec3 p) {
+    const bool on = s == Surface::Floor ? std::fabs(p.y) < 1e-3f : std::fabs(p.z - 2) < 1e-3f;
+    const float u = p.x, v = s == Surface::Floor ? p.z : p.y;
+    const float v0 = s == Surface::Floor ? -2 : 0, vSize = s == Surface::Floor ? 4 : 2;
+    if (!on || u < -2 || u >= 2 || v < v0 || v >= v0 + vSize) return -1;
+    return std::min(kBins - 1, int((u + 2) / 4 * kBins)) * kBins + std::min(kBins - 1, int((v - v0) / vSize * kBins));
+}
+
+// Expected counts of `proposals` draws per bin: the integral of density(y) over the bin,
+// y being x with vertex i moved over the surface, by Monte Carlo over random points (its
+// variance goes into the chi-square's denominator).
+void expectedCounts(const PathSetup& s, int i, Surface surface, double proposals,
+                    const std::function<double(const MltPath&)>& density, std::vector<double>& mean,
+                    std::vector<double>& variance) {
+    const int points = 256;
+    const float vSize = surface == Surface::Floor ? 4 : 2, v0 = surface == Surface::Floor ? -2 : 0;
+    const double binArea = (4.0 / kBins) * (vSize / kBins);
+    Rng rng(17);
+    ScratchBuffer arena;
+    mean.assign(kBins * kBins, 0);
+    variance.assign(kBins * kBins, 0);
+    for (int bu = 0; bu < kBins; ++bu)
+        for (int bv = 0; bv < kBins; ++bv) {
+            RunningStats t;
+            for (int k = 0; k < points; ++k) {
+                arena.reset();
+                const float u = -2 + 4.0f * (bu + rng.uniform()) / kBins, v = v0 + vSize * (bv + rng.uniform()) / kBins;
+                const MltPath y = s.moved(i, surface, u, v, arena);
+                t.add(y.empty() ? 0.0 : density(y) * binArea * proposals);
+            }
+            mean[size_t(bu * kBins + bv)] = t.mean();
+            variance[size_t(bu * kBins + bv)] = t.standardError() * t.standardError();
+        }
+}
+
+void expectFit(const char* what, const std::vector<double>& observed, const std::vector<double>& expected,
+               const std::vector<double>& variance) {
+    double o = 0, e = 0, ev = 0;
+    for (size_t k = 0; k < observed.size(); ++k) o += observed[k], e += expected[k], ev += variance[k];
+    ChiSquareResult r = chiSquare(observed, expected, variance);
+    if (std::getenv("PS_DEBUG_BINS"))
+        for (int i = 0; i < kBins; ++i) {
+            for (int j = kBins - 1; j >= 0; --j) std::printf("%6.0f/%-6.0f ", observed[size_t(i * kBins + j)], expected[size_t(i * kBins + j)]);
+            std::printf("\n");
+        }
+    // The bins' shape by chi-square, and their total (which Pearson's statistic barely sees:
+    // a T off by a constant factor) within 4 sigma: Poisson counts plus the integral's error.
+    const double z = (o - e) / std::sqrt(e + ev);
+    std::printf("[ %s ] %.0f proposals binned, %.1f expected (%.2f sigma); chi2 %.1f on %d dof, p = %.3g\n", what, o, e, z,
+                r.chi2, r.dof, r.pValue);
+    EXPECT_GT(r.pValue, 1e-4) << what;
+    EXPECT_LT(std::fabs(z), 4.0) << what;
+    EXPECT_GT(o, 5000) << what << ": too few proposals land in the bins";
+}
+
+bool same(Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+}  // namespace
+
+// The bidirectional mutation, replacing x's floor vertex (its light side is x0 alone, which
+// a walk cannot continue: the new vertex comes from the camera side, scattered at the wall)
+// or its wall vertex (half from a light walk scattered at the floor, half from a camera
+// ray, through deleting the wall vertex alone or the wall vertex and the lens).
+TEST(VeachTransition, BidirectionalMutationProposesWithItsDensity) {
+    PathSetup s;
+    const BidirectionalMutation& bd = s.integrator->bidirectional();
+    const int n = 3000000;
+    std::vector<double> floorObserved(kBins * kBins, 0), wallObserved(kBins * kBins, 0);
+    ScratchBuffer arena;
+    PathStats stats;
+    Rng rng(5);
+    MltPath y;
+    int mismatched = 0;
+    for (int k = 0; k < n; ++k) {
+        double txy = 0, tyx = 0;
+        if (!bd.propose(s.x, rng, arena, stats, y, &txy, &tyx)) continue;
+        if (y.size() != 4 || !same(y[0].p, s.x[0].p) || !same(y[3].p, s.x[3].p)) continue;
+        const bool floorMoved = !same(y[1].p, s.x[1].p), wallMoved = !same(y[2].p, s.x[2].p);
+        if (floorMoved == wallMoved) continue;
+        // What propose reports is the transition density of the choice it made.
+        const double expected = floorMoved ? bd.transition(s.x, y, 1, 1, 1) : txy;
+        if (floorMoved && !(std::fabs(txy - expected) <= 1e-9 * expected)) ++mismatched;
+        const int b = binOf(floorMoved ? Surface::Floor : Surface::Wall, y[floorMoved ? 1 : 2].p);
+        if (b >= 0) (floorMoved ? floorObserved : wallObserved)[size_t(b)] += 1;
+    }
+    EXPECT_EQ(mismatched, 0);
+    std::vector<double> e, v;
+    expectedCounts(s, 1, Surface::Floor, n, [&](const MltPath& z) { return bd.transition(s.x, z, 1, 1, 1); }, e, v);
+    expectFit("bidirectional, floor vertex", floorObserved, e, v);
+    expectedCounts(s, 2, Surface::Wall, n,
+                   [&](const MltPath& z) { return bd.transition(s.x, z, 2, 1, 1) + bd.transition(s.x, z, 2, 2, 2); }, e, v);
+    expectFit("bidirectional, wall vertex", wallObserved, e, v);
+}
+
+// The lens subpath mutation: a new camera ray through a uniform film point replaces the
+// lens subpath (the lens and the wall vertex); T is the camera side's density of the new
+// wall vertex, and the ratio it reports is T(y -> x) / T(x -> y).
+TEST(VeachTransition, LensSubpathMutationProposesWithItsDensity) {
+    PathSetup s;
+    const LensSubpathMutation& ls = s.integrator->lensSubpath();
+    const PathSpace& space = s.integrator->space();
+    ASSERT_TRUE(ls.applies(s.x));
+    const int n = 400000;
+    std::vector<double> observed(kBins * kBins, 0);
+    ScratchBuffer arena;
+    PathStats stats;
+    Rng rng(9);
+    MltPath y;
+    int ratiosOff = 0;
+    for (int k = 0; k < n; ++k) {
+        double ratio = 0;
+        if (!ls.propose(s.x, rng, arena, stats, y, &ratio)) continue;
+        ASSERT_EQ(y.size(), 4u);
+        const double forward = space.cameraDensity(y, 2), backward = space.cameraDensity(s.x, 2);
+        if (!(std::fabs(ratio - backward / forward) <= 1e-4 * ratio)) ++ratiosOff;
+        const int b = binOf(Surface::Wall, y[2].p);
+        if (b >= 0) observed[size_t(b)] += 1;
+    }
+    EXPECT_EQ(ratiosOff, 0);
+    std::vector<double> e, v;
+    expectedCounts(s, 2, Surface::Wall, n, [&](const MltPath& z) { return space.cameraDensity(z, 2); }, e, v);
+    expectFit("lens subpath, wall vertex", observed, e, v);
+}
