@@ -64,6 +64,15 @@ public:
     }
     bool isSpecular() const { return (flags() & (kDiffuse | kGlossy)) == 0 && (flags() & kSpecular); }
 
+    // Layered BxDFs evaluate f() and pdf() as deterministic estimates and sample() by a
+    // random walk of unknown density. Path-space Metropolis needs exact densities, so it
+    // samples them itself (veach/path_space.cpp): their coating's mirror reflection, whose
+    // reflectance at wo this gives (0 if the coating is rough), apart from the rest, which
+    // has no delta unless the light can pass a smooth coating to a smooth base and back.
+    virtual bool stochastic() const { return false; }
+    virtual float coatingMirrorReflectance(Vec3 /*wo*/) const { return 0; }
+    virtual bool specularThroughCoating() const { return false; }
+
 protected:
     BxDF() = default;
     explicit BxDF(bool usesLobeSample) : usesLobeSample_(usesLobeSample) {}

@@ -23,6 +23,7 @@ public:
         return sample(wo, uc, u, mode, kReflection | kTransmission);
     }
     float pdf(Vec3 wo, Vec3 wi, TransportMode mode) const override { return pdf(wo, wi, mode, kReflection | kTransmission); }
+    float eta() const { return eta_; }
     // Restricted to the lobes in `lobes` (kReflection, kTransmission), as layered BxDFs need.
     std::optional<BSDFSample> sample(Vec3 wo, float uc, Vec2 u, TransportMode mode, uint8_t lobes) const;
     float pdf(Vec3 wo, Vec3 wi, TransportMode mode, uint8_t lobes) const;

@@ -50,6 +50,14 @@ public:
     Spectrum f(Vec3 wo, Vec3 wi, TransportMode mode) const override;
     std::optional<BSDFSample> sample(Vec3 wo, float uc, Vec2 u, TransportMode mode) const override;
     float pdf(Vec3 wo, Vec3 wi, TransportMode mode) const override;
+    bool stochastic() const override { return true; }
+    float coatingMirrorReflectance(Vec3 wo) const override {
+        const uint8_t top = top_.flags();
+        return (top & kSpecular) && (top & kReflection) ? fresnelDielectric(std::fabs(wo.z), top_.eta()) : 0.0f;
+    }
+    bool specularThroughCoating() const override {
+        return (top_.flags() & kSpecular) && (bottom_.flags() & (kDiffuse | kGlossy)) == 0;
+    }
 
 private:
     // Density with which NEE through the coating would produce the inside direction wInside

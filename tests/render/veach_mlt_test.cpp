@@ -102,6 +102,35 @@ TEST(VeachMLT, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
                                   32, 16, {{"mlt", 128}}, 0.02});
 }
 
+// Layered surfaces, sampled by the path space's own mixture (MltVertex::mixed): a smooth-
+// coated diffuse sphere (its coating's mirror and the rest) and a back wall of conductor
+// under a rough coating, f being the layered BxDFs' deterministic estimates in both.
+std::string coatedBox() {
+    std::string scene = box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1");
+    auto replace = [&](const std::string& from, const std::string& to) { scene.replace(scene.find(from), from.size(), to); };
+    replace(R"(Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ])",
+            R"(Material "coateddiffuse" "rgb reflectance" [ 0.5 0.5 0.8 ])");
+    replace(R"(Shape "bilinearmesh" "point3 P" [ -0.5 0 -0.5   0.5 0 -0.5   -0.5 1 -0.5   0.5 1 -0.5 ])",
+            R"(AttributeBegin
+          Material "coatedconductor" "float interface.roughness" [ 0.2 ] "rgb reflectance" [ 0.9 0.6 0.3 ]
+          Shape "bilinearmesh" "point3 P" [ -0.5 0 -0.5   0.5 0 -0.5   -0.5 1 -0.5   0.5 1 -0.5 ]
+        AttributeEnd)");
+    return scene;
+}
+
+TEST(VeachMLT, AgreesWithBDPTOnCoatedSurfaces) {
+    expectAgreement(AgreementCase{"coated box", coatedBox(), {"bdpt", "mlt"}, 16, 16, {{"mlt", 64}}, 0.02});
+}
+
+// An area light seen only in a smooth coating over a diffuse base: the mirror role of a
+// mixed vertex (paths E S L), which the lens perturbation retraces.
+std::string lightSeenInACoating() {
+    std::string scene = lightSeenInAMirror();
+    const std::string from = R"(Material "conductor" "rgb reflectance" [ 0.9 0.9 0.9 ] "float roughness" [ 0 ])";
+    scene.replace(scene.find(from), from.size(), R"(Material "coateddiffuse" "rgb reflectance" [ 0.2 0.3 0.2 ])");
+    return scene;
+}
+
 // Each mutation makes a correct image: the bidirectional mutation (for ergodicity) with each
 // other one alone, on the scene whose paths that mutation moves: block and image means
 // against BDPT. The other tests run every mutation together.
@@ -162,6 +191,8 @@ INSTANTIATE_TEST_SUITE_P(
         MutationCase{"lens perturbation, door ajar", "lens-subpath=0,lens=1,multi-chain=0,caustic=0", doorAjar, 64, 128,
                      "lens perturbation", 0.03},
         MutationCase{"all, door ajar", "", doorAjar, 64, 128, "lens perturbation", 0.03},
+        MutationCase{"lens perturbation, light seen in a coating", "lens-subpath=0,lens=1,multi-chain=0,caustic=0",
+                     lightSeenInACoating, 64, 1024, "lens perturbation"},
         // Uneven weights: the probability of choosing the bidirectional mutation then differs
         // by up to 16x between paths that admit the caustic perturbation and paths that do
         // not, so T(y -> x) must take it at y.
@@ -286,13 +317,20 @@ TEST(VeachMLT, RefusesWhatItCannotRenderExactly) {
         ADD_FAILURE() << "not refused: " << why;
     };
     refused(base + "LightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\n", "infinite");
-    refused(base + "Material \"coateddiffuse\"\nShape \"sphere\" \"float radius\" [ 0.2 ]\n", "coateddiffuse");
+    // pbrt-v4's default coatedconductor: a smooth coating over a smooth conductor, also
+    // inside a mix.
+    const std::string smoothOverSmooth = "coatedconductor whose coating and conductor are both smooth";
+    refused(base + "Material \"coatedconductor\"\nShape \"sphere\" \"float radius\" [ 0.2 ]\n", smoothOverSmooth);
     refused(base + "MakeNamedMaterial \"c\" \"string type\" \"coatedconductor\"\nMakeNamedMaterial \"d\" \"string type\" "
                    "\"diffuse\"\nMaterial \"mix\" \"string materials\" [ \"c\" \"d\" ]\nShape \"sphere\" \"float radius\" [ 0.2 ]\n",
-            "coateddiffuse and coatedconductor");
+            smoothOverSmooth);
     refused(base + "AttributeBegin\nActiveTransform EndTime\nTranslate 0.1 0 0\nActiveTransform All\nShape \"sphere\" "
                    "\"float radius\" [ 0.2 ]\nAttributeEnd\n",
             "motion blur");
-    // The plain scene renders.
+    // The plain scene renders, and so do the other layered surfaces.
     EXPECT_NO_THROW(renderString(base + "Shape \"sphere\" \"float radius\" [ 0.2 ]\n", 1, 1, 0, "mlt"));
+    EXPECT_NO_THROW(renderString(base + "Material \"coateddiffuse\"\nShape \"sphere\" \"float radius\" [ 0.2 ]\n", 1, 1, 0, "mlt"));
+    EXPECT_NO_THROW(renderString(base + "Material \"coatedconductor\" \"float conductor.roughness\" [ 0.2 ]\nShape \"sphere\" "
+                                        "\"float radius\" [ 0.2 ]\n",
+                                 1, 1, 0, "mlt"));
 }

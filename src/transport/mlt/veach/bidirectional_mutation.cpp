@@ -95,6 +95,8 @@ bool BidirectionalMutation::insert(const MltPath& x, int lo, int d, int a, int c
     y.insert(y.end(), camera.rbegin(), camera.rend());
     if (light.empty()) return y[0].light != nullptr;  // the camera walk ended on an emitter
     const int jl = lo + c - 1, jr = lo + c;
+    y[size_t(jl)].takeJoinRole();
+    y[size_t(jr)].takeJoinRole();
     return space_.connectible(y, jl) && space_.connectible(y, jr) && space_.visible(y[size_t(jl)], y[size_t(jr)], stats);
 }
 

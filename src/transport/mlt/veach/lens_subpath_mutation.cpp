@@ -4,6 +4,10 @@ namespace ps {
 
 int LensSubpathMutation::subpathStart(const MltPath& x) const {
     const int m = space_.specularChainEnd(x, int(x.size()) - 2);
+    // The new subpath stops at the first vertex that is not purely specular, so a chain
+    // through a mixed vertex's mirror role could not be made back (T(y -> x) = 0).
+    for (int i = m + 1; m >= 0 && i < int(x.size()) - 1; ++i)
+        if (x[size_t(i)].mixed) return -1;
     return m == 0 || (m > 0 && space_.connectible(x, m - 1)) ? m : -1;
 }
 

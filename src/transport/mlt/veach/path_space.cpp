@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "math/warp.h"
+
 namespace ps {
 
 namespace {
@@ -30,6 +32,22 @@ PathSpace::PathSpace(const Scene& scene, int maxDepth) : scene_(scene), maxDepth
 
 void PathSpace::bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, Spectrum* f, float* pdf) const {
     const Vec3 woL = v.frame.toLocal(wo), wiL = v.frame.toLocal(wi);
+    if (v.mixed) {
+        // PathSpace's own sampling of a layered BxDF (MltVertex::mixed): its density is exact.
+        const float R = v.bxdf->coatingMirrorReflectance(woL);
+        if (f) *f = Spectrum();
+        if (pdf) *pdf = 0;
+        if (v.delta) {
+            if (dot(Vec3(-woL.x, -woL.y, woL.z), wiL) > 1 - 1e-4f && wiL.z != 0) {
+                if (f) *f = Spectrum(R / std::fabs(wiL.z));
+                if (pdf) *pdf = R;
+            }
+        } else if (woL.z * wiL.z > 0) {
+            if (f) *f = v.bxdf->f(woL, wiL, mode);
+            if (pdf) *pdf = (1 - R) * std::fabs(wiL.z) * kInvPi;
+        }
+        return;
+    }
     if (!v.delta) {
         if (f) *f = v.bxdf->f(woL, wiL, mode);
         if (pdf) *pdf = v.bxdf->pdf(woL, wiL, mode);
@@ -167,6 +185,11 @@ bool PathSpace::reflects(const MltPath& x, int i) {
 bool PathSpace::followSpecular(const MltVertex& v, const Ray& ray, bool reflect, TransportMode mode, Ray& next) const {
     if (v.kind != MltVertex::Kind::Surface || !v.bxdf || !v.delta) return false;
     const Vec3 woL = v.frame.toLocal(-ray.d);
+    if (v.mixed) {
+        if (!reflect) return false;
+        next = spawnRay(v.p, v.ng, v.frame.toWorld(Vec3(-woL.x, -woL.y, woL.z)), 0);
+        return true;
+    }
     for (float uc : {0.0f, 0x1.fffffep-1f}) {
         auto s = v.bxdf->sample(woL, uc, Vec2(0.5f, 0.5f), mode);
         if (s && s->isSpecular() && s->isReflection() == reflect) {
@@ -203,7 +226,15 @@ bool PathSpace::trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex
         out.uv = si.uv;
         out.frame = si.shadingFrame();
         out.bxdf = bxdf;
-        out.delta = (bxdf->flags() & (kDiffuse | kGlossy)) == 0;
+        if (bxdf->stochastic()) {
+            if (bxdf->specularThroughCoating()) {
+                unsupportedSurface_.store(true, std::memory_order_relaxed);
+                return false;
+            }
+            out.mixed = true;
+        } else {
+            out.delta = (bxdf->flags() & (kDiffuse | kGlossy)) == 0;
+        }
         out.light = si.areaLight;
         return true;
     }
@@ -272,12 +303,22 @@ Ray PathSpace::cameraRay(Vec2 pFilm, Vec2 uLens, MltVertex* lens) const {
     return ray;
 }
 
-bool PathSpace::scatter(const std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const {
-    const MltVertex& v = side.back();
+bool PathSpace::scatter(std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const {
+    MltVertex& v = side.back();
     if (side.size() < 2 || v.kind != MltVertex::Kind::Surface || !v.bxdf) return false;
     const Vec3 woL = v.frame.toLocal(unitTo(v, side[side.size() - 2]));
     const float uc = rng.uniform();
     const Vec2 u(rng.uniform(), rng.uniform());
+    if (v.mixed) {
+        // The coating's mirror with probability R(wo), else a cosine lobe on wo's side.
+        v.delta = uc < v.bxdf->coatingMirrorReflectance(woL);
+        Vec3 wiL = sampleCosineHemisphere(u);
+        if (v.delta) wiL = Vec3(-woL.x, -woL.y, woL.z);
+        else if (woL.z < 0) wiL.z = -wiL.z;
+        if (wiL.z == 0) return false;
+        ray = spawnRay(v.p, v.ng, v.frame.toWorld(wiL), 0);
+        return true;
+    }
     auto bs = v.bxdf->sample(woL, uc, u, mode);
     if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) return false;
     ray = spawnRay(v.p, v.ng, v.frame.toWorld(bs->wi), 0);

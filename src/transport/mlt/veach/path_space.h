@@ -15,6 +15,7 @@
 //  - the lens has the viewing direction as its normal, so the geometry term of the last
 //    edge carries the lens cosine that the importance We expects.
 #pragma once
+#include <atomic>
 #include <vector>
 #include "geometry/interaction.h"
 #include "lights/light.h"
@@ -30,7 +31,14 @@ namespace ps {
 struct MltVertex {
     enum class Kind : uint8_t { Light, Surface, Lens };
     Kind kind = Kind::Surface;
-    bool delta = false;  // surfaces: specular lobes only; lights: a delta position
+    bool delta = false;  // surfaces: specular lobes only (or a mixed surface's mirror role); lights: a delta position
+    // A layered surface (BxDF::stochastic): sampled by PathSpace's own mixture of known
+    // density, its coating's mirror reflection (probability R(wo), the Fresnel reflectance)
+    // or a cosine lobe on wo's side. `delta` is then this path's choice at the vertex: the
+    // mirror role (S) when the path reflects in the coating, else the rest of the BxDF (D),
+    // whose f is the layered estimate (deterministic in the directions). A vertex where the
+    // path is joined is always D.
+    bool mixed = false;
     Vec3 p;
     Vec3 ng;             // geometric normal; zero for a point (point light, pinhole); lens: the view axis
     Vec3 ns;             // shading normal (surfaces)
@@ -43,6 +51,15 @@ struct MltVertex {
     // A scattering vertex with a diffuse or glossy lobe (D), or with specular lobes only (S).
     bool isNonSpecularSurface() const { return kind == Kind::Surface && bxdf && !delta; }
     bool isSpecularSurface() const { return kind == Kind::Surface && bxdf && delta; }
+    // Takes the specular role if the surface has one (a retraced chain keeps a path's roles).
+    bool takeSpecularRole() {
+        if (mixed) delta = true;
+        return isSpecularSurface();
+    }
+    // A mixed vertex where a path is joined takes the D role.
+    void takeJoinRole() {
+        if (mixed) delta = false;
+    }
 };
 
 using MltPath = std::vector<MltVertex>;
@@ -96,18 +113,22 @@ public:
     bool visible(const MltVertex& a, const MltVertex& b, PathStats& stats) const;
     // The next ray of a walk: a direction sampled by the BSDF at side's last vertex (which
     // must have a predecessor in side).
-    bool scatter(const std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const;
+    // A mixed vertex's role is chosen here.
+    bool scatter(std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const;
     // A camera ray through film point pFilm (a pinhole's lens point is fixed; a thin lens
     // takes its point from uLens) and the lens vertex it leaves.
     Ray cameraRay(Vec2 pFilm, Vec2 uLens, MltVertex* lens) const;
     // The film, widened by the filter radius: where camera rays may pass.
     Vec2 filmMargin() const { return margin_; }
     Vec2 filmSize() const { return filmSize_; }
+    bool sawUnsupportedSurface() const { return unsupportedSurface_.load(std::memory_order_relaxed); }
     // Rebuilds a surface vertex's BxDF in `arena` (a path's vertices must all live in its own).
     static void rebind(MltVertex& v, ScratchBuffer& arena);
     // Whether the light at specular vertex i of x is reflected (else transmitted).
     static bool reflects(const MltPath& x, int i);
-    // Traces the ray to the next vertex (passing through interfaces): false if it escapes.
+    // Traces the ray to the next vertex (passing through interfaces): false if it escapes, or
+    // if it meets a layered surface whose mirror part lies under a smooth coating (then
+    // sawUnsupportedSurface() turns true: the renderer refuses the scene).
     bool trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex& out) const;
     // Continues a retraced specular chain at specular vertex v, reached along `ray`, by the
     // lobe that reflects or transmits as asked: the next ray, or false if v has no such lobe.
@@ -123,6 +144,7 @@ private:
     int maxDepth_;
     bool pinhole_;
     Vec2 margin_, filmSize_;
+    mutable std::atomic<bool> unsupportedSurface_{false};
 };
 
 // |cos| at v of the direction w (1 for a point without a normal).

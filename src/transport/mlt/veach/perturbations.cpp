@@ -82,12 +82,12 @@ bool Perturbations::lens(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer
         MltVertex v;
         if (!space_.trace(ray, arena, stats, v)) return false;
         const MltVertex& old = x[size_t(i)];
+        if (i > 0 && old.isSpecularSurface() && !v.takeSpecularRole()) return false;
         y[size_t(i)] = v;
         if (i == 0) {
             if (!v.light) return false;  // the last chain must end on an emitter
         } else if (old.isSpecularSurface()) {
-            if (!v.isSpecularSurface() || !space_.followSpecular(v, ray, PathSpace::reflects(x, i), TransportMode::Radiance, ray))
-                return false;
+            if (!space_.followSpecular(v, ray, PathSpace::reflects(x, i), TransportMode::Radiance, ray)) return false;
         } else {
             if (!v.isNonSpecularSurface()) return false;
             if (i > end) ray = spawnRay(v.p, v.ng, perturbDirection(normalize(x[size_t(i - 1)].p - old.p), rng), 0);
@@ -122,10 +122,10 @@ bool Perturbations::caustic(const MltPath& x, Rng& rng, ScratchBuffer& arena, Pa
     for (int i = m + 1; i <= k - 1; ++i) {
         MltVertex v;
         if (!space_.trace(ray, arena, stats, v)) return false;
+        if (i < k - 1 && !v.takeSpecularRole()) return false;
         y[size_t(i)] = v;
         if (i < k - 1) {
-            if (!v.isSpecularSurface() || !space_.followSpecular(v, ray, PathSpace::reflects(x, i), TransportMode::Importance, ray))
-                return false;
+            if (!space_.followSpecular(v, ray, PathSpace::reflects(x, i), TransportMode::Importance, ray)) return false;
         } else if (!v.isNonSpecularSurface()) {
             return false;
         }

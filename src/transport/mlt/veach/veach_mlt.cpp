@@ -62,6 +62,13 @@ uint64_t chainSeed(uint64_t seed, int chain) { return mixWithKey(mix64(seed ^ 0x
 // sum of the densities of every split that generates it (the balance heuristic): the
 // weights sum to an estimate of b. With `pick` in [0, total), the path whose weight range
 // holds it goes to `out` (its BxDFs in out's arena); returns the total.
+// Layered surfaces are sampled with a density of our own (path_space.h, MltVertex::mixed),
+// which has no place for the composite mirror of a smooth coating over a smooth base.
+constexpr const char* kUnsupportedCoating =
+    "integrator \"mlt\" does not support a coatedconductor whose coating and conductor are both smooth (roughness "
+    "0, pbrt-v4's default): its reflection is a sum of mirror paths inside the layer whose weight is only estimated, "
+    "and a path-space mutation needs it exactly; give either layer a roughness, or render with mmlt, bdpt or path";
+
 double bootstrapSample(const VeachMLTIntegrator& integrator, uint64_t seed, int64_t i, PathStats& stats,
                        PathState& out, double pick = -1) {
     const PathSpace& space = integrator.space();
@@ -79,6 +86,10 @@ double bootstrapSample(const VeachMLTIntegrator& integrator, uint64_t seed, int6
             if (s > int(light.size()) || t > int(camera.size())) continue;
             y.assign(light.begin(), light.begin() + s);
             y.insert(y.end(), camera.rend() - t, camera.rend());
+            if (s >= 1) {
+                y[size_t(s - 1)].takeJoinRole();
+                y[size_t(s)].takeJoinRole();
+            }
             if (s == 0 ? !y[0].light
                        : !(space.connectible(y, s - 1) && space.connectible(y, s) && space.visible(y[size_t(s - 1)], y[size_t(s)], stats)))
                 continue;
@@ -127,11 +138,6 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         if (light->atInfinity() || light->type() == LightType::DeltaDirection)
             throw InputError("integrator \"mlt\" does not support infinite or distant lights yet; "
                              "render the scene with mmlt, bdpt or path");
-    for (const auto& m : scene.materials())
-        if (m && m->stochasticBxDF())
-            throw InputError("integrator \"mlt\" does not support coateddiffuse and coatedconductor yet: their f and "
-                             "pdf are stochastic estimates, and a path-space mutation's acceptance needs the exact "
-                             "density with which it generates a path; render the scene with mmlt, bdpt or path");
     if (std::isfinite(scene.settings().maxComponentValue))
         warning("mlt: Film \"maxcomponentvalue\" is not applied to Metropolis renders (a chain's splats are not "
                 "camera samples); the image is not clamped");
@@ -175,6 +181,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     ms.bootstrapSamples = nBoot;
     ms.b = bootstrapCancelled ? 0.0 : sum / n;
     ms.bRelativeError = ms.b > 0 ? std::sqrt(std::max(0.0, squares / n - ms.b * ms.b) / n) / ms.b : 0.0;
+    if (integrator.space().sawUnsupportedSurface()) throw InputError(kUnsupportedCoating);
 
     const long long total = std::max(1LL, (long long)std::max(1, options.spp) * bounds.area());
     const int chains = int(std::min<long long>(std::max(1, mp.chains), total));
@@ -268,6 +275,8 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         ms.mutations += ch.counts.done;
     }
     for (const PathStats& s : threadStats) result.stats += s;
+    if (integrator.space().sawUnsupportedSurface())
+        warning(std::string(kUnsupportedCoating) + " (met by a chain after the bootstrap: those paths are missing)");
     finishChains(scene, film, options, total, bootstrapCancelled, result);
     return result;
 }
