@@ -43,7 +43,7 @@ uint64_t RGBToSpectrumTable::checksum() const {
 }
 
 SigmoidPolynomial RGBToSpectrumTable::operator()(std::array<float, 3> rgb) const {
-    for (float& v : rgb) v = std::clamp(v, 0.0f, 1.0f);
+    for (float& v : rgb) v = v >= 0 ? std::min(v, 1.0f) : 0.0f;  // NaN too: no index is made of it
     if (rgb[0] == rgb[1] && rgb[1] == rgb[2]) {
         // S(c2) = v  <=>  c2 = (v - 1/2) / sqrt(v (1 - v)); +-infinity at 1 and 0.
         const float v = rgb[0];

@@ -14,7 +14,7 @@ class RGBToSpectrumTable {
     // The table of a named colour space (embedded in the library).
     static const RGBToSpectrumTable& forSpace(const RGBColorSpace& space);
 
-    // rgb in [0,1]^3 (clamped). Equal components are exact: the constant c2 with S(c2) = v,
+    // rgb in [0,1]^3 (clamped; NaN counts as 0). Equal components are exact: the constant c2 with S(c2) = v,
     // so black, white and greys are reproduced exactly; otherwise trilinear interpolation
     // of the coefficients in (x, y, brightness) as pbrt-v4.
     SigmoidPolynomial operator()(std::array<float, 3> rgb) const;

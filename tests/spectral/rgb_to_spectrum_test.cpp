@@ -93,6 +93,7 @@ TEST(RgbToSpectrum, GreysAreExact) {
         }
         EXPECT_EQ(SpectrumSource::rgbAlbedo(space, {0, 0, 0}).at(550), 0.0f);
         EXPECT_EQ(SpectrumSource::rgbAlbedo(space, {1, 1, 1}).at(550), 1.0f);
+        EXPECT_EQ(SpectrumSource::rgbAlbedo(space, {std::nanf(""), 0, 0}).at(550), 0.0f);
     }
 }
 
