@@ -36,6 +36,11 @@ SpectrumSource SpectrumSource::piecewiseLinear(std::vector<float> lambda, std::v
 }
 
 SpectrumSource SpectrumSource::piecewiseLinear(PiecewiseLinearTable table) {
+    // Callers validate (pbrt-v4 rejects non-increasing wavelengths); a mismatched table is
+    // cut to its pairs rather than read out of bounds.
+    const size_t n = std::min(table.lambda.size(), table.value.size());
+    table.lambda.resize(n);
+    table.value.resize(n);
     return SpectrumSource(Tabulated{std::make_shared<const PiecewiseLinearTable>(std::move(table))});
 }
 
