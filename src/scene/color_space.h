@@ -8,19 +8,9 @@
 
 #include "math/spectrum.h"
 #include "scene/params.h"
+#include "spectral/rgb_color_space.h"  // the spaces themselves (namedColorSpace, srgbColorSpace)
 
 namespace ps {
-
-struct RGBColorSpace {
-    const char* name;
-    double primaries[3][2];  // chromaticities (x, y) of R, G, B
-    double white[2];         // of the space's standard illuminant
-};
-
-// "srgb", "rec2020", "dci-p3" (P3 primaries with D65, as pbrt-v4) or "aces2065-1" (AP0
-// primaries, the ACES D60 white), case-insensitive; null for another name.
-const RGBColorSpace* namedColorSpace(const std::string& name);
-const RGBColorSpace& srgbColorSpace();
 
 // A value of `space` as the renderer's linear sRGB, by its use (pbrt-v4 lifts each use to a
 // spectrum differently):
