@@ -8,7 +8,11 @@ reduction to rank 0: scene loading and MPI start-up excluded) and its ratio to 1
 threads (the MPI overhead is the 2-process ratio minus 1), the reduction's time and bytes,
 the best whole-command time and the CPU seconds of the whole command (every process,
 mpirun's included: work the machine did, whatever else ran on it).
-    flock /tmp/ps-build.lock python3 bench/mpi_scaling.py [RUNS]   (from the repository root)
+    flock /tmp/ps-build.lock python3 bench/mpi_scaling.py [RUNS] [INTEGRATOR]   (from the repository root)
+INTEGRATOR: path (default, 64 spp) or a Metropolis one, pssmlt, mmlt or mlt (16 mutations per
+pixel, the default 100000 bootstrap samples and 1000 chains): its bootstrap and chains split
+over the processes (README), the reduction of its splat film, and the agreement after every
+pass of mutations.
 """
 import json
 import os
@@ -20,6 +24,8 @@ import tempfile
 import time
 
 runs = int(sys.argv[1]) if len(sys.argv) > 1 else 5
+integrator = sys.argv[2] if len(sys.argv) > 2 else "path"
+spp = "64" if integrator == "path" else "16"
 root = os.getcwd()
 binary = os.path.join(root, "build", "pathspace")
 scene = os.path.join(root, "..", "shared", "scenes", "cornell-box", "scene-v4-256.pbrt")
@@ -35,7 +41,7 @@ with tempfile.TemporaryDirectory() as tmp:
     for run in range(runs):
         for name, (launcher, threads) in setups.items():
             stats = os.path.join(tmp, "s.json")
-            cmd = launcher + [binary, "render", "--quiet", "--integrator", "path", "--spp", "64", "--threads",
+            cmd = launcher + [binary, "render", "--quiet", "--integrator", integrator, "--spp", spp, "--threads",
                               str(threads), scene, "-o", os.path.join(tmp, "out.exr"), "--stats", stats]
             t0, c0 = time.monotonic(), resource.getrusage(resource.RUSAGE_CHILDREN)
             subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
@@ -49,7 +55,7 @@ with tempfile.TemporaryDirectory() as tmp:
             r["bytes"] = s["reduction_bytes"]
 base = min(results["1 process x 2 threads"]["render"])
 baseMedian = statistics.median(results["1 process x 2 threads"]["render"])
-print(f"Cornell box 256x256, 64 spp, path tracer; {runs} alternating runs each (best / median seconds)")
+print(f"Cornell box 256x256, {integrator}, --spp {spp}; {runs} alternating runs each (best / median seconds)")
 for name, r in results.items():
     best, med = min(r["render"]), statistics.median(r["render"])
     print(f"{name:31s} render+reduction {best:.3f} / {med:.3f} s (x{best / base:.3f} / x{med / baseMedian:.3f}) | "

@@ -269,9 +269,6 @@ int RenderCommand::run() {
                          "splat paths anywhere on the film, so a pixel's samples do not make its value");
     BDPTIntegrator* bdpt = nullptr;
     if (!strategiesDir_.empty()) {
-        if (distributed::size() > 1)
-            throw InputError("--bdpt-strategies does not yet run over several processes: render it with one "
-                             "(without mpirun, or -n 1)");
         bdpt = dynamic_cast<BDPTIntegrator*>(integrator.get());
         if (!bdpt) throw InputError("--bdpt-strategies needs --integrator bdpt (the scene asks for \"" +
                                     settings.integrator + "\")");
@@ -348,6 +345,7 @@ int RenderCommand::run() {
     RenderResult r = render(*scene, *integrator, opts);
     // A signal to any process interrupted them all (each stops at the same pass boundary).
     const bool interrupted = distributed::anyOf(gInterrupt.load());
+    if (bdpt) bdpt->strategyImages()->sumToRoot();
     if (!root) return interrupted ? kExitInterrupted : kExitOk;
 
     for (const std::string& o : outputs) {
@@ -415,6 +413,8 @@ int RenderCommand::run() {
             {"small_step_acceptance_rate", MetropolisStats::rate(ms.acceptedSmall, ms.proposedSmall)},
             {"invalid_proposals", ms.invalidProposals},
             {"b_relative_error", ms.bRelativeError},
+            {"rank_mutations", ms.rankMutations},
+            {"rank_acceptance_rates", ms.rankAcceptance},
         };
     if (ms.present) {
         // Per path depth: its share of the image and, for mmlt, its proposals' acceptance.

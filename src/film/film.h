@@ -165,7 +165,6 @@ public:
     std::vector<int64_t> otherCounts() const;
     void setOtherCounts(const std::vector<int64_t>& counts);
 
-private:
     // Every sum is a 128-bit fixed-point integer, exact and so independent of the order in
     // which samples arrive: the image does not depend on the thread schedule or on how the
     // samples were split over processes (see accumulators()). Each sample's value is
@@ -190,6 +189,10 @@ private:
     }
     static double fromFixed(Fixed f) { return double(f) / kFixedUnit; }
     static double fromFixedSquare(Fixed f) { return double(f) / kFixedSquareUnit; }
+    // (Public: other per-pixel sums that must add up exactly over threads and processes,
+    // StrategyImages', use the same fixed point; kMaxSampleValue bounds a value.)
+
+private:
     struct Pixel {
         Fixed sum[3] = {0, 0, 0};
         Fixed weight = 0;

@@ -197,6 +197,27 @@ void broadcastFromRoot(std::vector<uint64_t>& v) {
 #endif
 }
 
+void mergeDisjoint(std::vector<uint64_t>& v) {
+#if PATHSPACE_HAVE_MPI
+    if (gSize <= 1) return;
+    Timed t(double(v.size() * sizeof(uint64_t)));
+    inChunks(v.size(), [&](size_t at, int n) {
+        check(MPI_Allreduce(MPI_IN_PLACE, v.data() + at, n, MPI_UINT64_T, MPI_BOR, MPI_COMM_WORLD), "merge");
+    });
+#else
+    (void)v;
+#endif
+}
+
+void mergeDisjoint(std::vector<double>& v) {
+    static_assert(sizeof(double) == sizeof(uint64_t));
+    if (size() <= 1 || v.empty()) return;
+    std::vector<uint64_t> bits(v.size());
+    std::memcpy(bits.data(), v.data(), v.size() * sizeof(double));
+    mergeDisjoint(bits);
+    std::memcpy(v.data(), bits.data(), v.size() * sizeof(double));
+}
+
 std::vector<double> gatherToRoot(double x) {
 #if PATHSPACE_HAVE_MPI
     if (gSize > 1) {

@@ -35,6 +35,12 @@ void orToRoot(std::vector<uint64_t>& v);
 // Rank 0's values on every process (same length everywhere).
 void broadcastFromRoot(std::vector<int64_t>& v);
 void broadcastFromRoot(std::vector<uint64_t>& v);
+// Every process gets every entry, bit for bit, where each entry is set by at most one
+// process and is zero (all bits) on the others: a bitwise OR over processes, so no
+// rounding and no order. For results computed in disjoint parts (a Metropolis bootstrap's
+// samples, split over the processes), which every process then needs whole.
+void mergeDisjoint(std::vector<uint64_t>& v);
+void mergeDisjoint(std::vector<double>& v);
 // Every process's value, in rank order, on rank 0 (elsewhere: empty).
 std::vector<double> gatherToRoot(double x);
 

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <memory>
+#include <numeric>
 
 #include "render/distributed.h"
+#include "transport/film_reduction.h"
 #include "transport/sample_allocation.h"
 #include "util/error.h"
 
@@ -128,14 +131,29 @@ bool renderSequential(SamplePasses& passes, Film& film, const Monitor& monitor, 
     // the mean (the film's own error measure, thesis §2.4), by half the first pass each.
     const size_t perRound = std::max<size_t>(1, pixels / 8);
     const int step = std::max(1, firstShare(budget) / 2);
+    // Over several processes each round is chosen on rank 0 from the whole film (every
+    // process's exact sums: one process's film) and sent to the others, so the rounds, and
+    // the image, are one process's bit for bit; `have` counts every process's samples.
+    const bool shared = distributed::size() > 1;
+    std::unique_ptr<Film> whole;
+    if (shared && distributed::isRoot()) whole = std::make_unique<Film>(film.xRes(), film.yRes(), film.bounds());
     std::vector<double> error(pixels);
-    while (passes.samplesDone() < total) {
-        for (size_t i = 0; i < pixels; ++i) error[i] = film.pixelEstimate(i).relativeVariance();
-        long long remaining = total - passes.samplesDone();
-        size_t k = std::min<size_t>(perRound, size_t(remaining));
-        int add = int(std::min<long long>(step, remaining / (long long)k));
+    auto taken = [&] { return std::accumulate(have.begin(), have.end(), 0LL); };
+    while (taken() < total) {
+        if (shared) sumFilmInto(film, *whole);
+        const long long remaining = total - taken();
+        const size_t k = std::min<size_t>(perRound, size_t(remaining));
+        const int add = int(std::min<long long>(step, remaining / (long long)k));
+        std::vector<int64_t> chosen(k);
+        if (distributed::isRoot()) {
+            const Film& f = shared ? *whole : film;
+            for (size_t i = 0; i < pixels; ++i) error[i] = f.pixelEstimate(i).relativeVariance();
+            const std::vector<size_t> largest = largestK(error, k);
+            std::copy(largest.begin(), largest.end(), chosen.begin());
+        }
+        distributed::broadcastFromRoot(chosen);
         std::vector<long long> target(have.begin(), have.end());
-        for (size_t i : largestK(error, k)) target[i] += add;
+        for (int64_t i : chosen) target[size_t(i)] += add;
         if (!fillTo(passes, film, have, Stream::Main, [&](size_t i) { return target[i]; })) return false;
     }
     return true;

@@ -30,7 +30,8 @@ AdaptiveMode parseAdaptiveMode(const std::string& name);
 // stopped early (time limit or cancellation); the film is then still a correct image.
 // Over several processes (render/distributed.h) every process calls them and takes its share
 // of every pass; the processes agree after every pass whether to stop.
-// Sequential: one process only (its rounds rank the pixels by the film's error).
+// Sequential: each round's pixels are chosen on rank 0 from every process's film summed
+// there (a second film on rank 0), the same as one process's choice.
 bool renderSequential(SamplePasses& passes, Film& film, const Monitor& monitor, int spp);
 // `pilot`: an empty film of film's pixels, for the first stage. Rank 0 sums every process's
 // pilot, computes the allocation from it and sends it to the others, so it is one process's

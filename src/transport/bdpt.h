@@ -103,6 +103,7 @@ public:
     // 12 bytes per pixel per strategy image).
     void recordStrategies(int maxDepth);
     const StrategyImages* strategyImages() const { return strategies_.get(); }
+    StrategyImages* strategyImages() { return strategies_.get(); }
 
 private:
     template <typename S, typename Deposit>

@@ -9,6 +9,7 @@
 
 #include "mc/estimator.h"
 #include "transport/checkpoint.h"
+#include "transport/film_reduction.h"
 #include "mc/sampler.h"
 #include "render/distributed.h"
 
@@ -61,67 +62,6 @@ bool renderUniform(SamplePasses& passes, Film& film, int spp, UniformProgress& a
     return true;
 }
 
-// Every process's film sums, plus a resumed render's, summed on rank 0 a chunk of pixels at
-// a time through a small buffer, so that no process copies its whole film (for a large film
-// the copy, new memory, costs many times the reduction: bench/README). Rank 0 gets each
-// chunk as take(first pixel, end pixel, sums, counts) in Film::accumulators()'s layout, then
-// the counts after the pixels' (splats, rejected samples) as take(pixels, pixels, {}, counts).
-template <class Take>
-void sumFilmToRoot(const Film& film, const CheckpointState* resume, Take take) {
-    constexpr size_t kChunk = 4096;  // pixels: 640 KB of sums
-    const size_t n = film.pixelCount(), k = Film::kPixelSums;
-    if (resume && distributed::isRoot() && (resume->sums.fixed.size() != n * k || resume->sums.counts.size() != n + film.otherCounts().size()))
-        throw InputError("--resume: the checkpoint's film has another size than this render's");
-    std::vector<Fixed> fixed;
-    std::vector<int64_t> counts;
-    for (size_t b = 0; b < n; b += kChunk) {
-        const size_t e = std::min(n, b + kChunk);
-        fixed.resize((e - b) * k);
-        counts.resize(e - b);
-        film.pixelSums(b, e, fixed.data(), counts.data());
-        distributed::sumToRoot(fixed);
-        distributed::sumToRoot(counts);
-        if (!distributed::isRoot()) continue;
-        if (resume) {
-            for (size_t i = 0; i < fixed.size(); ++i) fixed[i] += resume->sums.fixed[b * k + i];
-            for (size_t i = 0; i < counts.size(); ++i) counts[i] += resume->sums.counts[b + i];
-        }
-        take(b, e, fixed, counts);
-    }
-    counts = film.otherCounts();
-    distributed::sumToRoot(counts);
-    if (!distributed::isRoot()) return;
-    if (resume)
-        for (size_t i = 0; i < counts.size(); ++i) counts[i] += resume->sums.counts[n + i];
-    take(n, n, std::vector<Fixed>{}, counts);
-}
-
-// The samples and path statistics of every process (`samples` and `stats`: this process's),
-// plus a resumed render's, summed on rank 0; false elsewhere.
-bool sumCountsToRoot(long long& samples, PathStats& stats, const CheckpointState* resume) {
-    std::vector<int64_t> n{samples, int64_t(stats.cameraPaths), int64_t(stats.lightPaths), int64_t(stats.rays),
-                           int64_t(stats.shadowRays), int64_t(stats.guarded)};
-    distributed::sumToRoot(n);
-    if (!distributed::isRoot()) return false;
-    samples = n[0] + (resume ? resume->samples : 0);
-    stats = {uint64_t(n[1]), uint64_t(n[2]), uint64_t(n[3]), uint64_t(n[4]), uint64_t(n[5])};
-    if (resume) stats += resume->stats;
-    return true;
-}
-
-// A checkpoint's sums: every process's film and the resumed render's, on rank 0 (false elsewhere).
-bool sumAllToRoot(const Film& film, CheckpointState& state, const CheckpointState* resume) {
-    if (distributed::isRoot()) {
-        state.sums.fixed.reserve(film.pixelCount() * Film::kPixelSums);
-        state.sums.counts.reserve(film.pixelCount() + 1);
-    }
-    sumFilmToRoot(film, resume, [&](size_t, size_t, const std::vector<Fixed>& fixed, const std::vector<int64_t>& counts) {
-        state.sums.fixed.insert(state.sums.fixed.end(), fixed.begin(), fixed.end());
-        state.sums.counts.insert(state.sums.counts.end(), counts.begin(), counts.end());
-    });
-    return sumCountsToRoot(state.samples, state.stats, resume);
-}
-
 // Before the film is made: its bytes against the memory limit, named by the Film directive.
 void requireFilmMemory(const Scene& scene, const Integrator& integrator, const RenderOptions& options) {
     const PixelBounds& b = scene.pixelBounds();
@@ -133,33 +73,15 @@ void requireFilmMemory(const Scene& scene, const Integrator& integrator, const R
     double bytes = Film::estimateBytes(pixels, integrator.splats(), threads);
     // A two-stage render also holds a pilot film and its allocation arrays, about one more
     // film's worth. (The sequential rule's arrays are gone before the output images exist.)
-    if (options.adaptive == AdaptiveMode::TwoStage) bytes += Film::estimateBytes(pixels, false, 1);
+    // So does a sequential one over several processes (rank 0's sum of the films).
+    if (options.adaptive == AdaptiveMode::TwoStage ||
+        (options.adaptive == AdaptiveMode::Sequential && distributed::size() > 1))
+        bytes += Film::estimateBytes(pixels, false, 1);
     std::string what = "Film " + std::to_string(c.xRes) + "x" + std::to_string(c.yRes);
     if (b.area() != (long long)c.xRes * c.yRes)
         what += " (crop " + std::to_string(b.width()) + "x" + std::to_string(b.height()) + ")";
     if (integrator.splats()) what += " with splat buffers for " + std::to_string(threads) + " thread(s)";
     requireMemory(scene.settings().filmLoc, what, bytes);
-}
-
-// Sums every process's film and statistics, and a resumed render's, into rank 0's (exact
-// integer sums: the same bits as one process taking every sample). False on the other ranks,
-// whose film is then partial.
-bool reduceToRoot(Film& film, const SamplePasses& passes, RenderResult& result, const CheckpointState* resume) {
-    DistributedStats& d = result.distributed;
-    d.ranks = distributed::size();
-    for (double n : distributed::gatherToRoot(double(passes.samplesDone()))) d.rankSamples.push_back((long long)n);
-    d.rankSeconds = distributed::gatherToRoot(result.seconds);
-    if (d.ranks == 1 && !resume) return true;
-    const distributed::Traffic before = distributed::traffic();
-    sumFilmToRoot(film, resume, [&](size_t b, size_t e, const std::vector<Fixed>& fixed, const std::vector<int64_t>& counts) {
-        if (b < e) film.setPixelSums(b, e, fixed.data(), counts.data());
-        else film.setOtherCounts(counts);
-    });
-    long long samples = passes.samplesDone();
-    const bool root = sumCountsToRoot(samples, result.stats, resume);
-    d.reductionBytes = distributed::traffic().bytes - before.bytes;
-    d.reductionSeconds = distributed::traffic().seconds - before.seconds;
-    return root;
 }
 
 }  // namespace
@@ -187,11 +109,6 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
                          "(path); light tracing, BDPT and Metropolis splat onto the whole film");
     auto* veach = dynamic_cast<const VeachMLTIntegrator*>(&integrator);
     auto* mlt = dynamic_cast<const MetropolisIntegrator*>(&integrator);
-    if (distributed::size() > 1 && (mlt || veach || options.adaptive == AdaptiveMode::Sequential))
-        throw InputError(std::string(mlt || veach ? "Metropolis (pssmlt, mmlt, mlt)"
-                                                  : "sequential adaptive sampling (--adaptive sequential)") +
-                         " does not yet run over several processes: render it with one (without mpirun, or -n 1); "
-                         "path, light and bdpt with uniform or two-stage adaptive sampling do");
     if ((options.resume || options.checkpoint) && (mlt || veach || options.adaptive != AdaptiveMode::None))
         throw InputError(std::string(mlt || veach ? "Metropolis (pssmlt, mmlt, mlt)" : "adaptive sampling (--adaptive)") +
                          " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling do");
@@ -262,7 +179,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     // stopped pass's samples included, so that no finished work is lost.
     const bool finalCheckpoint = !complete && options.checkpoint && options.adaptive == AdaptiveMode::None;
     if (finalCheckpoint) distributed::orToRoot(at.partial);
-    if (!reduceToRoot(film, passes, result, resume)) return result;
+    if (!reduceToRoot(film, passes.samplesDone(), result, resume)) return result;
     // Pixels a stop left without second-stage samples: the (whole) pilot's stand in.
     if (pilot) film.adoptEmptyPixels(*pilot);
     if (finalCheckpoint) {

@@ -47,6 +47,10 @@ struct MetropolisStats {
     long long proposedLarge = 0, acceptedLarge = 0, proposedSmall = 0, acceptedSmall = 0;
     long long invalidProposals = 0;  // zero, negative or non-finite target: rejected, never splatted
     double bRelativeError = 0;      // standard error of b from the bootstrap, relative to b
+    // Over several processes: per process, in rank order, the mutations its chains made and
+    // their acceptance rate (rank 0's result; one entry without MPI).
+    std::vector<long long> rankMutations;
+    std::vector<double> rankAcceptance;
     bool multiplexed = false;       // the chains choose the path depth (proposals per depth)
     // Per path depth: its share of the image's luminance (sums to 1 over depths) and, when
     // the chains choose the depth, the proposals of that depth and how many were accepted,
@@ -112,9 +116,9 @@ void filmResults(const Film& film, double lightPaths, const RenderSettings& sett
 
 // Throws InputError before anything is allocated if the film would exceed the memory limit
 // (util/memory_limit.h), naming the scene's Film directive.
-// Over several processes (render/distributed.h; path, light and bdpt, uniform sampling) every
-// process calls it; each takes its share of the samples, and rank 0's result holds the whole
-// render, the same image as one process's; the others' results hold only their statistics.
+// Over several processes (render/distributed.h) every process calls it; each takes its share
+// of the samples (Metropolis: of the chains), and rank 0's result holds the whole render, the
+// same image as one process's; the others' results hold only their statistics.
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options);
 
 }  // namespace ps

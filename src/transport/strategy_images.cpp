@@ -1,7 +1,11 @@
 #include "transport/strategy_images.h"
 
+#include <cmath>
+
 #include <tbb/task_arena.h>
 
+#include "render/distributed.h"
+#include "transport/film_reduction.h"
 #include "util/memory_limit.h"
 
 namespace ps {
@@ -14,7 +18,7 @@ size_t outputImages(int maxDepth) { return 2 * (cameraStrategies(maxDepth) + siz
 }  // namespace
 
 double StrategyImages::estimateBytes(double pixels, int maxDepth, int threads) {
-    const double sums = double(cameraStrategies(maxDepth)) * 2 * 3 * sizeof(float) + sizeof(double);  // + weights_
+    const double sums = double(cameraStrategies(maxDepth)) * 2 * 3 * sizeof(Fixed) + sizeof(Fixed);  // + weights_
     const double images = double(outputImages(maxDepth)) * 3 * sizeof(float);
     const double splatFilms = 2.0 * (maxDepth + 1);
     return pixels * (sums + images) + splatFilms * Film::estimateBytes(pixels, true, threads);
@@ -29,8 +33,8 @@ StrategyImages::StrategyImages(PixelBounds bounds, int xRes, int yRes, const Fil
                   estimateBytes(double(bounds.area()), maxDepth, tbb::this_task_arena::max_concurrency()));
     for (int depth = 0; depth <= maxDepth; ++depth)
         for (int t = 2; t <= depth + 2; ++t) strategies_.push_back({depth + 2 - t, t});
-    sums_.assign(strategies_.size() * 2 * size_t(bounds.area()) * 3, 0.0f);
-    weights_.assign(size_t(bounds.area()), 0.0);
+    sums_.assign(strategies_.size() * 2 * size_t(bounds.area()) * 3, 0);
+    weights_.assign(size_t(bounds.area()), 0);
     for (int depth = 0; depth <= maxDepth; ++depth)
         for (int k = 0; k < 2; ++k) splatFilms_.push_back(std::make_unique<Film>(xRes, yRes, bounds, &filter));
 }
@@ -44,13 +48,16 @@ int StrategyImages::slot(int s, int t) const {
 
 void StrategyImages::addCameraSample(int px, int py, float filterWeight, const Spectrum* contributions) {
     size_t pixel = size_t(py - bounds_.y0) * bounds_.width() + (px - bounds_.x0);
-    weights_[pixel] += filterWeight;
+    weights_[pixel] += Film::toFixed(filterWeight);
     size_t area = size_t(bounds_.area());
     for (size_t i = 0; i < strategies_.size() * 2; ++i) {
         const Spectrum& c = contributions[i];
         if (c.isBlack() || !c.isFinite()) continue;
-        float* p = &sums_[(i * area + pixel) * 3];
-        for (int ch = 0; ch < 3; ++ch) p[ch] += c[ch] * filterWeight * imagingRatio_;
+        Fixed* p = &sums_[(i * area + pixel) * 3];
+        for (int ch = 0; ch < 3; ++ch) {
+            const double v = double(c[ch]) * filterWeight * imagingRatio_;
+            if (std::fabs(v) < Film::kMaxSampleValue) p[ch] += Film::toFixed(v);  // as the film rejects larger ones
+        }
     }
 }
 
@@ -59,6 +66,13 @@ void StrategyImages::splat(int s, Vec2 pRaster, Spectrum weighted, Spectrum unwe
     if (depth < 0 || depth > maxDepth_) return;
     splatFilms_[size_t(depth) * 2]->addSplat(pRaster, weighted, sampleIndex);
     splatFilms_[size_t(depth) * 2 + 1]->addSplat(pRaster, unweighted, sampleIndex);
+}
+
+void StrategyImages::sumToRoot() {
+    if (distributed::size() == 1) return;
+    distributed::sumToRoot(sums_);
+    distributed::sumToRoot(weights_);
+    for (const auto& f : splatFilms_) sumFilmInto(*f, *f);
 }
 
 std::vector<std::pair<std::string, Image>> StrategyImages::images(double lightPaths) const {
@@ -76,10 +90,11 @@ std::vector<std::pair<std::string, Image>> StrategyImages::images(double lightPa
     for (size_t i = 0; i < strategies_.size(); ++i)
         for (int k = 0; k < 2; ++k) {
             Image img(bounds_.width(), bounds_.height());
-            const float* src = &sums_[((i * 2 + size_t(k)) * area) * 3];
+            const Fixed* src = &sums_[((i * 2 + size_t(k)) * area) * 3];
             for (size_t p = 0; p < area; ++p)
                 for (int ch = 0; ch < 3; ++ch)
-                    img.rgb[p * 3 + ch] = weights_[p] != 0 ? float(src[p * 3 + ch] / weights_[p]) : 0.0f;
+                    img.rgb[p * 3 + ch] =
+                        weights_[p] != 0 ? float(Film::fromFixed(src[p * 3 + ch]) / Film::fromFixed(weights_[p])) : 0.0f;
             out.push_back({name(strategies_[i].first, strategies_[i].second, k), std::move(img)});
         }
     for (int depth = 1; depth <= maxDepth_; ++depth)  // (1, 1) is not a BDPT strategy

@@ -30,6 +30,9 @@ public:
     void addCameraSample(int px, int py, float filterWeight, const Spectrum* contributions);
     // Light-tracing strategies (t = 1) land anywhere; thread-safe.
     void splat(int s, Vec2 pRaster, Spectrum weighted, Spectrum unweighted, int sampleIndex);
+    // Over several processes (render/distributed.h): every process's sums added into rank
+    // 0's (exact: fixed point), as the film's are; every process calls it.
+    void sumToRoot();
     // Images named "s<S>_t<T>" and "s<S>_t<T>_unweighted".
     std::vector<std::pair<std::string, Image>> images(double lightPaths) const;
 
@@ -38,8 +41,10 @@ private:
     int maxDepth_;
     float imagingRatio_;
     std::vector<std::pair<int, int>> strategies_;  // (s, t) by slot
-    std::vector<float> sums_;      // [slot][weighted/unweighted][pixel][rgb]
-    std::vector<double> weights_;  // per pixel: sum of filter weights of camera samples
+    // In the film's fixed point (Film::toFixed): exact, so the images do not depend on the
+    // order of the samples, the threads or the processes that took them.
+    std::vector<Fixed> sums_;     // [slot][weighted/unweighted][pixel][rgb]
+    std::vector<Fixed> weights_;  // per pixel: sum of filter weights of camera samples
     std::vector<std::unique_ptr<Film>> splatFilms_;  // per depth: (s = depth + 1, t = 1) weighted, unweighted
 };
 

@@ -126,7 +126,7 @@ TEST_F(Checkpoint, RefusesDamagedOrMismatchedCheckpoints) {
 
 // Metropolis and adaptive sampling do not checkpoint yet, and say so.
 TEST_F(Checkpoint, RefusedWhereNotSupported) {
-    for (const std::string opts : {"--integrator pssmlt", "--integrator mmlt", "--adaptive twostage"}) {
+    for (const std::string opts : {"--integrator pssmlt", "--integrator mmlt", "--integrator mlt", "--adaptive twostage"}) {
         SCOPED_TRACE(opts);
         const Result r = render("x", "--spp 4 " + opts + " --checkpoint " + path("ck"));
         EXPECT_EQ(r.status, 2) << r.out;

@@ -6,6 +6,8 @@
 #include <tbb/parallel_for.h>
 
 #include "mc/rng.h"
+#include "render/distributed.h"
+#include "transport/mlt/chain_ranks.h"
 
 namespace ps {
 
@@ -26,7 +28,8 @@ struct Samples {
 };
 
 // Samples first .. first + alloc.total - 1. Blocks of samples are summed in order, so the
-// sums do not depend on the thread count.
+// sums do not depend on the thread count; over several processes each takes its blocks
+// (chain_ranks.h) and every process gets all the weights and block sums, bit for bit.
 Samples sampleIndependently(const BootstrapContext& ctx, int64_t first, const BootstrapAllocation& alloc,
                             const StrategyChoice& choice, bool learn, std::atomic<bool>& cancelled) {
     constexpr int64_t kBlock = 1024;
@@ -39,6 +42,7 @@ Samples sampleIndependently(const BootstrapContext& ctx, int64_t first, const Bo
     tbb::enumerable_thread_specific<std::vector<BootstrapState>> found;
     ctx.arena.execute([&] {
         tbb::parallel_for(int64_t(0), blocks, [&](int64_t block) {
+            if (!chain_ranks::ownsBlock(block)) return;
             if (ctx.cancel && ctx.cancel->load()) cancelled = true;
             if (cancelled.load(std::memory_order_relaxed)) return;
             std::vector<BootstrapState>& states = found.local();
@@ -62,6 +66,9 @@ Samples sampleIndependently(const BootstrapContext& ctx, int64_t first, const Bo
             }
         });
     });
+    distributed::mergeDisjoint(out.weight);
+    distributed::mergeDisjoint(blockSums);
+    cancelled = distributed::anyOf(cancelled.load());
     if (learn) {
         std::vector<double> total(stride, 0.0);
         for (int64_t block = 0; block < blocks; ++block)

@@ -16,6 +16,9 @@
 
 #include "mc/estimator.h"
 #include "mc/primary_sample_sampler.h"
+#include "render/distributed.h"
+#include "transport/film_reduction.h"
+#include "transport/mlt/chain_ranks.h"
 #include "transport/render_monitor.h"
 #include "util/error.h"
 
@@ -88,6 +91,41 @@ void record(const ChainState& x, double w, int chain, Film& film, std::vector<st
     }
 }
 
+// Every chain's counts on rank 0, each from the process that ran it (chain_ranks.h).
+void gatherCounts(std::vector<ChainCounts>& counts, size_t depths) {
+    if (distributed::size() == 1) return;
+    const size_t stride = 6 + 3 * depths;
+    chain_ranks::ChainRecords records(int(counts.size()), stride);
+    for (int c = 0; c < int(counts.size()); ++c) {
+        if (!chain_ranks::ownsChain(c)) continue;
+        const ChainCounts& cc = counts[size_t(c)];
+        size_t k = 0;
+        for (long long v : {cc.proposedLarge, cc.acceptedLarge, cc.proposedSmall, cc.acceptedSmall, cc.invalid, cc.done})
+            records.put(c, k++, v);
+        for (size_t d = 0; d < depths; ++d) {
+            records.put(c, k++, cc.proposedAt[d]);
+            records.put(c, k++, cc.acceptedAt[d]);
+            records.put(c, k++, cc.shareAt[d]);
+        }
+    }
+    records.gatherToRoot();
+    if (!distributed::isRoot()) return;
+    for (int c = 0; c < int(counts.size()); ++c) {
+        ChainCounts& cc = counts[size_t(c)];
+        size_t k = 0;
+        for (long long* v : {&cc.proposedLarge, &cc.acceptedLarge, &cc.proposedSmall, &cc.acceptedSmall, &cc.invalid, &cc.done})
+            *v = records.count(c, k++);
+        cc.proposedAt.assign(depths, 0);
+        cc.acceptedAt.assign(depths, 0);
+        cc.shareAt.assign(depths, 0.0);
+        for (size_t d = 0; d < depths; ++d) {
+            cc.proposedAt[d] = records.count(c, k++);
+            cc.acceptedAt[d] = records.count(c, k++);
+            cc.shareAt[d] = records.real(c, k++);
+        }
+    }
+}
+
 }  // namespace
 
 void MetropolisIntegrator::bootstrapSample(PrimarySampleSampler& sampler, int, double scale,
@@ -129,7 +167,8 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
 
     // Bootstrap: b, the strategy choice and the weights of the candidate initial states. It
     // counts against the time budget, and a cancellation during it leaves a black image (b
-    // unknown).
+    // unknown). Over several processes it is shared (chain_ranks.h), their clocks start together.
+    distributed::barrier();
     const auto startTime = std::chrono::steady_clock::now();
     const BootstrapContext bctx{integrator, pss, options.seed, options.cancel, arena, evaluators};
     const Bootstrap boot = runBootstrap(bctx);
@@ -170,14 +209,24 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                 warning(name + ": the bootstrap took " + std::to_string(bootstrapSeconds) + " s of the " +
                         std::to_string(options.timeLimit) + " s budget; fewer bootstrap samples leave the chains more");
         }
-        Monitor monitor(options.progress, chainTime, options.cancel, stop, done, total);
+        // This process's chains (chain_ranks.h) and their mutations (its progress bar's total).
+        std::vector<int> mine;
+        long long mineTotal = 0;
+        for (int c = 0; c < chains; ++c)
+            if (chain_ranks::ownsChain(c)) {
+                mine.push_back(c);
+                mineTotal += total / chains + (c < total % chains ? 1 : 0);
+            }
+        Monitor monitor(options.progress && distributed::isRoot(), chainTime, options.cancel, stop, done,
+                        std::max(1LL, mineTotal));
         std::atomic<bool> replayMismatch{false};
         // Every chain starts from a bootstrap state, then all advance in passes of a few
         // hundred mutations each, so that a render stopped early (time budget, Ctrl-C) has
         // mutations from every chain, not the whole of a few.
         std::vector<Chain> all(static_cast<size_t>(chains));
         arena.execute([&] {
-            tbb::parallel_for(0, chains, [&](int c) {
+            tbb::parallel_for(size_t(0), mine.size(), [&](size_t m) {
+                const int c = mine[m];
                 Chain& ch = all[size_t(c)];
                 ChainCounts& cc = counts[size_t(c)];
                 cc.proposedAt.assign(size_t(depths), 0);
@@ -194,10 +243,14 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
         });
         constexpr long long kPass = 256;
         const long long largestShare = total / chains + (total % chains ? 1 : 0);
-        for (long long pass = 0; pass * kPass < largestShare && !replayMismatch && !stop.load(); ++pass) {
+        // The processes agree after every pass whether to go on (a time limit, a signal to any).
+        replayFailed = distributed::anyOf(replayMismatch.load());
+        bool halt = replayFailed || distributed::anyOf(stop.load());
+        for (long long pass = 0; pass * kPass < largestShare && !halt; ++pass) {
             arena.execute([&] {
-                tbb::parallel_for(0, chains, [&](int c) {
+                tbb::parallel_for(size_t(0), mine.size(), [&](size_t m) {
                     if (stop.load(std::memory_order_relaxed)) return;
+                    const int c = mine[m];
                     Chain& ch = all[size_t(c)];
                     const long long n = std::min(ch.remaining, kPass);
                     ChainEvaluator& ev = evaluators.local();
@@ -229,12 +282,22 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                     done.fetch_add(n, std::memory_order_relaxed);
                 });
             });
+            halt = distributed::anyOf(stop.load());
         }
         result.seconds += monitor.elapsed();
-        replayFailed = replayMismatch.load();
     }
     if (replayFailed)
         throw std::logic_error(name + ": a bootstrap sample replayed with a different contribution");
+
+    // Every process's films, counts and statistics on rank 0; the others are done.
+    long long mutationsHere = 0;
+    for (int c = 0; c < chains; ++c) mutationsHere += counts[size_t(c)].done;
+    for (const ChainEvaluator& ev : evaluators) result.stats += ev.stats;
+    gatherCounts(counts, size_t(depths));
+    const bool root = reduceToRoot(film, mutationsHere, result);
+    if (distributed::size() > 1)
+        for (const auto& f : depthFilms) sumFilmInto(*f, *f);
+    if (!root) return result;
 
     for (const ChainCounts& cc : counts) {
         ms.proposedLarge += cc.proposedLarge;
@@ -250,7 +313,13 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
         }
     }
     for (MetropolisStats::Depth& d : ms.depths) d.share = ms.mutations > 0 ? d.share / double(ms.mutations) : 0.0;
-    for (const ChainEvaluator& ev : evaluators) result.stats += ev.stats;
+    std::vector<long long> chainDone, chainAccepted, chainProposed;
+    for (const ChainCounts& cc : counts) {
+        chainDone.push_back(cc.done);
+        chainAccepted.push_back(cc.acceptedLarge + cc.acceptedSmall);
+        chainProposed.push_back(cc.proposedLarge + cc.proposedSmall);
+    }
+    chain_ranks::perProcess(ms, chainDone, chainAccepted, chainProposed);
     const double lightPaths = finishChains(scene, film, options, total, bootstrapCancelled, result);
     for (const auto& f : depthFilms) result.depthImages.push_back(f->image(lightPaths));
     return result;

@@ -14,6 +14,9 @@
 #include <tbb/task_arena.h>
 
 #include "mc/primary_sample_sampler.h"
+#include "render/distributed.h"
+#include "transport/film_reduction.h"
+#include "transport/mlt/chain_ranks.h"
 #include "transport/mlt/bootstrap.h"
 #include "transport/render_monitor.h"
 #include "util/error.h"
@@ -123,6 +126,36 @@ struct Chain {
     Counts counts;
 };
 
+// Every chain's counts on rank 0, each from the process that ran it (chain_ranks.h).
+void gatherCounts(std::vector<Chain>& all) {
+    if (distributed::size() == 1) return;
+    constexpr size_t kinds = size_t(Mutation::Count), stride = 2 + 3 * kinds;
+    chain_ranks::ChainRecords records(int(all.size()), stride);
+    for (int c = 0; c < int(all.size()); ++c) {
+        if (!chain_ranks::ownsChain(c)) continue;
+        const Counts& n = all[size_t(c)].counts;
+        records.put(c, 0, n.invalid);
+        records.put(c, 1, n.done);
+        for (size_t m = 0; m < kinds; ++m) {
+            records.put(c, 2 + m, n.proposed[m]);
+            records.put(c, 2 + kinds + m, n.failed[m]);
+            records.put(c, 2 + 2 * kinds + m, n.accepted[m]);
+        }
+    }
+    records.gatherToRoot();
+    if (!distributed::isRoot()) return;
+    for (int c = 0; c < int(all.size()); ++c) {
+        Counts& n = all[size_t(c)].counts;
+        n.invalid = records.count(c, 0);
+        n.done = records.count(c, 1);
+        for (size_t m = 0; m < kinds; ++m) {
+            n.proposed[m] = records.count(c, 2 + m);
+            n.failed[m] = records.count(c, 2 + kinds + m);
+            n.accepted[m] = records.count(c, 2 + 2 * kinds + m);
+        }
+    }
+}
+
 }  // namespace
 
 RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integrator, const RenderOptions& options) {
@@ -153,15 +186,18 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     RenderResult result;
     MetropolisStats& ms = result.metropolis;
     ms.present = true;
+    distributed::barrier();  // over several processes (chain_ranks.h) the clocks start together
     const auto startTime = std::chrono::steady_clock::now();
 
-    // Bootstrap: b and the weights of the candidate initial states.
+    // Bootstrap: b and the weights of the candidate initial states, each process taking its
+    // blocks of samples and every process getting all the weights (chain_ranks.h).
     const int64_t nBoot = std::max(1, mp.bootstrapSamples);
     std::vector<double> weights(size_t(nBoot), 0.0);
     std::atomic<bool> bootstrapCancelled{false};
     arena.execute([&] {
         constexpr int64_t kBlock = 256;
         tbb::parallel_for(int64_t(0), (nBoot + kBlock - 1) / kBlock, [&](int64_t block) {
+            if (!chain_ranks::ownsBlock(block)) return;
             if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
                 bootstrapCancelled = true;
                 return;
@@ -171,6 +207,8 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                 weights[size_t(i)] = bootstrapSample(integrator, options.seed, i, threadStats.local(), s);
         });
     });
+    distributed::mergeDisjoint(weights);
+    bootstrapCancelled = distributed::anyOf(bootstrapCancelled.load());
     std::vector<double> cumulative(weights.size());
     double sum = 0, squares = 0;
     for (size_t i = 0; i < weights.size(); ++i) {
@@ -199,10 +237,19 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     } else {
         double chainTime = options.timeLimit;
         if (chainTime > 0) chainTime = std::max(options.timeLimit - bootstrapSeconds, 0.1 * options.timeLimit);
-        Monitor monitor(options.progress, chainTime, options.cancel, stop, done, total);
+        std::vector<int> mine;  // this process's chains (chain_ranks.h)
+        long long mineTotal = 0;
+        for (int c = 0; c < chains; ++c)
+            if (chain_ranks::ownsChain(c)) {
+                mine.push_back(c);
+                mineTotal += total / chains + (c < total % chains ? 1 : 0);
+            }
+        Monitor monitor(options.progress && distributed::isRoot(), chainTime, options.cancel, stop, done,
+                        std::max(1LL, mineTotal));
         std::atomic<bool> replayMismatch{false};
         arena.execute([&] {
-            tbb::parallel_for(0, chains, [&](int c) {
+            tbb::parallel_for(size_t(0), mine.size(), [&](size_t m) {
+                const int c = mine[m];
                 Chain& ch = all[size_t(c)];
                 ch.rng = Rng(chainSeed(options.seed, c), 0x510e527fade682d1ULL);
                 // A bootstrap path in proportion to f / p, generated again from its stream.
@@ -218,13 +265,17 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                 ch.remaining = total / chains + (c < total % chains ? 1 : 0);
             });
         });
-        if (replayMismatch) throw std::logic_error("mlt: a bootstrap path generated again gave another f / p");
+        if (distributed::anyOf(replayMismatch.load()))
+            throw std::logic_error("mlt: a bootstrap path generated again gave another f / p");
         constexpr long long kPass = 256;
         const long long largestShare = total / chains + (total % chains ? 1 : 0);
-        for (long long pass = 0; pass * kPass < largestShare && !stop.load(); ++pass) {
+        // The processes agree after every pass whether to go on (a time limit, a signal to any).
+        bool halt = distributed::anyOf(stop.load());
+        for (long long pass = 0; pass * kPass < largestShare && !halt; ++pass) {
             arena.execute([&] {
-                tbb::parallel_for(0, chains, [&](int c) {
+                tbb::parallel_for(size_t(0), mine.size(), [&](size_t m) {
                     if (stop.load(std::memory_order_relaxed)) return;
+                    const int c = mine[m];
                     Chain& ch = all[size_t(c)];
                     PathStats& stats = threadStats.local();
                     const long long steps = std::min(ch.remaining, kPass);
@@ -256,9 +307,17 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                     done.fetch_add(steps, std::memory_order_relaxed);
                 });
             });
+            halt = distributed::anyOf(stop.load());
         }
         result.seconds += monitor.elapsed();
     }
+
+    // Every process's film, counts and statistics on rank 0; the others are done.
+    long long mutationsHere = 0;
+    for (const Chain& ch : all) mutationsHere += ch.counts.done;
+    for (const PathStats& s : threadStats) result.stats += s;
+    gatherCounts(all);
+    if (!reduceToRoot(film, mutationsHere, result)) return result;
 
     for (int m = 0; m < int(Mutation::Count); ++m) {
         if (!(integrator.mutations().weight(Mutation(m)) > 0)) continue;
@@ -270,13 +329,21 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         }
         ms.kinds.push_back(kind);
     }
+    std::vector<long long> chainDone, chainAccepted, chainProposed;
     for (const Chain& ch : all) {
         ms.invalidProposals += ch.counts.invalid;
         ms.mutations += ch.counts.done;
+        chainDone.push_back(ch.counts.done);
+        chainAccepted.push_back(0);
+        chainProposed.push_back(0);
+        for (int m = 0; m < int(Mutation::Count); ++m) {
+            chainAccepted.back() += ch.counts.accepted[m];
+            chainProposed.back() += ch.counts.proposed[m];
+        }
     }
-    for (const PathStats& s : threadStats) result.stats += s;
     if (integrator.space().sawUnsupportedSurface())
         warning(std::string(kUnsupportedCoating) + " (met by a chain after the bootstrap: those paths are missing)");
+    chain_ranks::perProcess(ms, chainDone, chainAccepted, chainProposed);
     finishChains(scene, film, options, total, bootstrapCancelled, result);
     return result;
 }
