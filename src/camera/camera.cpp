@@ -34,15 +34,14 @@ Camera::Pose Camera::makePose(const Transform& worldFromCamera) const {
                 worldFromCamera.point({0, 0, 0})};
 }
 
-const Camera::Pose& Camera::poseAt(float time, Pose* scratch) const {
+const Camera::Pose& Camera::poseAt(float time, std::optional<Pose>& scratch) const {
     if (!isMoving()) return pose_;
-    *scratch = makePose(params_.motion.interpolate(time));
-    return *scratch;
+    return scratch.emplace(makePose(params_.motion.interpolate(time)));
 }
 
 Vec3 Camera::forward(float time) const {
-    Pose scratch;
-    return poseAt(time, &scratch).forward;
+    std::optional<Pose> scratch;
+    return poseAt(time, scratch).forward;
 }
 
 void Camera::setFilterMargin(Vec2 m) {
@@ -66,8 +65,8 @@ bool Camera::rasterOf(Vec3 oCam, Vec3 dCam, Vec2* pRaster) const {
 
 float Camera::We(const Ray& r, Vec2* pRaster) const {
     if (!hasImportance()) return 0;
-    Pose scratch;
-    const Pose& pose = poseAt(r.time, &scratch);
+    std::optional<Pose> scratch;
+    const Pose& pose = poseAt(r.time, scratch);
     return importance(pose, normalize(r.d), pose.cameraFromWorld.point(r.o), pRaster);
 }
 
@@ -82,8 +81,8 @@ float Camera::importance(const Pose& pose, Vec3 d, Vec3 oCam, Vec2* pRaster) con
 void Camera::pdfWe(const Ray& r, float* pdfPos, float* pdfDir) const {
     *pdfPos = *pdfDir = 0;
     if (!hasImportance()) return;
-    Pose scratch;
-    const Pose& pose = poseAt(r.time, &scratch);
+    std::optional<Pose> scratch;
+    const Pose& pose = poseAt(r.time, scratch);
     Vec3 d = normalize(r.d);
     float cosT = dot(d, pose.forward);
     if (!(cosT > 0)) return;
@@ -100,8 +99,8 @@ float Camera::generatedRayPdfDir(const Ray& r) const {
 
 std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, float time, Vec2 u) const {
     if (!hasImportance()) return std::nullopt;
-    Pose scratch;
-    const Pose& pose = poseAt(time, &scratch);
+    std::optional<Pose> scratch;
+    const Pose& pose = poseAt(time, scratch);
     // A pinhole has one lens point (u is still consumed by the caller, keeping dimensions aligned).
     Vec2 lens = params_.lensRadius > 0 ? sampleConcentricDisk(u) * params_.lensRadius : Vec2(0, 0);
     CameraWiSample s;

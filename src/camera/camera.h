@@ -98,9 +98,9 @@ private:
         Vec3 lensCentre;  // world position of the pinhole / lens centre
     };
     Pose makePose(const Transform& worldFromCamera) const;
-    // The pose at scene time `time`: the fixed one, or *scratch filled by interpolating
-    // the keyframes.
-    const Pose& poseAt(float time, Pose* scratch) const;
+    // The pose at scene time `time`: the fixed one, or `scratch` made by interpolating the
+    // keyframes (left empty for a fixed camera, which costs nothing).
+    const Pose& poseAt(float time, std::optional<Pose>& scratch) const;
     // generateRay with world-from-camera T (the transform at the ray's time).
     Ray generateRay(const CameraSample& s, const Transform& T, float* weight) const;
     float lensArea() const { return params_.lensRadius > 0 ? kPi * params_.lensRadius * params_.lensRadius : 1.0f; }
