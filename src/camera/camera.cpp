@@ -17,9 +17,7 @@ Camera::Camera(const Params& p) : params_(p) {
         sx0_ = w[0]; sx1_ = w[1]; sy0_ = w[2]; sy1_ = w[3];
     }
     tanHalfFov_ = std::tan(radians(p.fovDeg) / 2);
-    cameraFromWorld_ = p.worldFromCamera.inverse();
-    forward_ = normalize(p.worldFromCamera.vector({0, 0, 1}));
-    lensCentre_ = p.worldFromCamera.point({0, 0, 0});
+    pose_ = makePose(p.worldFromCamera);
     filmArea_ = std::fabs((sx1_ - sx0_) * (sy1_ - sy0_)) * tanHalfFov_ * tanHalfFov_;
     invImportanceNorm_ = 1 / (filmArea_ * lensArea());
     // Screen x = pFocus.x / (zFocus tan(fov/2)), raster x = (screen x - sx0) / (sx1 - sx0) xRes;
@@ -29,6 +27,21 @@ Camera::Camera(const Params& p) : params_(p) {
     bx_ = -sx0_ / (sx1_ - sx0_) * float(p.xRes);
     ky_ = float(p.yRes) / ((sy1_ - sy0_) * zFocus_ * tanHalfFov_);
     by_ = sy1_ / (sy1_ - sy0_) * float(p.yRes);
+}
+
+Camera::Pose Camera::makePose(const Transform& worldFromCamera) const {
+    return Pose{worldFromCamera, worldFromCamera.inverse(), normalize(worldFromCamera.vector({0, 0, 1})),
+                worldFromCamera.point({0, 0, 0})};
+}
+
+const Camera::Pose& Camera::poseAt(float time, std::optional<Pose>& scratch) const {
+    if (!isMoving()) return pose_;
+    return scratch.emplace(makePose(params_.motion.interpolate(time)));
+}
+
+Vec3 Camera::forward(float time) const {
+    std::optional<Pose> scratch;
+    return poseAt(time, scratch).forward;
 }
 
 void Camera::setFilterMargin(Vec2 m) {
@@ -52,13 +65,15 @@ bool Camera::rasterOf(Vec3 oCam, Vec3 dCam, Vec2* pRaster) const {
 
 float Camera::We(const Ray& r, Vec2* pRaster) const {
     if (!hasImportance()) return 0;
-    return importance(normalize(r.d), cameraFromWorld_.point(r.o), pRaster);
+    std::optional<Pose> scratch;
+    const Pose& pose = poseAt(r.time, scratch);
+    return importance(pose, normalize(r.d), pose.cameraFromWorld.point(r.o), pRaster);
 }
 
-float Camera::importance(Vec3 d, Vec3 oCam, Vec2* pRaster) const {
-    float cosT = dot(d, forward_);
+float Camera::importance(const Pose& pose, Vec3 d, Vec3 oCam, Vec2* pRaster) const {
+    float cosT = dot(d, pose.forward);
     if (!(cosT > 0)) return 0;
-    if (!rasterOf(oCam, cameraFromWorld_.vector(d), pRaster)) return 0;
+    if (!rasterOf(oCam, pose.cameraFromWorld.vector(d), pRaster)) return 0;
     float cos2 = cosT * cosT;
     return invImportanceNorm_ / (cos2 * cos2);
 }
@@ -66,27 +81,31 @@ float Camera::importance(Vec3 d, Vec3 oCam, Vec2* pRaster) const {
 void Camera::pdfWe(const Ray& r, float* pdfPos, float* pdfDir) const {
     *pdfPos = *pdfDir = 0;
     if (!hasImportance()) return;
+    std::optional<Pose> scratch;
+    const Pose& pose = poseAt(r.time, scratch);
     Vec3 d = normalize(r.d);
-    float cosT = dot(d, forward_);
+    float cosT = dot(d, pose.forward);
     if (!(cosT > 0)) return;
-    if (!rasterOf(cameraFromWorld_.point(r.o), cameraFromWorld_.vector(d), nullptr)) return;
+    if (!rasterOf(pose.cameraFromWorld.point(r.o), pose.cameraFromWorld.vector(d), nullptr)) return;
     *pdfPos = 1 / lensArea();
     *pdfDir = pdfDirAt(cosT);
 }
 
-float Camera::generatedRayPdfDir(Vec3 d) const {
+float Camera::generatedRayPdfDir(const Ray& r) const {
     if (!hasImportance()) return 0;
-    float cosT = dot(d, forward_);
+    float cosT = dot(r.d, forward(r.time));
     return cosT > 0 ? pdfDirAt(cosT) : 0.0f;
 }
 
-std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, Vec2 u) const {
+std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, float time, Vec2 u) const {
     if (!hasImportance()) return std::nullopt;
+    std::optional<Pose> scratch;
+    const Pose& pose = poseAt(time, scratch);
     // A pinhole has one lens point (u is still consumed by the caller, keeping dimensions aligned).
     Vec2 lens = params_.lensRadius > 0 ? sampleConcentricDisk(u) * params_.lensRadius : Vec2(0, 0);
     CameraWiSample s;
-    s.pLens = params_.lensRadius > 0 ? params_.worldFromCamera.point({lens.x, lens.y, 0}) : lensCentre_;
-    s.nLens = forward_;
+    s.pLens = params_.lensRadius > 0 ? pose.worldFromCamera.point({lens.x, lens.y, 0}) : pose.lensCentre;
+    s.nLens = pose.forward;
     Vec3 toLens = s.pLens - ref;
     float dist2 = lengthSquared(toLens);
     if (!(dist2 > 0)) return std::nullopt;
@@ -95,14 +114,17 @@ std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, Vec2 u) const {
     if (!(cosLens > 0)) return std::nullopt;
     // Area density 1/lensArea on the lens, as a solid angle at ref (thesis eq. 8.10).
     s.pdf = dist2 / (cosLens * lensArea());
-    s.We = importance(-s.wi, {lens.x, lens.y, 0}, &s.pRaster);
+    s.We = importance(pose, -s.wi, {lens.x, lens.y, 0}, &s.pRaster);
     if (!(s.We > 0)) return std::nullopt;
     s.pdfDir = pdfDirAt(cosLens);  // as pdfWe gives it
     return s;
 }
 
 Ray Camera::generateRay(const CameraSample& s, float* weight) const {
-    const float time = (1 - s.time) * params_.shutterOpen + s.time * params_.shutterClose;
+    return generateRayAt(s, shutterTime(s.time), weight);
+}
+
+Ray Camera::generateRayAt(const CameraSample& s, float time, float* weight) const {
     Ray r = generateRay(s, isMoving() ? params_.motion.interpolate(time) : params_.worldFromCamera, weight);
     r.time = time;
     return r;

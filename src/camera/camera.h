@@ -54,6 +54,11 @@ public:
     // ray's weight: 1, except for the realistic camera, whose rays carry the lens system's
     // weight and 0 when the lens blocks them (then the ray is meaningless).
     Ray generateRay(const CameraSample& s, float* weight = nullptr) const;
+    // generateRay at a given scene time instead of s.time's point of the shutter (a path
+    // whose time is already chosen: Veach's mutations keep it).
+    Ray generateRayAt(const CameraSample& s, float time, float* weight = nullptr) const;
+    // The scene time at fraction u in [0, 1) of the shutter interval.
+    float shutterTime(float u) const { return (1 - u) * params_.shutterOpen + u * params_.shutterClose; }
     bool isMoving() const { return params_.motion.isAnimated(); }
     // Whether generateRay reads CameraSample::pLens.
     bool usesLensSample() const { return params_.lensRadius > 0 || params_.projection == Projection::Realistic; }
@@ -64,40 +69,51 @@ public:
     // over the film area A at unit distance, so that it integrates to one over the whole
     // film; zero outside it. Only perspective cameras have a non-delta importance (none is
     // implemented for the spherical camera, so light paths cannot reach its film).
+    // Each of the following places a moving camera where it is at a scene time (the ray's
+    // r.time, or `time`): a path has one time, and its connections to the lens, their
+    // importance, densities and film positions all use the lens at that time.
     bool hasImportance() const { return params_.projection == Projection::Perspective; }
     // W_e for the world-space ray leaving the lens; *pRaster receives the film point.
     float We(const Ray& r, Vec2* pRaster = nullptr) const;
     // Densities of generateRay choosing r: position on the lens (area) and direction.
     void pdfWe(const Ray& r, float* pdfPos, float* pdfDir) const;
     // pdfWe's directional density for a ray this camera generated itself: on the film by
-    // construction, so without the raster test (once per camera subpath). d is the ray's
-    // direction as generateRay returned it: already unit length.
-    float generatedRayPdfDir(Vec3 d) const;
-    // Samples a lens point seen from ref and the importance it sends there.
-    std::optional<CameraWiSample> sampleWi(Vec3 ref, Vec2 u) const;
-    // The viewing direction in world space (the lens normal).
-    Vec3 forward() const { return forward_; }
+    // construction, so without the raster test (once per camera subpath). r as generateRay
+    // returned it: its direction already unit length.
+    float generatedRayPdfDir(const Ray& r) const;
+    // Samples a lens point seen from ref at scene time `time` and the importance it sends there.
+    std::optional<CameraWiSample> sampleWi(Vec3 ref, float time, Vec2 u) const;
+    // The viewing direction in world space (the lens normal) at scene time `time`.
+    Vec3 forward(float time) const;
     // The pixel filter's radius: camera samples (and light paths splatted onto the film)
     // reach that far beyond the film's edge, so importance extends over the film widened by
     // it on every side; splats are normalised by the widened film's pixel count to match.
     void setFilterMargin(Vec2 rasterMargin);
 
 private:
+    // The camera placed at one scene time.
+    struct Pose {
+        Transform worldFromCamera, cameraFromWorld;
+        Vec3 forward;     // the viewing direction, unit
+        Vec3 lensCentre;  // world position of the pinhole / lens centre
+    };
+    Pose makePose(const Transform& worldFromCamera) const;
+    // The pose at scene time `time`: the fixed one, or `scratch` made by interpolating the
+    // keyframes (left empty for a fixed camera, which costs nothing).
+    const Pose& poseAt(float time, std::optional<Pose>& scratch) const;
     // generateRay with world-from-camera T (the transform at the ray's time).
     Ray generateRay(const CameraSample& s, const Transform& T, float* weight) const;
     float lensArea() const { return params_.lensRadius > 0 ? kPi * params_.lensRadius * params_.lensRadius : 1.0f; }
     // Film point for a camera-space direction from camera-space lens point o; false off the film.
     bool rasterOf(Vec3 oCam, Vec3 dCam, Vec2* pRaster) const;
-    // We for the unit world direction d leaving camera-space lens point oCam.
-    float importance(Vec3 d, Vec3 oCam, Vec2* pRaster) const;
+    // We for the unit world direction d leaving camera-space lens point oCam, camera at pose.
+    float importance(const Pose& pose, Vec3 d, Vec3 oCam, Vec2* pRaster) const;
     // pdfWe's directional density for a direction at cosT to the viewing direction: uniform
     // over the film area at z = 1, converted to solid angle.
     float pdfDirAt(float cosT) const { return 1 / (filmArea_ * cosT * cosT * cosT); }
 
     Params params_;
-    Transform cameraFromWorld_;
-    Vec3 forward_;
-    Vec3 lensCentre_;     // world position of the pinhole / lens centre
+    Pose pose_;           // at every time for a camera that does not move
     float filmArea_ = 1;  // screen window area at z = 1, widened by the filter margin
     Vec2 margin_;         // filter radius in raster units
     float sx0_, sx1_, sy0_, sy1_;  // screen window

@@ -12,7 +12,8 @@
 namespace ps {
 
 Film::Film(int xRes, int yRes, PixelBounds bounds, const Filter* splatFilter)
-    : xRes_(xRes), yRes_(yRes), bounds_(bounds), pixels_(size_t(bounds.area())), splatFilter_(splatFilter) {
+    : xRes_(xRes), yRes_(yRes), bounds_(bounds), pixels_(size_t(bounds.area())),
+      halves_(splatFilter ? size_t(bounds.area()) : 0), splatFilter_(splatFilter) {
     static std::atomic<uint64_t> nextId{1};
     id_ = nextId.fetch_add(1, std::memory_order_relaxed);
     if (splatFilter_) {
@@ -40,6 +41,7 @@ bool Film::perThreadSplatsFit(double pixels, int threads) {
 double Film::estimateBytes(double pixels, bool splats, int threads) {
     double perPixel = sizeof(Pixel) + 2 * 3 * sizeof(float) + sizeof(int);  // accumulators, two images, counts
     if (splats) {
+        perPixel += sizeof(Halves);
         const double copies = perThreadSplatsFit(pixels, threads) ? threads : 1;
         perPixel += kSplatBytesPerPixel * (copies + 1);  // + the merged copy
     }
@@ -169,7 +171,6 @@ Film::PixelEstimate Film::pixelEstimate(size_t i) const {
 }
 
 double Film::pixelVariance(size_t i, double lightPaths, const std::vector<int64_t>& splats, double& mean) const {
-    const Pixel& p = pixels_[i];
     if (!splatFilter_) {
         PixelEstimate e = pixelEstimate(i);
         mean = e.mean;
@@ -179,7 +180,8 @@ double Film::pixelVariance(size_t i, double lightPaths, const std::vector<int64_
     const double halfScale = lightPaths > 0 ? 2 * splatPixelCount() / lightPaths : 0.0;
     double h[2];
     for (int k = 0; k < 2; ++k) {
-        h[k] = p.halfWeight[k] != 0 ? fromFixed(p.halfY[k]) / fromFixed(p.halfWeight[k]) : 0.0;
+        const Halves& hp = halves_[i];
+        h[k] = hp.weight[k] != 0 ? fromFixed(hp.y[k]) / fromFixed(hp.weight[k]) : 0.0;
         Spectrum s(float(splatValue(splats, i, k, 0)), float(splatValue(splats, i, k, 1)),
                    float(splatValue(splats, i, k, 2)));
         h[k] += s.luminance() * halfScale;
@@ -253,8 +255,9 @@ void Film::setAccumulators(const Accumulators& a) {
 void Film::pixelSums(size_t begin, size_t end, Fixed* fixed, int64_t* counts) const {
     for (size_t i = begin; i < end; ++i, fixed += kFixedPerPixel) {
         const Pixel& p = pixels_[i];
+        const Halves h = halves_.empty() ? Halves() : halves_[i];
         const Fixed f[kFixedPerPixel] = {p.sum[0], p.sum[1], p.sum[2], p.weight, p.sumY, p.sumY2,
-                                         p.halfY[0], p.halfY[1], p.halfWeight[0], p.halfWeight[1]};
+                                         h.y[0], h.y[1], h.weight[0], h.weight[1]};
         std::copy(f, f + kFixedPerPixel, fixed);
         *counts++ = p.samples;
     }
@@ -264,7 +267,10 @@ void Film::setPixelSums(size_t begin, size_t end, const Fixed* f, const int64_t*
     for (size_t i = begin; i < end; ++i, f += kFixedPerPixel) {
         Pixel& p = pixels_[i];
         p.sum[0] = f[0], p.sum[1] = f[1], p.sum[2] = f[2], p.weight = f[3], p.sumY = f[4], p.sumY2 = f[5];
-        p.halfY[0] = f[6], p.halfY[1] = f[7], p.halfWeight[0] = f[8], p.halfWeight[1] = f[9];
+        if (!halves_.empty()) {
+            Halves& h = halves_[i];
+            h.y[0] = f[6], h.y[1] = f[7], h.weight[0] = f[8], h.weight[1] = f[9];
+        }
         p.samples = *counts++;
     }
 }

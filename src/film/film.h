@@ -12,6 +12,7 @@
 #include "film/filter.h"
 #include "image/image.h"
 #include "math/spectrum.h"
+#include "util/zeroed_array.h"
 
 namespace ps {
 
@@ -87,8 +88,9 @@ public:
         const double yCapped = std::min(std::fabs(y), kMaxSquaredValue);
         p.sumY2 += toFixedSquare(yCapped * yCapped);
         if (splatFilter_) {
-            p.halfY[sampleIndex & 1] += toFixed(y * weight);
-            p.halfWeight[sampleIndex & 1] += toFixed(weight);
+            Halves& h = halves_[i];
+            h.y[sampleIndex & 1] += toFixed(y * weight);
+            h.weight[sampleIndex & 1] += toFixed(weight);
         }
     }
 
@@ -196,11 +198,17 @@ private:
     struct Pixel {
         Fixed sum[3] = {0, 0, 0};
         Fixed weight = 0;
-        long long samples = 0;
         Fixed sumY = 0, sumY2 = 0;  // luminance moments
-        Fixed halfY[2] = {0, 0}, halfWeight[2] = {0, 0};  // splatting films only
+        long long samples = 0;
     };
-    static constexpr size_t kFixedPerPixel = kPixelSums;  // Pixel's Fixed members, in accumulators()'s order
+    // The half-buffers' luminance and weight sums (even and odd sample indices), apart from
+    // Pixel so that a film without splats does not carry them (64 of 176 bytes a pixel).
+    struct Halves {
+        Fixed y[2] = {0, 0}, weight[2] = {0, 0};
+    };
+    // Pixel's and Halves' Fixed members, in accumulators()'s order (a film without splats
+    // gives zero halves and takes none).
+    static constexpr size_t kFixedPerPixel = kPixelSums;
     // Variance of pixel i's mean luminance and that mean (the half-buffer estimate when splatting).
     double pixelVariance(size_t i, double lightPaths, const std::vector<int64_t>& splats, double& mean) const;
     static constexpr double kSplatFixedPoint = 268435456.0;  // 2^28 units per radiance unit
@@ -228,7 +236,8 @@ private:
     PixelBounds bounds_;
     float maxComponent_ = std::numeric_limits<float>::infinity();
     float splatMaxComponent_ = std::numeric_limits<float>::infinity();  // the same, in splat units
-    std::vector<Pixel> pixels_;
+    ZeroedArray<Pixel> pixels_;
+    ZeroedArray<Halves> halves_;  // splatting films only, one per pixel
     std::atomic<long long> rejected_{0};
     const Filter* splatFilter_ = nullptr;
     // Splat sums [pixel][half][channel]: per thread without atomics when they fit in memory

@@ -48,12 +48,13 @@ template <typename S>
 void BDPTIntegrator::joinLens(const PathVertex& qs, S& sampler, PathStats& stats, const SampleContext* splatTo,
                               Join& j) const {
     if (!qs.connectible()) return;
-    auto cs = paths_.scene().camera().sampleWi(qs.p, sampler.get2D());
+    auto cs = paths_.scene().camera().sampleWi(qs.p, qs.time, sampler.get2D());
     if (!cs) return;
     PathVertex& lens = j.sampled.emplace();
     lens.kind = VertexKind::Camera;
     lens.mode = TransportMode::Radiance;
     lens.p = cs->pLens;
+    lens.time = qs.time;
     lens.beta = Spectrum(cs->We / cs->pdf);
     j.pRaster = cs->pRaster;
     if (qs.kind == VertexKind::Surface && qs.bxdf) {

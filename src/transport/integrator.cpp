@@ -21,8 +21,6 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
         name == "mlt") {
         if (!scene.camera().hasImportance())
             throw InputError("integrator \"" + name + "\" connects light paths to the lens and needs a perspective camera");
-        if (scene.camera().isMoving())
-            throw InputError(scene.settings().cameraLoc, "Camera: a moving camera (ActiveTransform around Camera) is supported by the \"path\" integrator only, not \"" + name + "\", whose light paths connect to the lens");
         if (name == "light") return std::make_unique<LightTracer>(scene, maxDepth);
         if (name == "pssmlt" || name == "mmlt" || name == "mlt") {
             const RenderSettings& st = scene.settings();

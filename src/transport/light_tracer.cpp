@@ -10,7 +10,7 @@ void LightTracer::splatEmitter(const PathVertex& v, SampleContext& ctx) const {
     // (and pbrt-v4): a camera ray cannot hit them.
     if (v.infinite || !v.light || v.light->isDelta()) return;
     const Scene& scene = bdpt_.subpaths().scene();
-    auto cs = scene.camera().sampleWi(v.p, ctx.sampler.get2D());
+    auto cs = scene.camera().sampleWi(v.p, v.time, ctx.sampler.get2D());
     if (!cs || !(v.pdfFwd > 0)) return;
     Spectrum Le = v.light->L(v.p, v.ng, v.uv, cs->wi);
     if (Le.isBlack()) return;
@@ -18,6 +18,7 @@ void LightTracer::splatEmitter(const PathVertex& v, SampleContext& ctx) const {
     Spectrum L = Le * (cosLight * cs->We / (cs->pdf * v.pdfFwd));
     PathVertex lens;
     lens.p = cs->pLens;
+    lens.time = v.time;
     if (!bdpt_.subpaths().visible(v, lens, ctx.stats)) return;
     ctx.film.addSplat(cs->pRaster, L, ctx.sampleIndex);
 }

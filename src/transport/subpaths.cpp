@@ -28,7 +28,7 @@ int Subpaths::cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, 
     cam.p = ray.o;
     cam.time = ray.time;
     cam.beta = Spectrum(1.0f);
-    float pdfDir = scene_.camera().generatedRayPdfDir(ray.d);
+    float pdfDir = scene_.camera().generatedRayPdfDir(ray);
     ++stats.cameraPaths;
     if (!(pdfDir > 0)) return 1;
     int n = maxVertices > 0 ? std::min(maxVertices, maxCameraVertices()) : maxCameraVertices();
@@ -245,7 +245,9 @@ float Subpaths::pdf(const PathVertex& v, const PathVertex* prev, const PathVerte
     float pdfDir;
     if (v.kind == VertexKind::Camera) {
         float pdfPos;
-        scene_.camera().pdfWe(Ray{v.p, wn}, &pdfPos, &pdfDir);
+        Ray toNext{v.p, wn};
+        toNext.time = v.time;  // a moving lens where it is at the path's time
+        scene_.camera().pdfWe(toNext, &pdfPos, &pdfDir);
     } else {
         if (!prev || !v.bxdf) return 0;
         Vec3 wp = directionTo(v, *prev);

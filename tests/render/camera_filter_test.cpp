@@ -78,7 +78,7 @@ TEST(Camera, GeneratedRayDensityMatchesPdfWe) {
             float pdfPos, pdfDir;
             cam.pdfWe(r, &pdfPos, &pdfDir);
             ASSERT_GT(pdfDir, 0);
-            EXPECT_NEAR(cam.generatedRayPdfDir(r.d), pdfDir, 1e-4f * pdfDir);
+            EXPECT_NEAR(cam.generatedRayPdfDir(r), pdfDir, 1e-4f * pdfDir);
         }
     }
 }

@@ -142,24 +142,15 @@ TEST(MotionBlur, ShutterAndTransformTimesSelectTheInterval) {
 }
 
 // A camera moving 15 units left (ActiveTransform EndTime around Camera) sees the static quad
-// move 15 units right: the same coverage as the first test. Light paths cannot follow a
-// moving lens yet, so light tracing and BDPT refuse it, naming the Camera directive.
+// move 15 units right: the same coverage as the first test, also for light tracing and BDPT,
+// whose splats and lens connections use the lens where it is at their path's time.
 TEST(MotionBlur, MovingCameraShiftsTheScene) {
     const std::string scene = quadScene("", "Translate -10 0 5", "ActiveTransform EndTime  Translate 15 0 0  ActiveTransform All");
-    RenderResult r = renderString(scene, 64, 7, 0, "path");
-    expectColumns(r.image, Motion{-10, 15, 5, 0, 1, 0, 1}, 1.0, "moving camera");
-
-    SceneDescription desc = parseSceneString(scene, ".", "<test>");
-    auto built = buildScene(desc);
-    for (const char* integrator : {"light", "bdpt", "mmlt"}) {
-        try {
-            createIntegrator(integrator, *built);
-            ADD_FAILURE() << integrator << " accepted a moving camera";
-        } catch (const InputError& e) {
-            std::printf("  %s: %s\n", integrator, e.what());
-            EXPECT_NE(std::string(e.what()).find("<test>:4:"), std::string::npos) << e.what();
-            EXPECT_NE(std::string(e.what()).find("moving camera"), std::string::npos) << e.what();
-        }
+    // Light tracing's splats from the wide emitter are heavy-tailed at 64 spp (a column's
+    // 16 rows then underestimate its spread): it takes 256.
+    for (const char* integrator : {"path", "light", "bdpt"}) {
+        RenderResult r = renderString(scene, std::string(integrator) == "light" ? 256 : 64, 7, 0, integrator);
+        expectColumns(r.image, Motion{-10, 15, 5, 0, 1, 0, 1}, 1.0, (std::string("moving camera, ") + integrator).c_str());
     }
 }
 

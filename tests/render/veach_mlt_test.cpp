@@ -294,8 +294,7 @@ TEST(VeachMLT, MutationChoiceProbabilitiesAreDistributions) {
 
 
 // What mlt cannot do yet is refused with a clear error, never rendered wrongly: infinite
-// lights (a path's light vertex at infinity), layered materials (stochastic f and pdf),
-// motion blur.
+// lights (a path's light vertex at infinity), layered materials (stochastic f and pdf).
 TEST(VeachMLT, RefusesWhatItCannotRenderExactly) {
     const std::string base = R"(
         LookAt 0 0.5 2  0 0.5 0  0 1 0
@@ -324,9 +323,6 @@ TEST(VeachMLT, RefusesWhatItCannotRenderExactly) {
     refused(base + "MakeNamedMaterial \"c\" \"string type\" \"coatedconductor\"\nMakeNamedMaterial \"d\" \"string type\" "
                    "\"diffuse\"\nMaterial \"mix\" \"string materials\" [ \"c\" \"d\" ]\nShape \"sphere\" \"float radius\" [ 0.2 ]\n",
             smoothOverSmooth);
-    refused(base + "AttributeBegin\nActiveTransform EndTime\nTranslate 0.1 0 0\nActiveTransform All\nShape \"sphere\" "
-                   "\"float radius\" [ 0.2 ]\nAttributeEnd\n",
-            "motion blur");
     // The plain scene renders, and so do the other layered surfaces.
     EXPECT_NO_THROW(renderString(base + "Shape \"sphere\" \"float radius\" [ 0.2 ]\n", 1, 1, 0, "mlt"));
     EXPECT_NO_THROW(renderString(base + "Material \"coateddiffuse\"\nShape \"sphere\" \"float radius\" [ 0.2 ]\n", 1, 1, 0, "mlt"));

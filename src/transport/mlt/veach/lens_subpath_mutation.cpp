@@ -29,7 +29,8 @@ bool LensSubpathMutation::propose(const MltPath& x, Rng& rng, ScratchBuffer& are
     const Vec2 u(rng.uniform(), rng.uniform());
     const Vec2 pFilm(-space_.filmMargin().x + u.x * space_.filmSize().x,
                      -space_.filmMargin().y + u.y * space_.filmSize().y);
-    Ray ray = space_.cameraRay(pFilm, Vec2(rng.uniform(), rng.uniform()), &camera[0]);
+    // The path keeps its time: the light subpath x0 .. x(m-1) stays where it was then.
+    Ray ray = space_.cameraRay(pFilm, Vec2(rng.uniform(), rng.uniform()), x.back().time, &camera[0]);
     ++stats.cameraPaths;
     while (true) {
         if (m + int(camera.size()) >= space_.maxVertices()) return false;

@@ -93,7 +93,9 @@ Spectrum PathSpace::contribution(const MltPath& x, Vec2* pRaster) const {
         f *= fs * (std::fabs(dot(wi, v.ns)) / cosG) * geometry(v, x[size_t(i + 1)]);
     }
     if (f.isBlack()) return {};
-    const float We = scene_.camera().We(Ray{x[size_t(k)].p, unitTo(x[size_t(k)], x[size_t(k - 1)])}, pRaster);
+    Ray fromLens{x[size_t(k)].p, unitTo(x[size_t(k)], x[size_t(k - 1)])};
+    fromLens.time = x[size_t(k)].time;
+    const float We = scene_.camera().We(fromLens, pRaster);
     f *= We;
     return f.isFinite() ? f : Spectrum();
 }
@@ -133,7 +135,9 @@ double PathSpace::cameraDensity(const MltPath& x, int i, Lobes lobes) const {
     if ((v.kind == MltVertex::Kind::Light && v.delta) || (i < k && v.kind == MltVertex::Kind::Lens)) return 0;
     if (i == k) {
         float pdfPos, pdfDir;
-        scene_.camera().pdfWe(Ray{v.p, unitTo(v, x[size_t(k - 1)])}, &pdfPos, &pdfDir);
+        Ray fromLens{v.p, unitTo(v, x[size_t(k - 1)])};
+        fromLens.time = v.time;
+        scene_.camera().pdfWe(fromLens, &pdfPos, &pdfDir);
         return pdfPos;
     }
     const MltVertex& u = x[size_t(i + 1)];
@@ -141,7 +145,9 @@ double PathSpace::cameraDensity(const MltPath& x, int i, Lobes lobes) const {
     float pdfDir = 0;
     if (i + 1 == k) {
         float pdfPos;
-        scene_.camera().pdfWe(Ray{u.p, w}, &pdfPos, &pdfDir);
+        Ray fromLens{u.p, w};
+        fromLens.time = u.time;
+        scene_.camera().pdfWe(fromLens, &pdfPos, &pdfDir);
     } else {
         if (u.kind != MltVertex::Kind::Surface || !u.bxdf) return 0;
         bsdf(u, unitTo(u, x[size_t(i + 2)]), w, TransportMode::Radiance, nullptr, &pdfDir);
@@ -172,7 +178,7 @@ bool PathSpace::canContinue(int size, TransportMode mode) const {
 
 bool PathSpace::visible(const MltVertex& a, const MltVertex& b, PathStats& stats) const {
     ++stats.shadowRays;
-    return !scene_.occluded(spawnRayTo(a.p, offsetNormal(a), b.p, 0));
+    return !scene_.occluded(spawnRayTo(a.p, offsetNormal(a), b.p, a.time));
 }
 
 double PathSpace::areaFactor(const MltPath& x, int from, int to) { return toArea(1.0, x[size_t(from)], x[size_t(to)]); }
@@ -187,13 +193,13 @@ bool PathSpace::followSpecular(const MltVertex& v, const Ray& ray, bool reflect,
     const Vec3 woL = v.frame.toLocal(-ray.d);
     if (v.mixed) {
         if (!reflect) return false;
-        next = spawnRay(v.p, v.ng, v.frame.toWorld(Vec3(-woL.x, -woL.y, woL.z)), 0);
+        next = spawnRay(v.p, v.ng, v.frame.toWorld(Vec3(-woL.x, -woL.y, woL.z)), ray.time);
         return true;
     }
     for (float uc : {0.0f, 0x1.fffffep-1f}) {
         auto s = v.bxdf->sample(woL, uc, Vec2(0.5f, 0.5f), mode);
         if (s && s->isSpecular() && s->isReflection() == reflect) {
-            next = spawnRay(v.p, v.ng, v.frame.toWorld(s->wi), 0);
+            next = spawnRay(v.p, v.ng, v.frame.toWorld(s->wi), ray.time);
             return true;
         }
     }
@@ -236,13 +242,19 @@ bool PathSpace::trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex
             out.delta = (bxdf->flags() & (kDiffuse | kGlossy)) == 0;
         }
         out.light = si.areaLight;
+        out.time = ray.time;
         return true;
     }
     return false;
 }
 
-bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode, Rng& rng, ScratchBuffer& arena,
-                     PathStats& stats) const {
+float PathSpace::drawTime(Rng& rng) const {
+    const Camera& camera = scene_.camera();
+    return scene_.hasMotion() ? camera.shutterTime(rng.uniform()) : camera.shutterTime(0);
+}
+
+bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode, float time, Rng& rng,
+                     ScratchBuffer& arena, PathStats& stats) const {
     if (count <= 0) return true;
     if (!canContinue(int(side.size()), mode)) return false;
     Ray ray;
@@ -263,8 +275,9 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
         v.p = les->ray.o;
         v.ng = v.ns = les->n;
         v.uv = les->uv;
+        v.time = time;
         side.push_back(v);
-        ray = spawnRay(v.p, v.ng, les->ray.d, 0);
+        ray = spawnRay(v.p, v.ng, les->ray.d, time);
         --count;
     } else if (mode == TransportMode::Radiance && side.size() <= 1) {
         // A film point uniform over the film widened by the filter radius (where the
@@ -274,7 +287,7 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
         const Vec2 pFilm(-margin_.x + rng.uniform() * filmSize_.x, -margin_.y + rng.uniform() * filmSize_.y);
         const Vec2 uLens(rng.uniform(), rng.uniform());
         MltVertex lens;
-        ray = cameraRay(pFilm, uLens, &lens);
+        ray = cameraRay(pFilm, uLens, time, &lens);
         if (side.empty()) {
             side.push_back(lens);
             --count;
@@ -291,15 +304,16 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
     return true;
 }
 
-Ray PathSpace::cameraRay(Vec2 pFilm, Vec2 uLens, MltVertex* lens) const {
+Ray PathSpace::cameraRay(Vec2 pFilm, Vec2 uLens, float time, MltVertex* lens) const {
     CameraSample cs;
     cs.pFilm = pFilm;
     cs.pLens = pinhole_ ? Vec2(0.5f, 0.5f) : uLens;
-    const Ray ray = scene_.camera().generateRay(cs);
+    const Ray ray = scene_.camera().generateRayAt(cs, time);
     *lens = MltVertex();
     lens->kind = MltVertex::Kind::Lens;
     lens->p = ray.o;
-    lens->ng = scene_.camera().forward();
+    lens->time = time;
+    lens->ng = scene_.camera().forward(time);
     return ray;
 }
 
@@ -316,12 +330,12 @@ bool PathSpace::scatter(std::vector<MltVertex>& side, TransportMode mode, Rng& r
         if (v.delta) wiL = Vec3(-woL.x, -woL.y, woL.z);
         else if (woL.z < 0) wiL.z = -wiL.z;
         if (wiL.z == 0) return false;
-        ray = spawnRay(v.p, v.ng, v.frame.toWorld(wiL), 0);
+        ray = spawnRay(v.p, v.ng, v.frame.toWorld(wiL), v.time);
         return true;
     }
     auto bs = v.bxdf->sample(woL, uc, u, mode);
     if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) return false;
-    ray = spawnRay(v.p, v.ng, v.frame.toWorld(bs->wi), 0);
+    ray = spawnRay(v.p, v.ng, v.frame.toWorld(bs->wi), v.time);
     return true;
 }
 

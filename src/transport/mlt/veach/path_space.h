@@ -43,6 +43,9 @@ struct MltVertex {
     Vec3 ng;             // geometric normal; zero for a point (point light, pinhole); lens: the view axis
     Vec3 ns;             // shading normal (surfaces)
     Vec2 uv;
+    // The path's scene time (motion blur): every vertex of a path has it, and every ray
+    // leaving one travels at it.
+    float time = 0;
     Frame frame;         // shading frame (surfaces)
     const Light* light = nullptr;  // the emitter at x0 (a light vertex or an emitting surface)
     const BxDF* bxdf = nullptr;    // surfaces, built in the owning path's arena
@@ -99,14 +102,19 @@ public:
     // camera rays must reach).
     int specularChainEnd(const MltPath& x, int from) const;
 
+    // A new path's scene time: uniform over the shutter when the scene moves (in the
+    // shutter's measure normalised to 1, so that no density changes), else the shutter's
+    // opening without drawing a number (static scenes keep their random streams).
+    float drawTime(Rng& rng) const;
     // Walks that append `count` vertices to `side`, a subpath in walk order: from the light
-    // (Importance: side[0] is x0) or from the lens (Radiance: side[0] is xk). An empty side
+    // (Importance: side[0] is x0) or from the lens (Radiance: side[0] is xk), at scene time
+    // `time` (a non-empty side's own). An empty side
     // starts on a light chosen by power or at a new film point; a light side cannot continue
     // from its light vertex alone, nor a camera side from a thin lens alone (no density
     // of a direction given a fixed point there); a pinhole's is regenerated. False when a
     // ray escapes or a sample fails.
-    bool walk(std::vector<MltVertex>& side, int count, TransportMode mode, Rng& rng, ScratchBuffer& arena,
-              PathStats& stats) const;
+    bool walk(std::vector<MltVertex>& side, int count, TransportMode mode, float time, Rng& rng,
+              ScratchBuffer& arena, PathStats& stats) const;
     // Whether walk can extend a side (light or camera, by `mode`) that holds `size` vertices.
     bool canContinue(int size, TransportMode mode) const;
     // Mutual visibility of vertices a and b.
@@ -116,8 +124,8 @@ public:
     // A mixed vertex's role is chosen here.
     bool scatter(std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const;
     // A camera ray through film point pFilm (a pinhole's lens point is fixed; a thin lens
-    // takes its point from uLens) and the lens vertex it leaves.
-    Ray cameraRay(Vec2 pFilm, Vec2 uLens, MltVertex* lens) const;
+    // takes its point from uLens) at scene time `time`, and the lens vertex it leaves.
+    Ray cameraRay(Vec2 pFilm, Vec2 uLens, float time, MltVertex* lens) const;
     // The film, widened by the filter radius: where camera rays may pass.
     Vec2 filmMargin() const { return margin_; }
     Vec2 filmSize() const { return filmSize_; }

@@ -71,7 +71,8 @@ bool Perturbations::lens(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer
     cs.pFilm = Vec2(float(rasterX.x + r * std::cos(phi)), float(rasterX.y + r * std::sin(phi)));
     cs.pLens = Vec2(0.5f, 0.5f);
     float pdfPos, pdfDir;
-    Ray ray = space_.scene().camera().generateRay(cs);
+    // The path keeps its time (and so its lens position).
+    Ray ray = space_.scene().camera().generateRayAt(cs, x[size_t(k)].time);
     space_.scene().camera().pdfWe(ray, &pdfPos, &pdfDir);
     if (!(pdfDir > 0)) return false;  // off the film
 
@@ -90,7 +91,7 @@ bool Perturbations::lens(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer
             if (!space_.followSpecular(v, ray, PathSpace::reflects(x, i), TransportMode::Radiance, ray)) return false;
         } else {
             if (!v.isNonSpecularSurface()) return false;
-            if (i > end) ray = spawnRay(v.p, v.ng, perturbDirection(normalize(x[size_t(i - 1)].p - old.p), rng), 0);
+            if (i > end) ray = spawnRay(v.p, v.ng, perturbDirection(normalize(x[size_t(i - 1)].p - old.p), rng), v.time);
         }
     }
     if (end > 0 && !space_.visible(y[size_t(end - 1)], y[size_t(end)], stats)) return false;
@@ -118,7 +119,7 @@ bool Perturbations::caustic(const MltPath& x, Rng& rng, ScratchBuffer& arena, Pa
     y = x;
     for (MltVertex& v : y) PathSpace::rebind(v, arena);
     const MltVertex& from = y[size_t(m)];
-    Ray ray = spawnRay(from.p, from.ng, perturbDirection(normalize(x[size_t(m + 1)].p - from.p), rng), 0);
+    Ray ray = spawnRay(from.p, from.ng, perturbDirection(normalize(x[size_t(m + 1)].p - from.p), rng), from.time);
     for (int i = m + 1; i <= k - 1; ++i) {
         MltVertex v;
         if (!space_.trace(ray, arena, stats, v)) return false;

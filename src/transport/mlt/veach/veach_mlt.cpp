@@ -79,8 +79,9 @@ double bootstrapSample(const VeachMLTIntegrator& integrator, uint64_t seed, int6
     out.arena->reset();
     std::vector<MltVertex> light, camera;
     const int maxV = space.maxVertices();
-    space.walk(light, maxV - 1, TransportMode::Importance, rng, *out.arena, stats);
-    space.walk(camera, maxV, TransportMode::Radiance, rng, *out.arena, stats);
+    const float time = space.drawTime(rng);  // both subpaths', as one path's
+    space.walk(light, maxV - 1, TransportMode::Importance, time, rng, *out.arena, stats);
+    space.walk(camera, maxV, TransportMode::Radiance, time, rng, *out.arena, stats);
     MltPath y;
     double total = 0;
     for (int n = 2; n <= maxV; ++n)
@@ -164,9 +165,6 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     if (integrator.space().maxVertices() > BidirectionalMutation::kMaxVertices)
         throw InputError("integrator \"mlt\" supports maxdepth up to " +
                          std::to_string(BidirectionalMutation::kMaxVertices - 2));
-    if (scene.hasMotion())
-        throw InputError("integrator \"mlt\" does not support motion blur yet (a moving shape or camera); "
-                         "render the scene with mmlt, bdpt or path");
     for (const auto& light : scene.lights())
         if (light->atInfinity() || light->type() == LightType::DeltaDirection)
             throw InputError("integrator \"mlt\" does not support infinite or distant lights yet; "
