@@ -59,9 +59,9 @@ struct PathSetup {
         PathStats stats;
         Rng rng(3);
         std::vector<MltVertex> light;
-        EXPECT_TRUE(space.walk(light, 1, TransportMode::Importance, rng, arena, stats));
+        EXPECT_TRUE(space.walk(light, 1, TransportMode::Importance, 0.0f, rng, arena, stats));
         MltVertex lens, wall, floor;
-        Ray ray = space.cameraRay(Vec2(16.5f, 9.5f), Vec2(0.5f, 0.5f), &lens);
+        Ray ray = space.cameraRay(Vec2(16.5f, 9.5f), Vec2(0.5f, 0.5f), 0.0f, &lens);
         EXPECT_TRUE(space.trace(ray, arena, stats, wall));
         EXPECT_NEAR(wall.p.z, 2.0f, 1e-3f) << "the pixel must see the wall";
         EXPECT_TRUE(space.trace(spawnRay(wall.p, wall.ng, normalize(Vec3(0.2f, 0, 0.8f) - wall.p), 0), arena, stats, floor));
