@@ -24,6 +24,19 @@ namespace ps::chain_ranks {
 inline bool ownsChain(int c) { return c % distributed::size() == distributed::rank(); }
 inline bool ownsBlock(int64_t b) { return b % distributed::size() == distributed::rank(); }
 
+// The chains this process runs, in order, and *mutations their share of `total` mutations
+// over `chains` chains (chain c makes total / chains, one more for the first total % chains).
+inline std::vector<int> ownedChains(int chains, long long total, long long* mutations) {
+    std::vector<int> mine;
+    *mutations = 0;
+    for (int c = 0; c < chains; ++c)
+        if (ownsChain(c)) {
+            mine.push_back(c);
+            *mutations += total / chains + (c < total % chains ? 1 : 0);
+        }
+    return mine;
+}
+
 // Per chain, a record of `stride` 64-bit words (counts and sums), filled by the process
 // that runs the chain (zero elsewhere); gathered, rank 0 holds every chain's, bit for bit,
 // and sums them in chain order as one process would.

@@ -210,13 +210,8 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                         std::to_string(options.timeLimit) + " s budget; fewer bootstrap samples leave the chains more");
         }
         // This process's chains (chain_ranks.h) and their mutations (its progress bar's total).
-        std::vector<int> mine;
         long long mineTotal = 0;
-        for (int c = 0; c < chains; ++c)
-            if (chain_ranks::ownsChain(c)) {
-                mine.push_back(c);
-                mineTotal += total / chains + (c < total % chains ? 1 : 0);
-            }
+        const std::vector<int> mine = chain_ranks::ownedChains(chains, total, &mineTotal);
         Monitor monitor(options.progress && distributed::isRoot(), chainTime, options.cancel, stop, done,
                         std::max(1LL, mineTotal));
         std::atomic<bool> replayMismatch{false};

@@ -235,13 +235,8 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     } else {
         double chainTime = options.timeLimit;
         if (chainTime > 0) chainTime = std::max(options.timeLimit - bootstrapSeconds, 0.1 * options.timeLimit);
-        std::vector<int> mine;  // this process's chains (chain_ranks.h)
-        long long mineTotal = 0;
-        for (int c = 0; c < chains; ++c)
-            if (chain_ranks::ownsChain(c)) {
-                mine.push_back(c);
-                mineTotal += total / chains + (c < total % chains ? 1 : 0);
-            }
+        long long mineTotal = 0;  // this process's chains (chain_ranks.h) and their mutations
+        const std::vector<int> mine = chain_ranks::ownedChains(chains, total, &mineTotal);
         Monitor monitor(options.progress && distributed::isRoot(), chainTime, options.cancel, stop, done,
                         std::max(1LL, mineTotal));
         std::atomic<bool> replayMismatch{false};
