@@ -1,7 +1,9 @@
 #include "transport/mlt/veach/path_space.h"
 
 #include <cmath>
+#include <limits>
 
+#include "materials/fresnel.h"
 #include "math/warp.h"
 
 namespace ps {
@@ -9,6 +11,14 @@ namespace ps {
 namespace {
 
 Vec3 unitTo(const MltVertex& from, const MltVertex& to) { return normalize(to.p - from.p); }
+
+// The ray leaving the lens vertex towards `to`, at the path's time (where the camera is then).
+Ray fromLens(const MltVertex& lens, const MltVertex& to) {
+    return Ray{lens.p, unitTo(lens, to), std::numeric_limits<float>::infinity(), lens.time};
+}
+
+// The mirror direction of a local direction w about the shading normal (0, 0, 1).
+Vec3 mirror(Vec3 w) { return reflect(w, Vec3(0, 0, 1)); }
 
 // The normal a ray leaving v is offset along (the lens and points have none).
 Vec3 offsetNormal(const MltVertex& v) { return v.kind == MltVertex::Kind::Lens ? Vec3() : v.ng; }
@@ -38,7 +48,7 @@ void PathSpace::bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, S
         if (f) *f = Spectrum();
         if (pdf) *pdf = 0;
         if (v.delta) {
-            if (dot(Vec3(-woL.x, -woL.y, woL.z), wiL) > 1 - 1e-4f && wiL.z != 0) {
+            if (dot(mirror(woL), wiL) > 1 - 1e-4f && wiL.z != 0) {
                 if (f) *f = Spectrum(R / std::fabs(wiL.z));
                 if (pdf) *pdf = R;
             }
@@ -93,9 +103,7 @@ Spectrum PathSpace::contribution(const MltPath& x, Vec2* pRaster) const {
         f *= fs * (std::fabs(dot(wi, v.ns)) / cosG) * geometry(v, x[size_t(i + 1)]);
     }
     if (f.isBlack()) return {};
-    Ray fromLens{x[size_t(k)].p, unitTo(x[size_t(k)], x[size_t(k - 1)])};
-    fromLens.time = x[size_t(k)].time;
-    const float We = scene_.camera().We(fromLens, pRaster);
+    const float We = scene_.camera().We(fromLens(x[size_t(k)], x[size_t(k - 1)]), pRaster);
     f *= We;
     return f.isFinite() ? f : Spectrum();
 }
@@ -135,9 +143,7 @@ double PathSpace::cameraDensity(const MltPath& x, int i, Lobes lobes) const {
     if ((v.kind == MltVertex::Kind::Light && v.delta) || (i < k && v.kind == MltVertex::Kind::Lens)) return 0;
     if (i == k) {
         float pdfPos, pdfDir;
-        Ray fromLens{v.p, unitTo(v, x[size_t(k - 1)])};
-        fromLens.time = v.time;
-        scene_.camera().pdfWe(fromLens, &pdfPos, &pdfDir);
+        scene_.camera().pdfWe(fromLens(v, x[size_t(k - 1)]), &pdfPos, &pdfDir);
         return pdfPos;
     }
     const MltVertex& u = x[size_t(i + 1)];
@@ -145,9 +151,7 @@ double PathSpace::cameraDensity(const MltPath& x, int i, Lobes lobes) const {
     float pdfDir = 0;
     if (i + 1 == k) {
         float pdfPos;
-        Ray fromLens{u.p, w};
-        fromLens.time = u.time;
-        scene_.camera().pdfWe(fromLens, &pdfPos, &pdfDir);
+        scene_.camera().pdfWe(fromLens(u, v), &pdfPos, &pdfDir);
     } else {
         if (u.kind != MltVertex::Kind::Surface || !u.bxdf) return 0;
         bsdf(u, unitTo(u, x[size_t(i + 2)]), w, TransportMode::Radiance, nullptr, &pdfDir);
@@ -193,7 +197,7 @@ bool PathSpace::followSpecular(const MltVertex& v, const Ray& ray, bool reflect,
     const Vec3 woL = v.frame.toLocal(-ray.d);
     if (v.mixed) {
         if (!reflect) return false;
-        next = spawnRay(v.p, v.ng, v.frame.toWorld(Vec3(-woL.x, -woL.y, woL.z)), ray.time);
+        next = spawnRay(v.p, v.ng, v.frame.toWorld(mirror(woL)), ray.time);
         return true;
     }
     for (float uc : {0.0f, 0x1.fffffep-1f}) {
@@ -327,7 +331,7 @@ bool PathSpace::scatter(std::vector<MltVertex>& side, TransportMode mode, Rng& r
         // The coating's mirror with probability R(wo), else a cosine lobe on wo's side.
         v.delta = uc < v.bxdf->coatingMirrorReflectance(woL);
         Vec3 wiL = sampleCosineHemisphere(u);
-        if (v.delta) wiL = Vec3(-woL.x, -woL.y, woL.z);
+        if (v.delta) wiL = mirror(woL);
         else if (woL.z < 0) wiL.z = -wiL.z;
         if (wiL.z == 0) return false;
         ray = spawnRay(v.p, v.ng, v.frame.toWorld(wiL), v.time);
