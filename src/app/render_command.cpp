@@ -194,6 +194,11 @@ void RenderCommand::attach(CLI::App& app) {
                      "Metropolis (pssmlt, mmlt) only: probability in [0, 1] that a mutation draws every random number afresh "
                      "(overrides \"largestepprobability\"; default 0.3)")
         ->check(probabilityCheck());
+    cmd_->add_option("--camera-step-probability", cameraStepProbability_,
+                     "Metropolis (pssmlt, mmlt) only: probability in [0, 1] that a small step moves only the camera "
+                     "subpath and the connection, keeping the light subpath and the strategy (default 0.5; 0: every "
+                     "small step moves every random number, as pbrt-v4's)")
+        ->check(probabilityCheck());
     cmd_->add_option("--sigma", sigma_,
                      "Metropolis (pssmlt, mmlt) only: standard deviation (> 0) of a small step's perturbation of each random "
                      "number (overrides \"sigma\"; default 0.01)")
@@ -236,18 +241,20 @@ int RenderCommand::run() {
                              "integrator here is \"" + settings.integrator + "\")");
         settings.mltMutations = mltMutations_;
     }
-    if (settings.integrator == "mlt" && (largeStepProbability_ >= 0 || sigma_ > 0))
-        throw InputError("--large-step-probability and --sigma are parameters of the primary-sample-space Metropolis "
+    if (settings.integrator == "mlt" && (largeStepProbability_ >= 0 || sigma_ > 0 || cameraStepProbability_ >= 0))
+        throw InputError("--large-step-probability, --camera-step-probability and --sigma are parameters of the primary-sample-space Metropolis "
                          "integrators (pssmlt, mmlt); mlt's mutations change paths, not random numbers");
-    if (chains_ > 0 || bootstrap_ > 0 || largeStepProbability_ >= 0 || sigma_ > 0) {
+    if (chains_ > 0 || bootstrap_ > 0 || largeStepProbability_ >= 0 || sigma_ > 0 || cameraStepProbability_ >= 0) {
         if (settings.integrator != "pssmlt" && settings.integrator != "mmlt" && settings.integrator != "mlt")
-            throw InputError("--chains, --bootstrap, --large-step-probability and --sigma are Metropolis parameters: "
+            throw InputError("--chains, --bootstrap, --large-step-probability, --camera-step-probability and --sigma are "
+                             "Metropolis parameters: "
                              "they need --integrator pssmlt, mmlt or mlt (the integrator here is \"" + settings.integrator +
                              "\")");
         if (chains_ > 0) settings.mltChains = chains_;
         if (bootstrap_ > 0) settings.mltBootstrapSamples = bootstrap_;
         if (largeStepProbability_ >= 0) settings.mltLargeStepProbability = float(largeStepProbability_);
         if (sigma_ > 0) settings.mltSigma = float(sigma_);
+        if (cameraStepProbability_ >= 0) settings.mltCameraStepProbability = float(cameraStepProbability_);
     }
     if (!crop_.empty()) {
         int W = scene->camera().params().xRes, H = scene->camera().params().yRes;
@@ -405,6 +412,7 @@ int RenderCommand::run() {
             {"chains", ms.chains},
             {"large_step_probability", settings.mltLargeStepProbability},
             {"sigma", settings.mltSigma},
+            {"camera_step_probability", settings.mltCameraStepProbability},
             {"mutations", ms.mutations},
             {"acceptance_rate", ms.acceptanceRate()},
             {"large_steps", ms.proposedLarge},

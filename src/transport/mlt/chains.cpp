@@ -155,6 +155,12 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     pss.sigma = mp.sigma;
     pss.largeStepProbability = mp.largeStepProbability;
     pss.streamCount = integrator.streamCount();
+    // Camera steps (thesis 11.4.3's lens perturbation, in primary sample space): a share of
+    // the small steps moves the camera subpath and the connection and keeps the light
+    // subpath and the strategy, which are what is hard to find where light comes through a
+    // narrow opening.
+    pss.partialStepProbability = mp.cameraStepProbability;
+    pss.partialSteps = {{1u << BDPTIntegrator::kCameraStream | 1u << BDPTIntegrator::kConnectionStream, mp.sigma}};
 
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     tbb::enumerable_thread_specific<ChainEvaluator> evaluators;
