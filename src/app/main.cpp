@@ -52,6 +52,10 @@ int main(int argc, char** argv) {
         if (mc.parsed() && ps::distributed::size() > 1)
             throw ps::InputError("mc runs in one process: start it without mpirun");
         return ps::distributed::finish(mc.parsed() ? mc.run() : render.run());
+    } catch (const ps::distributed::JobInputError& e) {
+        // Raised by every process at once: one report, and no process aborts the others.
+        if (ps::distributed::isRoot()) std::fprintf(stderr, "%s\n", ps::printableMessage(e.what()).c_str());
+        return ps::distributed::finish(ps::kExitBadInput, true);
     } catch (const ps::InputError& e) {
         report("", e.what());
         return ps::distributed::finish(ps::kExitBadInput);

@@ -283,16 +283,13 @@ int RenderCommand::run() {
     // the image; not threads, processes or time), then the checkpoint resumed from, checked
     // before anything is rendered or written.
     if (checkpointEvery_ >= 0 && checkpoint_.empty()) throw InputError("--checkpoint-every needs --checkpoint FILE");
-    if ((!checkpoint_.empty() || !resume_.empty()) &&
-        (adaptive != AdaptiveMode::None || settings.integrator == "pssmlt" || settings.integrator == "mmlt" ||
-         settings.integrator == "mlt" || bdpt))
-        throw InputError(std::string(adaptive != AdaptiveMode::None ? "adaptive sampling (--adaptive)"
-                                     : bdpt                         ? "--bdpt-strategies"
-                                                                    : "Metropolis (pssmlt, mmlt, mlt)") +
-                         " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling do");
+    if ((!checkpoint_.empty() || !resume_.empty()) && (adaptive != AdaptiveMode::None || bdpt))
+        throw InputError(std::string(adaptive != AdaptiveMode::None ? "adaptive sampling (--adaptive)" : "--bdpt-strategies") +
+                         " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling and "
+                         "the Metropolis integrators (pssmlt, mmlt, mlt) do");
     const PixelBounds& bounds = scene->pixelBounds();
     const bool checkpointing = !checkpoint_.empty() || !resume_.empty();
-    const nlohmann::json checkpointSettings = {
+    nlohmann::json checkpointSettings = {
         {"scene_file_hash", checkpointing ? fileHash(scene_) : ""},
         {"input_files", checkpointing ? inputFileHashes(scene_) : nlohmann::json::object()},
         {"integrator", settings.integrator},
@@ -303,6 +300,15 @@ int RenderCommand::run() {
         {"mis", mis_},
         {"resolution", {scene->camera().params().xRes, scene->camera().params().yRes}},
         {"pixels", {bounds.x0, bounds.x1, bounds.y0, bounds.y1}}};
+    // A Markov chain's course depends on every parameter of the chains and the bootstrap.
+    if (settings.integrator == "pssmlt" || settings.integrator == "mmlt" || settings.integrator == "mlt") {
+        checkpointSettings["chains"] = settings.mltChains;
+        checkpointSettings["bootstrap"] = settings.mltBootstrapSamples;
+        checkpointSettings["large_step_probability"] = settings.mltLargeStepProbability;
+        checkpointSettings["sigma"] = settings.mltSigma;
+        checkpointSettings["strategy_pilot"] = settings.mltStrategyPilot;
+        checkpointSettings["mlt_mutations"] = settings.mltMutations;
+    }
     CheckpointState resumed;
     if (!resume_.empty()) {
         // Rank 0 reads it (the others need not see its file system) and says where it stands.

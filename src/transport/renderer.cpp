@@ -109,9 +109,9 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
                          "(path); light tracing, BDPT and Metropolis splat onto the whole film");
     auto* veach = dynamic_cast<const VeachMLTIntegrator*>(&integrator);
     auto* mlt = dynamic_cast<const MetropolisIntegrator*>(&integrator);
-    if ((options.resume || options.checkpoint) && (mlt || veach || options.adaptive != AdaptiveMode::None))
-        throw InputError(std::string(mlt || veach ? "Metropolis (pssmlt, mmlt, mlt)" : "adaptive sampling (--adaptive)") +
-                         " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling do");
+    if ((options.resume || options.checkpoint) && options.adaptive != AdaptiveMode::None)
+        throw InputError("adaptive sampling (--adaptive) does not yet write or resume checkpoints: path, light and "
+                         "bdpt with uniform sampling and the Metropolis integrators do");
     requireFilmMemory(scene, integrator, options);
     // Markov chains have their own driver: a chain is not a per-camera-ray estimate.
     if (mlt) return renderMetropolis(scene, *mlt, options);
