@@ -34,6 +34,9 @@ void report(const char* prefix, const char* what) {
 
 int main(int argc, char** argv) {
     ps::distributed::start(argc, argv);
+    // One voice per job: rank 0 prints warnings; the others keep theirs for rank 0 to print
+    // those it did not meet itself (RenderCommand).
+    if (!ps::distributed::isRoot()) ps::setWarningsQuiet(true);
     CLI::App app{"pathspace: a physically based renderer (Veach's robust Monte Carlo light transport).\n"
                  "Exit status: 0 success, 1 internal error, 2 bad input, 130 interrupted (image so far written)."};
     app.require_subcommand(1);

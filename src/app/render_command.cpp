@@ -113,6 +113,23 @@ nlohmann::json inputFileHashes(const std::string& sceneFile) {
     return files;
 }
 
+// One voice per job: the warnings of the other processes (which print none) reach rank 0,
+// which prints each it has not given itself (most, from parsing the scene, every process
+// meets) and counts it.
+void gatherWarnings() {
+    if (distributed::size() == 1) return;
+    distributed::Purpose purpose("warnings");
+    std::vector<char> mine;
+    if (!distributed::isRoot())
+        for (const std::string& w : warningMessages()) mine.insert(mine.end(), w.c_str(), w.c_str() + w.size() + 1);
+    const std::vector<char> all = distributed::gatherBytesToRoot(mine);
+    for (size_t at = 0; at < all.size();) {
+        const std::string w(all.data() + at);
+        warning(w);
+        at += w.size() + 1;
+    }
+}
+
 }  // namespace
 
 void RenderCommand::attach(CLI::App& app) {
@@ -312,6 +329,7 @@ int RenderCommand::run() {
     CheckpointState resumed;
     if (!resume_.empty()) {
         // Rank 0 reads it (the others need not see its file system) and says where it stands.
+        distributed::Purpose purpose("checkpoint");
         std::vector<int64_t> where{0, 1, 0};
         if (root) {
             resumed = readCheckpoint(resume_, checkpointSettings);
@@ -350,9 +368,20 @@ int RenderCommand::run() {
     }
     RenderResult r = render(*scene, *integrator, opts);
     // A signal to any process interrupted them all (each stops at the same pass boundary).
-    const bool interrupted = distributed::anyOf(gInterrupt.load());
+    bool interrupted = false;
+    {
+        distributed::Purpose purpose("stop decisions");
+        interrupted = distributed::anyOf(gInterrupt.load());
+    }
     if (bdpt) bdpt->strategyImages()->sumToRoot();
+    gatherWarnings();
     if (!root) return interrupted ? kExitInterrupted : kExitOk;
+    // The statistics count every collective of the render, these last ones included.
+    r.distributed.reductionBytes = distributed::traffic().bytes;
+    r.distributed.reductionSeconds = distributed::traffic().seconds;
+    nlohmann::json byPurpose = nlohmann::json::object();
+    for (const auto& [purpose, t] : distributed::trafficByPurpose())
+        byPurpose[purpose] = {{"bytes", t.bytes}, {"seconds", t.seconds}};
 
     for (const std::string& o : outputs) {
         writeImage(o, r.image);
@@ -378,6 +407,7 @@ int RenderCommand::run() {
         {"rank_seconds", r.distributed.rankSeconds},
         {"reduction_bytes", r.distributed.reductionBytes},
         {"reduction_seconds", r.distributed.reductionSeconds},
+        {"reduction_by_purpose", byPurpose},
         {"seed", settings.seed},
         {"maxdepth", settings.maxDepth},
         {"wall_time_s", r.seconds},
@@ -462,7 +492,7 @@ int RenderCommand::run() {
         std::printf("estimated error: mean relative variance %.3g, efficiency 1/(V T) %.3g\n", r.error.meanRelativeVariance,
                     r.efficiency);
         if (r.distributed.ranks > 1)
-            std::printf("%d processes (MPI) | film reduction %.3g MB per process in %.3f s\n", r.distributed.ranks,
+            std::printf("%d processes (MPI) | rank 0's collectives: %.3g MB in %.3f s\n", r.distributed.ranks,
                         r.distributed.reductionBytes / 1e6, r.distributed.reductionSeconds);
         if (ms.present)
             std::printf("metropolis: b %.4g | %d chains | %lld mutations | acceptance %.3f (large steps %.3f, small "

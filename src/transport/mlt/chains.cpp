@@ -109,6 +109,7 @@ void gatherCounts(std::vector<ChainCounts>& counts, size_t depths) {
             records.put(c, k++, cc.shareAt[d]);
         }
     }
+    distributed::Purpose purpose("chain counts");
     records.gatherToRoot();
     if (!distributed::isRoot()) return;
     for (int c = 0; c < int(counts.size()); ++c) {
@@ -316,10 +317,14 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
             mostLeft = std::max(mostLeft, all[size_t(c)].remaining);
             doneBefore += counts[size_t(c)].done;
         }
-        mostLeft = distributed::maxOf(mostLeft);
         // The processes agree after every pass whether to go on (a time limit, a signal to any).
-        replayFailed = distributed::anyOf(replayMismatch.load());
-        bool halt = replayFailed || distributed::anyOf(stop.load());
+        bool halt = false;
+        {
+            distributed::Purpose purpose("stop decisions");
+            mostLeft = distributed::maxOf(mostLeft);
+            replayFailed = distributed::anyOf(replayMismatch.load());
+            halt = replayFailed || distributed::anyOf(stop.load());
+        }
         for (long long pass = 0; pass * kPass < mostLeft && !halt; ++pass) {
             arena.execute([&] {
                 tbb::parallel_for(size_t(0), mine.size(), [&](size_t m) {
@@ -356,7 +361,10 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                     done.fetch_add(n, std::memory_order_relaxed);
                 });
             });
-            halt = distributed::anyOf(stop.load());
+            {
+                distributed::Purpose purpose("stop decisions");
+                halt = distributed::anyOf(stop.load());
+            }
             // A checkpoint when one is due, and a last one when the render stops early.
             if ((halt || (pass + 1) * kPass < mostLeft) && checkpoints.due(halt)) {
                 PathStats stats;

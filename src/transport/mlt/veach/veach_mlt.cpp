@@ -145,6 +145,7 @@ void gatherCounts(std::vector<Chain>& all) {
             records.put(c, 2 + 2 * kinds + m, n.accepted[m]);
         }
     }
+    distributed::Purpose purpose("chain counts");
     records.gatherToRoot();
     if (!distributed::isRoot()) return;
     for (int c = 0; c < int(all.size()); ++c) {
@@ -290,8 +291,8 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     {
         distributed::Purpose purpose("bootstrap merge");
         distributed::mergeDisjoint(weights);
+        bootstrapCancelled = distributed::anyOf(bootstrapCancelled.load());
     }
-    bootstrapCancelled = distributed::anyOf(bootstrapCancelled.load());
     std::vector<double> cumulative(weights.size());
     double sum = 0, squares = 0;
     for (size_t i = 0; i < weights.size(); ++i) {
@@ -357,7 +358,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                 ch.remaining = total / chains + (c < total % chains ? 1 : 0);
             });
         });
-        if (distributed::anyOf(replayMismatch.load()))
+        if (distributed::Purpose p("stop decisions"); distributed::anyOf(replayMismatch.load()))
             throw std::logic_error("mlt: a bootstrap path generated again gave another f / p");
         constexpr long long kPass = 256;
         // The chain with the most mutations left sets the passes (a resumed render's chains
@@ -367,9 +368,13 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
             mostLeft = std::max(mostLeft, all[size_t(c)].remaining);
             doneBefore += all[size_t(c)].counts.done;
         }
-        mostLeft = distributed::maxOf(mostLeft);
         // The processes agree after every pass whether to go on (a time limit, a signal to any).
-        bool halt = distributed::anyOf(stop.load());
+        bool halt = false;
+        {
+            distributed::Purpose purpose("stop decisions");
+            mostLeft = distributed::maxOf(mostLeft);
+            halt = distributed::anyOf(stop.load());
+        }
         for (long long pass = 0; pass * kPass < mostLeft && !halt; ++pass) {
             arena.execute([&] {
                 tbb::parallel_for(size_t(0), mine.size(), [&](size_t m) {
@@ -406,7 +411,10 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                     done.fetch_add(steps, std::memory_order_relaxed);
                 });
             });
-            halt = distributed::anyOf(stop.load());
+            {
+                distributed::Purpose purpose("stop decisions");
+                halt = distributed::anyOf(stop.load());
+            }
             // A checkpoint when one is due, and a last one when the render stops early.
             if ((halt || (pass + 1) * kPass < mostLeft) && checkpoints.due(halt)) {
                 PathStats stats;
