@@ -21,6 +21,28 @@ void PrimarySampleSampler::reseed(uint64_t chainSeed) {
     normals_.reset();
 }
 
+void PrimarySampleSampler::save(ByteWriter& out) const {
+    out.put(rng_);
+    out.put(normals_);
+    out.put(iteration_);
+    out.put(lastLargeStep_);
+    out.put(uint8_t(largeStep_));
+    out.put(uint32_t(streams_.size()));
+    for (const std::vector<Value>& s : streams_) out.putVector(s);
+}
+
+void PrimarySampleSampler::load(ByteReader& in) {
+    rng_ = in.get<Rng>();
+    normals_ = in.get<NormalPairs>();
+    iteration_ = in.get<int64_t>();
+    lastLargeStep_ = in.get<int64_t>();
+    largeStep_ = in.get<uint8_t>() != 0;
+    if (in.get<uint32_t>() != streams_.size()) in.fail();
+    for (std::vector<Value>& s : streams_) s = in.getVector<Value>();
+    touched_.clear();
+    restartStreams();
+}
+
 void PrimarySampleSampler::restartStreams() {
     stream_ = 0;
     std::fill(streamIndex_.begin(), streamIndex_.end(), 0);

@@ -22,6 +22,7 @@
 #include "mc/metropolis.h"
 #include "mc/rng.h"
 #include "mc/sampler.h"
+#include "util/byte_stream.h"
 
 namespace ps {
 
@@ -97,6 +98,13 @@ public:
     };
     const std::vector<Value>& values(int stream = 0) const { return streams_[size_t(stream)]; }
     bool sameState(const PrimarySampleSampler& o) const;
+
+    // The chain's whole state between iterations (a checkpoint): the values with their
+    // iterations and backups, the iteration counters and the random stream with its spare
+    // normal deviate, so that the restored chain goes on bit for bit. Not the parameters,
+    // which the restoring render has (its checkpoint's settings match).
+    void save(ByteWriter& out) const;
+    void load(ByteReader& in);
 
 private:
     double read(int stream, size_t index);
