@@ -330,6 +330,7 @@ int RenderCommand::run() {
         checkpointSettings["bootstrap"] = settings.mltBootstrapSamples;
         checkpointSettings["large_step_probability"] = settings.mltLargeStepProbability;
         checkpointSettings["sigma"] = settings.mltSigma;
+        checkpointSettings["camera_step_probability"] = settings.mltCameraStepProbability;
         checkpointSettings["strategy_pilot"] = settings.mltStrategyPilot;
         checkpointSettings["mlt_mutations"] = settings.mltMutations;
     }

@@ -29,6 +29,7 @@ void PrimarySampleSampler::save(ByteWriter& out) const {
     out.put(uint8_t(largeStep_));
     out.put(uint32_t(streams_.size()));
     for (const std::vector<Value>& s : streams_) out.putVector(s);
+    out.putVector(smallSteps_);
 }
 
 void PrimarySampleSampler::load(ByteReader& in) {
@@ -39,6 +40,8 @@ void PrimarySampleSampler::load(ByteReader& in) {
     largeStep_ = in.get<uint8_t>() != 0;
     if (in.get<uint32_t>() != streams_.size()) in.fail();
     for (std::vector<Value>& s : streams_) s = in.getVector<Value>();
+    smallSteps_ = in.getVector<double>();
+    if (smallSteps_.size() != streams_.size()) in.fail();
     touched_.clear();
     restartStreams();
 }
