@@ -259,8 +259,9 @@ int RenderCommand::run() {
         settings.mltMutations = mltMutations_;
     }
     if (settings.integrator == "mlt" && (largeStepProbability_ >= 0 || sigma_ > 0 || cameraStepProbability_ >= 0))
-        throw InputError("--large-step-probability, --camera-step-probability and --sigma are parameters of the primary-sample-space Metropolis "
-                         "integrators (pssmlt, mmlt); mlt's mutations change paths, not random numbers");
+        throw InputError("--large-step-probability, --camera-step-probability and --sigma are parameters of the "
+                         "primary-sample-space Metropolis integrators (pssmlt, mmlt); mlt's mutations change paths, "
+                         "not random numbers");
     if (chains_ > 0 || bootstrap_ > 0 || largeStepProbability_ >= 0 || sigma_ > 0 || cameraStepProbability_ >= 0) {
         if (settings.integrator != "pssmlt" && settings.integrator != "mmlt" && settings.integrator != "mlt")
             throw InputError("--chains, --bootstrap, --large-step-probability, --camera-step-probability and --sigma are "

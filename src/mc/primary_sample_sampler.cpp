@@ -57,7 +57,8 @@ void PrimarySampleSampler::startIteration() {
     if (!large && params_.partialStepProbability > 0 && !params_.partialSteps.empty() &&
         rng_.uniformDouble() < params_.partialStepProbability) {
         const size_t n = params_.partialSteps.size();
-        const PrimarySampleParams::PartialStep& p = params_.partialSteps[std::min(n - 1, size_t(rng_.uniformDouble() * double(n)))];
+        const size_t k = std::min(n - 1, size_t(rng_.uniformDouble() * double(n)));
+        const PrimarySampleParams::PartialStep& p = params_.partialSteps[k];
         moved_ = p.streams;
         stepUnits_ = (p.sigma / params_.sigma) * (p.sigma / params_.sigma);
     }

@@ -1,7 +1,7 @@
 // A closed furnace that every Metropolis integrator renders, Veach's mlt included (the sky
 // scene has an infinite light, which mlt does not support): a sphere lit from inside, every
-// pixel exactly Le (1 - 0.6^6) / 0.4 at maxdepth 5 (tests/render/mlt_scenes.h's
-// kFurnaceExact without its Integrator line).
+// pixel exactly Le (1 - 0.6^6) / 0.4 at maxdepth 5 (render/mlt_scenes.h adds its Integrator
+// line).
 #pragma once
 
 #include <cmath>
