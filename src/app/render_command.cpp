@@ -229,6 +229,11 @@ void RenderCommand::attach(CLI::App& app) {
                      "mlt only: the mutations' weights, KEY=VALUE,... with keys bidirectional, lens-subpath, lens, "
                      "multi-chain, caustic (default 1 each; a mutation is chosen among those that apply to the path in "
                      "proportion to its weight; 0 switches one off; bidirectional must stay > 0)");
+    cmd_->add_option("--color", color_,
+                     "rgb (default): paths carry linear RGB; spectral: each camera sample follows four wavelengths and "
+                     "the film's sensor (cie1931, \"whitebalance\") makes colour, as pbrt-v4 renders (for now with "
+                     "--integrator path only)")
+        ->check(CLI::IsMember({"rgb", "spectral"}));
     cmd_->add_flag("--quiet", quiet_, "No progress bar or statistics on the terminal");
 }
 
@@ -245,6 +250,7 @@ int RenderCommand::run() {
                               : integrator_ == "lightpath" ? "light"
                                                            : integrator_;
     if (!sampler_.empty()) settings.sampler = sampler_;
+    settings.spectral = color_ == "spectral";
     if (strategyPilot_ >= 0) {
         if (settings.integrator != "mmlt")
             throw InputError("--strategy-pilot is a parameter of multiplexed MLT: it needs --integrator mmlt (the "
@@ -325,6 +331,7 @@ int RenderCommand::run() {
         {"mis", mis_},
         {"resolution", {scene->camera().params().xRes, scene->camera().params().yRes}},
         {"pixels", {bounds.x0, bounds.x1, bounds.y0, bounds.y1}}};
+    if (settings.spectral) checkpointSettings["color"] = "spectral";  // absent: RGB, as before the option existed
     // A Markov chain's course depends on every parameter of the chains and the bootstrap.
     if (settings.integrator == "pssmlt" || settings.integrator == "mmlt" || settings.integrator == "mlt") {
         checkpointSettings["chains"] = settings.mltChains;
@@ -406,6 +413,7 @@ int RenderCommand::run() {
         {"scene", scene_},
         {"outputs", outputs},
         {"integrator", settings.integrator},
+        {"color", settings.spectral ? "spectral" : "rgb"},
         {"sampler", settings.sampler},
         {"adaptive", adaptive_.empty() ? "none" : adaptive_},
         {"resolution", {scene->camera().params().xRes, scene->camera().params().yRes}},

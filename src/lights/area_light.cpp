@@ -8,7 +8,7 @@ namespace ps {
 std::optional<LightLiSample> DiffuseAreaLight::sampleLi(const LightSampleContext& ctx, Vec2 u) const {
     auto s = shape_->sampleToward(prim_, ctx.p, u);
     if (!s) return std::nullopt;
-    Spectrum Le = L(s->p, s->n, s->uv, -s->wi);
+    Spectrum Le = L(s->p, s->n, s->uv, -s->wi, ctx.lambda);
     if (Le.isBlack()) return std::nullopt;
     return LightLiSample{Le, s->wi, s->pdf, s->p, s->n, s->pdfArea, emittedDirectionPdf(dot(s->n, -s->wi))};
 }
@@ -39,7 +39,7 @@ std::optional<LightLeSample> DiffuseAreaLight::sampleLe(Vec2 uPos, Vec2 uDir) co
     if (!(wLocal.z > 0)) return std::nullopt;
     Vec3 w = Frame::fromNormal(n).toWorld(wLocal);
     LightLeSample ls;
-    ls.L = L(s.p, s.n, s.uv, w);
+    ls.L = L(s.p, s.n, s.uv, w, nullptr);
     ls.ray = spawnRay(s.p, s.n, w, 0);  // the light subpath stamps its path's time on it
     ls.ray.o = s.p;  // the vertex is on the light; callers offset when they trace
     ls.n = s.n;

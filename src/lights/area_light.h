@@ -17,24 +17,27 @@ namespace ps {
 class DiffuseAreaLight final : public Light {
 public:
     // Lemit: the radiance, or with an image the factor (scale) that multiplies its values.
-    DiffuseAreaLight(const Shape* shape, int prim, Spectrum Lemit, bool twoSided,
+    DiffuseAreaLight(const Shape* shape, int prim, LightSpectrum Lemit, bool twoSided,
                      std::shared_ptr<const EmissionImage> image = nullptr)
         : Light(shape->alpha && shape->alpha->alwaysMasked() ? LightType::DeltaPosition : LightType::Area),
-          shape_(shape), prim_(prim), Lemit_(Lemit), twoSided_(twoSided),
+          shape_(shape), prim_(prim), Lemit_(std::move(Lemit)), twoSided_(twoSided),
           alpha_(type() == LightType::Area ? shape->alpha.get() : nullptr), image_(std::move(image)) {}
 
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
     float pdfLi(const LightSampleContext& ctx, Vec3 wi, const SurfaceInteraction* hit) const override;
     std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
-    Spectrum L(Vec3 p, Vec3 n, Vec2 uv, Vec3 w) const override {
+    Spectrum L(Vec3 p, Vec3 n, Vec2 uv, Vec3 w, const SampledWavelengths* lambda) const override {
         if (!twoSided_ && dot(n, w) < 0) return {};
         if (alpha_ && !alpha_->keepsPoint(p, n, uv)) return {};
-        return image_ ? Lemit_ * image_->at(uv) : Lemit_;
+        if (!image_) return Lemit_(lambda);
+        // The image's RGB lifted per lookup as an illuminant (pbrt-v4's RGBIlluminantSpectrum);
+        // Lemit is then the scale alone, whose RGB is grey.
+        return lambda ? liftIlluminant(image_->at(uv), *lambda) * Lemit_.rgb().g : Lemit_.rgb() * image_->at(uv);
     }
     // With an image, its mean radiance (pbrt-v4's, which ignores how uv stretches).
     Spectrum phi() const override {
-        return (image_ ? Lemit_ * image_->mean() : Lemit_) * (kPi * (twoSided_ ? 2.0f : 1.0f) * shape_->area(prim_));
+        return (image_ ? Lemit_.rgb() * image_->mean() : Lemit_.rgb()) * (kPi * (twoSided_ ? 2.0f : 1.0f) * shape_->area(prim_));
     }
 
 private:
@@ -45,7 +48,7 @@ private:
 
     const Shape* shape_;
     int prim_;
-    Spectrum Lemit_;
+    LightSpectrum Lemit_;
     bool twoSided_;
     const AlphaMask* alpha_;  // the shape's, or null
     std::shared_ptr<const EmissionImage> image_;  // null: uniform radiance

@@ -6,11 +6,11 @@
 namespace ps {
 
 std::optional<LightLiSample> PointLight::sampleLi(const LightSampleContext& ctx, Vec2) const {
-    return pointLightLi(pos_, ctx, [&](Vec3) { return I_; });
+    return pointLightLi(pos_, ctx, [&](Vec3) { return I_(ctx.lambda); });
 }
 
 std::optional<LightLeSample> PointLight::sampleLe(Vec2, Vec2 uDir) const {
-    return LightLeSample{I_, Ray{pos_, sampleUniformSphere(uDir)}, {}, 1.0f, uniformSpherePdf(), {}};
+    return LightLeSample{I_.rgb(), Ray{pos_, sampleUniformSphere(uDir)}, {}, 1.0f, uniformSpherePdf(), {}};
 }
 
 // The position is a delta (density 0 for every other strategy); directions are uniform.
@@ -25,13 +25,13 @@ static float smoothStep(float x, float a, float b) {
     return t * t * (3 - 2 * t);
 }
 
-Spectrum SpotLight::intensity(Vec3 w) const {
+Spectrum SpotLight::intensity(Vec3 w, const SampledWavelengths* lambda) const {
     float cosT = dot(w, frame_.n);
-    return I_ * smoothStep(cosT, cosEnd_, cosStart_);
+    return I_(lambda) * smoothStep(cosT, cosEnd_, cosStart_);
 }
 
 std::optional<LightLiSample> SpotLight::sampleLi(const LightSampleContext& ctx, Vec2) const {
-    return pointLightLi(pos_, ctx, [&](Vec3 w) { return intensity(w); });
+    return pointLightLi(pos_, ctx, [&](Vec3 w) { return intensity(w, ctx.lambda); });
 }
 
 // Directions uniform in the whole cone; the falloff weights the intensity.
@@ -49,16 +49,16 @@ void SpotLight::pdfLe(Vec3, Vec3, Vec3 w, float* pdfPos, float* pdfDir) const {
 
 // Integral of the smoothstep falloff over the sphere (PBRT-CONVENTIONS §3).
 Spectrum SpotLight::phi() const {
-    return I_ * (2 * kPi * ((1 - cosStart_) + (cosStart_ - cosEnd_) / 2));
+    return I_.rgb() * (2 * kPi * ((1 - cosStart_) + (cosStart_ - cosEnd_) / 2));
 }
 
 std::optional<LightLiSample> DistantLight::sampleLi(const LightSampleContext& ctx, Vec2) const {
     Vec3 pOutside = ctx.p + w_ * (2 * sceneRadius_ + length(ctx.p - sceneCenter_));
-    return LightLiSample{L_, w_, 1.0f, pOutside, {}};
+    return LightLiSample{L_(ctx.lambda), w_, 1.0f, pOutside, {}};
 }
 
 std::optional<LightLeSample> DistantLight::sampleLe(Vec2 uPos, Vec2) const {
-    return LightLeSample{L_, rayFromInfinityDisk(w_, sceneCenter_, sceneRadius_, uPos), {},
+    return LightLeSample{L_.rgb(), rayFromInfinityDisk(w_, sceneCenter_, sceneRadius_, uPos), {},
                          infinityDiskPdf(sceneRadius_), 1.0f, {}};
 }
 

@@ -21,7 +21,8 @@ public:
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
     std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
-    Spectrum L(Vec3, Vec3, Vec2, Vec3 w) const override { return intensity(w); }
+    Spectrum L(Vec3, Vec3, Vec2, Vec3 w, const SampledWavelengths*) const override { return intensity(w); }
+    bool supportsSpectral() const override { return false; }
     // 4 pi I times the image's mean (pbrt-v4's, exact for a rotation).
     Spectrum phi() const override;
     // Intensity towards unit world direction w leaving the light.

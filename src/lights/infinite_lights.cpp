@@ -8,7 +8,7 @@ namespace ps {
 
 std::optional<LightLiSample> UniformInfiniteLight::sampleLi(const LightSampleContext& ctx, Vec2 u) const {
     Vec3 wi = sampleUniformSphere(u);
-    return LightLiSample{L_, wi, uniformSpherePdf(), ctx.p + wi * (2 * sceneRadius_ + length(ctx.p - sceneCenter_)), {}};
+    return LightLiSample{L_(ctx.lambda), wi, uniformSpherePdf(), ctx.p + wi * (2 * sceneRadius_ + length(ctx.p - sceneCenter_)), {}};
 }
 
 float UniformInfiniteLight::pdfLi(const LightSampleContext&, Vec3, const SurfaceInteraction*) const {
@@ -18,7 +18,7 @@ float UniformInfiniteLight::pdfLi(const LightSampleContext&, Vec3, const Surface
 // Direction as in sampleLi, origin on the disk at infinity.
 std::optional<LightLeSample> UniformInfiniteLight::sampleLe(Vec2 uPos, Vec2 uDir) const {
     Vec3 wl = sampleUniformSphere(uDir);
-    return LightLeSample{L_, rayFromInfinityDisk(wl, sceneCenter_, sceneRadius_, uPos), {},
+    return LightLeSample{L_.rgb(), rayFromInfinityDisk(wl, sceneCenter_, sceneRadius_, uPos), {},
                          infinityDiskPdf(sceneRadius_), uniformSpherePdf(), {}};
 }
 
@@ -63,12 +63,12 @@ float ImageInfiniteLight::uvPdfToSolidAngle(float pdfUV, Vec2 uv) const {
 }
 
 // Nearest texel, as pbrt-v4 does for environment maps.
-Spectrum ImageInfiniteLight::lookup(Vec3 wWorld) const {
+Spectrum ImageInfiniteLight::lookup(Vec3 wWorld, const SampledWavelengths* lambda) const {
     Vec3 w = normalize(worldFromLight_.inverse().vector(wWorld));
     Vec2 uv = directionToUV(w);
     int x = std::clamp(int(uv.x * image_.width), 0, image_.width - 1);
     int y = std::clamp(int(uv.y * image_.height), 0, image_.height - 1);
-    return image_.get(x, y) * scale_;
+    return lambda ? liftIlluminant(image_.get(x, y), *lambda) * scale_ : image_.get(x, y) * scale_;
 }
 
 std::optional<LightLiSample> ImageInfiniteLight::sampleLi(const LightSampleContext& ctx, Vec2 u) const {
@@ -78,7 +78,7 @@ std::optional<LightLiSample> ImageInfiniteLight::sampleLi(const LightSampleConte
     Vec3 wi = normalize(worldFromLight_.vector(uvToDirection(uv)));
     float pdf = uvPdfToSolidAngle(pdfUV, uv);
     if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
-    return LightLiSample{lookup(wi), wi, pdf, ctx.p + wi * (2 * sceneRadius_ + length(ctx.p - sceneCenter_)), {}};
+    return LightLiSample{lookup(wi, ctx.lambda), wi, pdf, ctx.p + wi * (2 * sceneRadius_ + length(ctx.p - sceneCenter_)), {}};
 }
 
 float ImageInfiniteLight::pdfLi(const LightSampleContext&, Vec3 wi, const SurfaceInteraction*) const {

@@ -11,17 +11,17 @@ namespace ps {
 
 class UniformInfiniteLight final : public Light {
 public:
-    explicit UniformInfiniteLight(Spectrum L) : Light(LightType::Infinite), L_(L) {}
+    explicit UniformInfiniteLight(LightSpectrum L) : Light(LightType::Infinite), L_(std::move(L)) {}
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
     float pdfLi(const LightSampleContext& ctx, Vec3 wi, const SurfaceInteraction* hit) const override;
     std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
-    Spectrum Le(const Ray&) const override { return L_; }
-    Spectrum phi() const override { return L_ * (4 * kPi * kPi * sceneRadius_ * sceneRadius_); }
+    Spectrum Le(const Ray&, const SampledWavelengths* lambda) const override { return L_(lambda); }
+    Spectrum phi() const override { return L_.rgb() * (4 * kPi * kPi * sceneRadius_ * sceneRadius_); }
     void preprocess(Vec3 c, float r) override { sceneCenter_ = c; sceneRadius_ = r; }
 
 private:
-    Spectrum L_;
+    LightSpectrum L_;
     Vec3 sceneCenter_;
     float sceneRadius_ = 1;
 };
@@ -34,12 +34,13 @@ public:
     float pdfLi(const LightSampleContext& ctx, Vec3 wi, const SurfaceInteraction* hit) const override;
     std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
-    Spectrum Le(const Ray& r) const override { return lookup(normalize(r.d)); }
+    Spectrum Le(const Ray& r, const SampledWavelengths* lambda) const override { return lookup(normalize(r.d), lambda); }
     Spectrum phi() const override;
     void preprocess(Vec3 c, float r) override { sceneCenter_ = c; sceneRadius_ = r; }
 
 private:
-    Spectrum lookup(Vec3 wWorld) const;
+    // The image's RGB times scale; in spectral mode lifted as an illuminant at lambda.
+    Spectrum lookup(Vec3 wWorld, const SampledWavelengths* lambda = nullptr) const;
     Vec2 directionToUV(Vec3 wLight) const;
     Vec3 uvToDirection(Vec2 uv) const;
     // Density of a direction with respect to the unit square's density pdfUV.

@@ -6,6 +6,7 @@
 #include "geometry/interaction.h"
 #include "geometry/ray.h"
 #include "math/spectrum.h"
+#include "lights/light_spectrum.h"
 
 namespace ps {
 
@@ -15,6 +16,8 @@ enum class LightType { DeltaPosition, DeltaDirection, Area, Infinite };
 struct LightSampleContext {
     Vec3 p;
     Vec3 ng;  // geometric normal at p (for ray offsets)
+    // Spectral mode: the path's wavelengths, at which sampleLi returns L (null: RGB).
+    const SampledWavelengths* lambda = nullptr;
 };
 
 struct LightLiSample {
@@ -55,10 +58,17 @@ public:
         return 0;
     }
     // Radiance leaving surface point (p, n, uv) of an area light in direction w; for point
-    // and spot lights, the intensity towards w.
-    virtual Spectrum L(Vec3 p, Vec3 n, Vec2 uv, Vec3 w) const { (void)p; (void)n; (void)uv; (void)w; return {}; }
+    // and spot lights, the intensity towards w. At lambda in spectral mode (null: RGB).
+    virtual Spectrum L(Vec3 p, Vec3 n, Vec2 uv, Vec3 w, const SampledWavelengths* lambda) const {
+        (void)p; (void)n; (void)uv; (void)w; (void)lambda;
+        return {};
+    }
     // Infinite lights: radiance arriving along a ray that escapes the scene.
-    virtual Spectrum Le(const Ray& r) const { (void)r; return {}; }
+    virtual Spectrum Le(const Ray& r, const SampledWavelengths* lambda) const { (void)r; (void)lambda; return {}; }
+    // Whether sampleLi, L and Le follow LightSampleContext::lambda (spectral mode); a light
+    // that does not is refused there. sampleLe and phi are RGB in both modes (phi only
+    // chooses lights).
+    virtual bool supportsSpectral() const { return true; }
     // Samples an emitted ray (uPos picks the origin, uDir the direction).
     virtual std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const = 0;
     // Densities of sampleLe choosing the ray leaving p (normal n) along unit direction w.

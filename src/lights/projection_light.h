@@ -23,7 +23,8 @@ public:
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
     std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
-    Spectrum L(Vec3, Vec3, Vec2, Vec3 w) const override { return intensity(w); }
+    Spectrum L(Vec3, Vec3, Vec2, Vec3 w, const SampledWavelengths*) const override { return intensity(w); }
+    bool supportsSpectral() const override { return false; }
     // pbrt-v4's power: texel values times their solid angles at the texel centres.
     Spectrum phi() const override;
     Spectrum intensity(Vec3 w) const { return intensityLight(frame_.toLight(w)); }

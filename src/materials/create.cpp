@@ -12,8 +12,10 @@
 #include "materials/measured_material.h"
 #include "materials/procedural_textures.h"
 #include "materials/shading_detail.h"
+#include "materials/spectral_textures.h"
 #include "materials/textures.h"
 #include "scene/spectra.h"
+#include "spectral/named_spectra.h"
 #include "util/path.h"
 
 namespace ps {
@@ -38,7 +40,8 @@ FloatTex floatParam(const ParamSet& ps, const std::string& name, float def, cons
 }
 
 // A spectrum parameter as a texture or as rgb / spectrum / blackbody; def when absent
-// (nullptr when def is nullopt).
+// (nullptr when def is nullopt). Constants keep their spectrum for spectral mode; textures
+// are lifted by `kind` there (materials/spectral_textures.h).
 SpectrumTex spectrumParam(const ParamSet& ps, const std::string& name, std::optional<Spectrum> def, SpectrumKind kind,
                           const TextureRegistry& reg) {
     std::string tex = ps.getTexture(name);
@@ -46,11 +49,17 @@ SpectrumTex spectrumParam(const ParamSet& ps, const std::string& name, std::opti
         auto it = reg.spectra.find(tex);
         if (it == reg.spectra.end())
             throw InputError(locOf(ps, name), "spectrum texture \"" + tex + "\" (for \"" + name + "\") is not defined");
-        return it->second;
+        return std::make_shared<LiftedSpectrumTexture>(it->second, kind);
     }
-    if (auto s = ps.getSpectrum(name, kind)) return std::make_shared<ConstantTexture<Spectrum>>(*s);
-    if (def) return std::make_shared<ConstantTexture<Spectrum>>(*def);
+    if (auto s = ps.getSpectrum(name, kind))
+        return std::make_shared<SpectralConstantTexture>(*s, *ps.getSpectrumSource(name, kind));
+    if (def) return std::make_shared<SpectralConstantTexture>(*def, SpectrumSource::constant(def->g));
     return nullptr;
+}
+
+// A constant from one of pbrt-v4's named spectra (defaults such as copper's eta and k).
+SpectrumTex namedConstant(const std::string& name, SpectrumKind kind) {
+    return std::make_shared<SpectralConstantTexture>(*namedSpectrumToRGB(name, kind), *namedSpectrum(name));
 }
 
 SpectrumTex constantSpectrum(const Spectrum& s) { return std::make_shared<ConstantTexture<Spectrum>>(s); }
@@ -65,24 +74,29 @@ Roughness roughness(const ParamSet& ps, const TextureRegistry& reg, const std::s
 }
 
 // A dielectric's index: `float` (the first value), or a spectrum. pbrt-v4 then follows one
-// wavelength (dispersion); in RGB we keep the green channel's value and say so once.
-float etaParam(const ParamSet& ps, const std::string& name) {
+// wavelength (dispersion): so does spectral mode; in RGB we keep the green channel's value
+// and say so once.
+IndexOfRefraction etaParam(const ParamSet& ps, const std::string& name) {
     const Param* p = ps.find(name);
-    float eta = 1.5f;
+    IndexOfRefraction eta;
     if (p && p->type == ParamType::Float) {
         std::vector<float> v = ps.getFloats(name);
         if (v.empty()) throw InputError(p->loc, "\"float " + name + "\" needs a value");
-        eta = v[0];
+        eta.value = v[0];
     } else if (auto s = ps.getSpectrum(name, SpectrumKind::Unbounded)) {
         static std::atomic<bool> warned{false};
-        if (ps.spectrallyVarying(name) && !warned.exchange(true))
-            warning(p->loc, "spectrally varying \"" + name + "\": dispersion is not modelled; using the green channel's value " +
-                                std::to_string(s->g) + " (warned once)");
-        eta = s->g;
+        if (ps.spectrallyVarying(name)) {
+            eta.dispersive = ps.getSpectrumSource(name, SpectrumKind::Unbounded);
+            if (!warned.exchange(true))
+                warning(p->loc, "spectrally varying \"" + name + "\": dispersion is modelled in spectral mode only "
+                                "(--color spectral); RGB mode uses the green channel's value " + std::to_string(s->g) +
+                                " (warned once)");
+        }
+        eta.value = s->g;
     }
     // A textured index is not a pbrt-v4 feature: left unused, reportUnused names it.
-    if (eta == 0) eta = 1;  // as pbrt-v4
-    if (!(eta > 0) || !std::isfinite(eta)) throw InputError(p ? p->loc : ps.loc, "\"" + name + "\" must be positive");
+    if (eta.value == 0) eta.value = 1;  // as pbrt-v4
+    if (!(eta.value > 0) || !std::isfinite(eta.value)) throw InputError(p ? p->loc : ps.loc, "\"" + name + "\" must be positive");
     return eta;
 }
 
@@ -109,8 +123,8 @@ void conductorParams(const ParamSet& ps, const TextureRegistry& reg, const std::
         throw InputError(locOf(ps, "reflectance"),
                          what + ": give either \"reflectance\" or \"" + prefix + "eta\"/\"" + prefix + "k\", not both");
     if (reflectance) return;
-    if (!eta) eta = constantSpectrum(*namedSpectrumToRGB("metal-Cu-eta", U));
-    if (!k) k = constantSpectrum(*namedSpectrumToRGB("metal-Cu-k", U));
+    if (!eta) eta = namedConstant("metal-Cu-eta", U);
+    if (!k) k = namedConstant("metal-Cu-k", U);
 }
 
 // pbrt-v4's hair parameters: sigma_a wins over reflectance (alias "color"), which wins over
@@ -142,7 +156,9 @@ HairTextures hairParams(const ParamSet& ps, const TextureRegistry& reg) {
     return t;
 }
 
-std::shared_ptr<Material> defaultDiffuse() { return std::make_shared<DiffuseMaterial>(constantSpectrum(Spectrum(0.5f))); }
+std::shared_ptr<Material> defaultDiffuse() {
+    return std::make_shared<DiffuseMaterial>(std::make_shared<SpectralConstantTexture>(Spectrum(0.5f), SpectrumSource::constant(0.5f)));
+}
 
 ImageLookup imageLookup(const TextureEntity& e, const std::string& base, bool isFloat) {
     const ParamSet& ps = e.params;
@@ -315,7 +331,7 @@ std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet
         conductorParams(ps, reg, "", "conductor", eta, k, refl);
         m = std::make_shared<ConductorMaterial>(eta, k, refl, roughness(ps, reg));
     } else if (type == "dielectric") {
-        float eta = etaParam(ps, "eta");
+        IndexOfRefraction eta = etaParam(ps, "eta");
         m = std::make_shared<DielectricMaterial>(eta, roughness(ps, reg));
     } else if (type == "thindielectric") {
         m = std::make_shared<ThinDielectricMaterial>(etaParam(ps, "eta"));

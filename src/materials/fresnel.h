@@ -51,9 +51,12 @@ inline float fresnelComplex(float cosThetaI, std::complex<float> eta) {
     return (parl + perp) / 2;
 }
 
+// Per channel: r, g, b in RGB mode (whose fourth channel repeats g), four wavelengths in
+// spectral mode.
 inline Spectrum fresnelComplex(float cosThetaI, const Spectrum& eta, const Spectrum& k) {
-    return {fresnelComplex(cosThetaI, {eta.r, k.r}), fresnelComplex(cosThetaI, {eta.g, k.g}),
-            fresnelComplex(cosThetaI, {eta.b, k.b})};
+    const float g = fresnelComplex(cosThetaI, {eta.g, k.g});
+    const float c3 = eta.c3 == eta.g && k.c3 == k.g ? g : fresnelComplex(cosThetaI, {eta.c3, k.c3});
+    return Spectrum::sampled(fresnelComplex(cosThetaI, {eta.r, k.r}), g, fresnelComplex(cosThetaI, {eta.b, k.b}), c3);
 }
 
 inline Vec3 reflect(Vec3 wo, Vec3 n) { return -wo + n * (2 * dot(wo, n)); }

@@ -18,6 +18,7 @@ class HairMaterial final : public Material {
 public:
     explicit HairMaterial(HairTextures t) : t_(std::move(t)) {}
     const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override;
+    const char* rgbOnly() const override { return "hair"; }  // melanin absorption per colour channel
 
 private:
     HairTextures t_;

@@ -1,5 +1,6 @@
 #include "materials/materials.h"
 
+#include <cmath>
 #include <cstring>
 
 #include "materials/conductor_bxdf.h"
@@ -7,9 +8,11 @@
 #include "materials/diffuse_bxdf.h"
 #include "materials/diffuse_transmission_bxdf.h"
 #include "materials/layered_bxdf.h"
+#include "materials/spectral_textures.h"
 #include "materials/textures.h"
 #include "materials/thin_dielectric_bxdf.h"
 #include "mc/rng.h"
+#include "spectral/wavelengths.h"
 
 namespace ps {
 
@@ -32,10 +35,17 @@ void conductorIndex(const SpectrumTex& etaTex, const SpectrumTex& kTex, const Sp
     }
     Spectrum r = clamp(reflectance->evaluate(ctx), 0, 0.9999f);
     eta = Spectrum(1.0f);
-    for (int c = 0; c < 3; ++c) k[c] = 2 * std::sqrt(r[c]) / std::sqrt(1 - r[c]);
+    for (int c = 0; c < 4; ++c) k[c] = 2 * std::sqrt(r[c]) / std::sqrt(1 - r[c]);  // every channel: rgb or wavelengths
 }
 
 }  // namespace
+
+float IndexOfRefraction::evaluate(const TextureEvalContext& ctx) const {
+    if (!ctx.lambda || !dispersive) return value;
+    ctx.lambda->terminateSecondary();
+    const float eta = dispersive->at(ctx.lambda->lambda[0]);
+    return eta > 0 && std::isfinite(eta) ? eta : 1.0f;
+}
 
 Vec2 Roughness::alpha(const TextureEvalContext& ctx) const {
     float ur = u->evaluate(ctx), vr = v->evaluate(ctx);
@@ -54,8 +64,7 @@ LayerParams LayerTextures::evaluate(const TextureEvalContext& ctx) const {
 }
 
 DiffuseMaterial::DiffuseMaterial(SpectrumTex R) : R_(std::move(R)) {
-    if (auto* c = dynamic_cast<const ConstantTexture<Spectrum>*>(R_.get()))
-        constant_ = std::make_unique<DiffuseBxDF>(clamp(c->evaluate({}), 0, 1));
+    if (auto rgb = constantRGB(*R_)) constant_ = std::make_unique<DiffuseBxDF>(clamp(*rgb, 0, 1));
 }
 
 const BxDF* DiffuseMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const {
@@ -69,11 +78,11 @@ const BxDF* ConductorMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffe
 }
 
 const BxDF* DielectricMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const {
-    return buf.alloc<DielectricBxDF>(eta_, distribution(rough_, ctx));
+    return buf.alloc<DielectricBxDF>(eta_.evaluate(ctx), distribution(rough_, ctx));
 }
 
-const BxDF* ThinDielectricMaterial::bxdf(const MaterialEvalContext&, ScratchBuffer& buf) const {
-    return buf.alloc<ThinDielectricBxDF>(eta_);
+const BxDF* ThinDielectricMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const {
+    return buf.alloc<ThinDielectricBxDF>(eta_.evaluate(ctx));
 }
 
 const BxDF* DiffuseTransmissionMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const {
@@ -81,17 +90,18 @@ const BxDF* DiffuseTransmissionMaterial::bxdf(const MaterialEvalContext& ctx, Sc
 }
 
 const BxDF* CoatedDiffuseMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const {
-    DielectricBxDF top(p_.eta, distribution(p_.roughness, ctx));
+    DielectricBxDF top(p_.eta.evaluate(ctx), distribution(p_.roughness, ctx));
     DiffuseBxDF bottom(clamp(p_.reflectance->evaluate(ctx), 0, 1));
     return buf.alloc<CoatedDiffuseBxDF>(top, bottom, p_.layer.evaluate(ctx));
 }
 
 const BxDF* CoatedConductorMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const {
-    DielectricBxDF top(p_.interfaceEta, distribution(p_.interfaceRoughness, ctx));
+    const float interfaceEta = p_.interfaceEta.evaluate(ctx);
+    DielectricBxDF top(interfaceEta, distribution(p_.interfaceRoughness, ctx));
     Spectrum eta, k;
     conductorIndex(p_.conductorEta, p_.conductorK, p_.reflectance, ctx, eta, k);
     // The base sits in the coating, not in vacuum: its index is relative to the coating's.
-    ConductorBxDF bottom(distribution(p_.conductorRoughness, ctx), eta / p_.interfaceEta, k / p_.interfaceEta);
+    ConductorBxDF bottom(distribution(p_.conductorRoughness, ctx), eta / interfaceEta, k / interfaceEta);
     return buf.alloc<CoatedConductorBxDF>(top, bottom, p_.layer.evaluate(ctx));
 }
 

@@ -3,13 +3,25 @@
 #pragma once
 #include <array>
 #include <memory>
+#include <optional>
 #include "materials/layered_bxdf.h"
 #include "materials/material.h"
+#include "spectral/spectrum_source.h"
 
 namespace ps {
 
 using FloatTex = std::shared_ptr<FloatTexture>;
 using SpectrumTex = std::shared_ptr<SpectrumTexture>;
+
+// A dielectric's index of refraction: a constant, or in spectral mode a spectrum of which
+// the path follows its first wavelength only (pbrt-v4's dispersion: the secondary
+// wavelengths are terminated where the index is evaluated, since each would refract
+// differently). RGB mode uses `value`.
+struct IndexOfRefraction {
+    float value = 1.5f;
+    std::optional<SpectrumSource> dispersive;
+    float evaluate(const TextureEvalContext& ctx) const;
+};
 
 // Anisotropic roughness as the scene gives it: alpha = sqrt(roughness) unless remap is off.
 struct Roughness {
@@ -41,21 +53,21 @@ private:
 
 class DielectricMaterial final : public Material {
 public:
-    DielectricMaterial(float eta, Roughness r) : eta_(eta), rough_(std::move(r)) {}
+    DielectricMaterial(IndexOfRefraction eta, Roughness r) : eta_(std::move(eta)), rough_(std::move(r)) {}
     const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override;
 
 private:
-    float eta_;
+    IndexOfRefraction eta_;
     Roughness rough_;
 };
 
 class ThinDielectricMaterial final : public Material {
 public:
-    explicit ThinDielectricMaterial(float eta) : eta_(eta) {}
+    explicit ThinDielectricMaterial(IndexOfRefraction eta) : eta_(std::move(eta)) {}
     const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override;
 
 private:
-    float eta_;
+    IndexOfRefraction eta_;
 };
 
 class DiffuseTransmissionMaterial final : public Material {
@@ -79,7 +91,7 @@ struct LayerTextures {
 struct CoatedDiffuseParams {
     SpectrumTex reflectance;  // of the Lambertian base
     Roughness roughness;      // of the coating
-    float eta = 1.5f;         // of the coating
+    IndexOfRefraction eta;    // of the coating
     LayerTextures layer;
 };
 
@@ -95,7 +107,7 @@ private:
 
 struct CoatedConductorParams {
     Roughness interfaceRoughness;
-    float interfaceEta = 1.5f;
+    IndexOfRefraction interfaceEta;
     // The base: eta and k, or reflectance (as for ConductorMaterial).
     SpectrumTex conductorEta, conductorK, reflectance;
     Roughness conductorRoughness;
@@ -123,6 +135,7 @@ public:
     const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override { return resolve(ctx)->bxdf(ctx, buf); }
     const Material* resolve(const MaterialEvalContext& ctx) const override;
     bool stochasticBxDF() const override { return m_[0]->stochasticBxDF() || m_[1]->stochasticBxDF(); }
+    const char* rgbOnly() const override { return m_[0]->rgbOnly() ? m_[0]->rgbOnly() : m_[1]->rgbOnly(); }
 
 private:
     std::array<std::shared_ptr<Material>, 2> m_;

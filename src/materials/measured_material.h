@@ -9,6 +9,7 @@ class MeasuredMaterial final : public Material {
 public:
     explicit MeasuredMaterial(std::shared_ptr<const MeasuredBRDF> brdf) { constant_ = std::make_unique<MeasuredBxDF>(std::move(brdf)); }
     const BxDF* bxdf(const MaterialEvalContext&, ScratchBuffer&) const override { return constant_.get(); }
+    const char* rgbOnly() const override { return "measured"; }  // RGB tables of the measured spectra
 };
 
 }  // namespace ps

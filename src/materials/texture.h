@@ -5,10 +5,16 @@
 
 namespace ps {
 
+struct SampledWavelengths;  // spectral/wavelengths.h
+
 struct TextureEvalContext {
     Vec3 p;   // world-space position
     Vec3 n;   // geometric normal (pbrt-v4's textures see this one, not the shading normal)
     Vec2 uv;  // surface parameterisation
+    // The path's wavelengths in spectral mode (null in RGB mode): spectrum textures return
+    // their values at them. Not const: a material with a dispersive index keeps only the
+    // first (SampledWavelengths::terminateSecondary), as pbrt-v4's GetBxDF does.
+    SampledWavelengths* lambda = nullptr;
 };
 
 class FloatTexture {

@@ -11,8 +11,12 @@ namespace ps {
 
 namespace {
 
-Spectrum emission(const ParamSet& ps, const char* name) {
-    return ps.getSpectrum(name, SpectrumKind::Illuminant).value_or(Spectrum(1.0f));
+// pbrt-v4's default emission is the colour space's illuminant: white, luminance 1.
+LightSpectrum emission(const ParamSet& ps, const char* name) {
+    const RGBColorSpace& space = ps.colorSpace ? *ps.colorSpace : srgbColorSpace();
+    auto rgb = ps.getSpectrum(name, SpectrumKind::Illuminant);
+    if (!rgb) return LightSpectrum(Spectrum(1.0f), SpectrumSource::rgbIlluminant(space, {1, 1, 1}));
+    return LightSpectrum(*rgb, *ps.getSpectrumSource(name, SpectrumKind::Illuminant));
 }
 
 std::unique_ptr<Light> createInfinite(const LightEntity& e, const std::string& base) {
@@ -25,7 +29,7 @@ std::unique_ptr<Light> createInfinite(const LightEntity& e, const std::string& b
         warning(e.loc, "infinite light: \"portal\" is not supported; the light is rendered without it");
     }
     if (file.empty()) {
-        Spectrum L = emission(ps, "L");
+        LightSpectrum L = emission(ps, "L");
         if (E > 0) scale *= E / kPi;  // uniform radiance L gives illuminance pi*L
         return std::make_unique<UniformInfiniteLight>(L * scale);
     }
@@ -61,7 +65,7 @@ std::unique_ptr<Light> createInfinite(const LightEntity& e, const std::string& b
 // 4 pi times the mean texel (and keeps the RGB multiplier of I, as for point lights).
 std::unique_ptr<Light> createGoniometric(const LightEntity& e, const std::string& base) {
     const ParamSet& ps = e.params;
-    Spectrum I = emission(ps, "I");
+    Spectrum I = emission(ps, "I").rgb();
     float scale = ps.getFloat("scale", 1);
     float P = ps.getFloat("power", -1);
     std::string file = ps.getString("filename", "");
@@ -125,13 +129,13 @@ std::unique_ptr<Light> createLight(const LightEntity& e, const std::string& base
     const Transform& T = e.worldFromLight;
     std::unique_ptr<Light> light;
     if (e.type == "point") {
-        Spectrum I = emission(ps, "I");
+        LightSpectrum I = emission(ps, "I");
         float scale = ps.getFloat("scale", 1);
         float P = ps.getFloat("power", -1);
         if (P > 0) scale *= P / (4 * kPi);
         light = std::make_unique<PointLight>(T.point(ps.getPoint3("from", {0, 0, 0})), I * scale);
     } else if (e.type == "spot") {
-        Spectrum I = emission(ps, "I");
+        LightSpectrum I = emission(ps, "I");
         float scale = ps.getFloat("scale", 1);
         float P = ps.getFloat("power", -1);
         float cone = ps.getFloat("coneangle", 30), delta = ps.getFloat("conedeltaangle", 5);
@@ -142,7 +146,7 @@ std::unique_ptr<Light> createLight(const LightEntity& e, const std::string& base
         if (!(lengthSquared(axis) > 0)) throw InputError(e.loc, "spot light: \"from\" and \"to\" coincide");
         light = std::make_unique<SpotLight>(T.point(from), axis, I * scale, cosStart, cosEnd);
     } else if (e.type == "distant") {
-        Spectrum L = emission(ps, "L");
+        LightSpectrum L = emission(ps, "L");
         float scale = ps.getFloat("scale", 1);
         float E = ps.getFloat("illuminance", -1);
         if (E > 0) scale *= E;

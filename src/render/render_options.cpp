@@ -138,12 +138,15 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
     scene.setPixelBounds(computeBounds(film, desc.film.loc, xRes, yRes));
     if (film.colorSpace && film.colorSpace != &srgbColorSpace())
         s.outputColorMatrix = outputFromRenderingSpace(*film.colorSpace);
+    s.filmColorSpace = film.colorSpace;
     float iso = film.getFloat("iso", 100);
     s.imagingRatio = iso / 100;
     film.getBool("savefp16", true);  // we always write float32 EXR
     const float diagonalMm = film.getFloat("diagonal", 35);  // only the realistic camera uses it
-    if (film.getFloat("whitebalance", 0) != 0)
-        warning(desc.film.loc, "Film: \"whitebalance\" is not supported; ignored");
+    s.whiteBalance = film.getFloat("whitebalance", 0);
+    if (s.whiteBalance < 0) throw InputError(film.find("whitebalance")->loc, "Film: \"whitebalance\" must not be negative");
+    if (s.whiteBalance != 0)
+        warning(desc.film.loc, "Film: \"whitebalance\" is applied in spectral mode only (--color spectral)");
     if (film.getString("sensor", "cie1931") != "cie1931")
         warning(desc.film.loc, "Film: only the \"cie1931\" sensor is supported; using it");
     s.maxComponentValue = film.getFloat("maxcomponentvalue", std::numeric_limits<float>::infinity());

@@ -43,6 +43,11 @@ struct RenderSettings {
     // The film's ColorSpace, when not sRGB: the image's RGB from the rendering space's
     // (row-major). The variance image stays the rendering space's luminance variance.
     std::optional<std::array<float, 9>> outputColorMatrix;
+    // `--color spectral`: paths carry sampled wavelengths and the film's sensor makes colour
+    // (transport/spectral_film.h); false: RGB mode.
+    bool spectral = false;
+    const RGBColorSpace* filmColorSpace = nullptr;  // the Film's ColorSpace (null: sRGB)
+    float whiteBalance = 0;  // Film "whitebalance" (kelvin, 0: none), applied in spectral mode
 };
 
 class Scene {

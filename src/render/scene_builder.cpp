@@ -118,7 +118,12 @@ void SceneBuilder::addAreaLights(const ShapeEntity& e, Shape& shape) {
         if (ps.has("L")) throw InputError(al.loc, "AreaLightSource \"diffuse\": cannot have both \"L\" and \"filename\"");
         image = std::make_shared<EmissionImage>(readLightImage(al.loc, desc_.baseDirectory, file, "area light"));
     }
-    Spectrum L = image ? Spectrum(1.0f) : ps.getSpectrum("L", SpectrumKind::Illuminant).value_or(Spectrum(1.0f));
+    // pbrt-v4's default emission is the colour space's illuminant (white, luminance 1).
+    const RGBColorSpace& space = ps.colorSpace ? *ps.colorSpace : srgbColorSpace();
+    LightSpectrum L(Spectrum(1.0f), SpectrumSource::rgbIlluminant(space, {1, 1, 1}));
+    if (!image)
+        if (auto rgb = ps.getSpectrum("L", SpectrumKind::Illuminant))
+            L = LightSpectrum(*rgb, *ps.getSpectrumSource("L", SpectrumKind::Illuminant));
     ps.reportUnused("AreaLightSource \"diffuse\"");
     // pbrt-v4 divides "power" by the image's mean luminance (a uniform L keeps its RGB factor).
     float powerDivisor = image ? image->meanLuminance() : 1.0f;

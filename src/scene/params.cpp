@@ -5,6 +5,7 @@
 #include "scene/color_space.h"
 
 #include "scene/spectra.h"
+#include "spectral/named_spectra.h"
 #include "util/path.h"
 
 namespace ps {
@@ -205,6 +206,33 @@ std::optional<Spectrum> ParamSet::getSpectrum(const std::string& name, SpectrumK
         case ParamType::Blackbody: p->used = true; return blackbodyValue(*p, kind);
         case ParamType::Spectrum: p->used = true; return spectrumValue(*p, kind, baseDirectory);
         default: return std::nullopt;  // another type: unused, reported later
+    }
+}
+
+std::optional<SpectrumSource> ParamSet::getSpectrumSource(const std::string& name, SpectrumKind kind) const {
+    const Param* p = find(name);
+    if (!p) return std::nullopt;
+    switch (p->type) {
+        case ParamType::RGB: {
+            rgbValue(*p, kind, colorSpace);  // the same checks (count, sign, albedo <= 1)
+            p->used = true;
+            const RGBColorSpace& space = colorSpace ? *colorSpace : srgbColorSpace();
+            const std::array<float, 3> rgb{float(p->numbers[0]), float(p->numbers[1]), float(p->numbers[2])};
+            if (kind == SpectrumKind::Albedo) return SpectrumSource::rgbAlbedo(space, rgb);
+            if (kind == SpectrumKind::Unbounded) return SpectrumSource::rgbUnbounded(space, rgb);
+            return SpectrumSource::rgbIlluminant(space, rgb);
+        }
+        case ParamType::Blackbody:
+            blackbodyValue(*p, kind);
+            p->used = true;
+            return SpectrumSource::blackbody(float(p->numbers[0]));
+        case ParamType::Spectrum: {
+            p->used = true;
+            std::vector<float> lambda, value;
+            if (!spectrumSamples(*p, baseDirectory, lambda, value)) return namedSpectrum(p->strings[0]);
+            return SpectrumSource::piecewiseLinear(std::move(lambda), std::move(value));
+        }
+        default: return std::nullopt;
     }
 }
 

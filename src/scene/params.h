@@ -6,6 +6,7 @@
 #include <vector>
 #include "math/spectrum.h"
 #include "math/vec.h"
+#include "spectral/spectrum_source.h"
 #include "util/error.h"
 
 namespace ps {
@@ -60,6 +61,13 @@ public:
 
     // rgb / spectrum (inline pairs, named, or file) / blackbody, converted to RGB.
     std::optional<Spectrum> getSpectrum(const std::string& name, SpectrumKind kind) const;
+    // The same parameter as the spectrum pbrt-v4 makes of it, for spectral rendering: rgb
+    // lifted in the parameter's colour space (Albedo: RGBAlbedoSpectrum, Unbounded:
+    // RGBUnboundedSpectrum, Illuminant: RGBIlluminantSpectrum), blackbody normalised to a peak
+    // of 1, named spectra with their tables, inline and file spectra piecewise linear. Not
+    // normalised as a light's emission (lights divide by SpectrumSource::photometric()).
+    // Validated as getSpectrum does; nullopt when absent.
+    std::optional<SpectrumSource> getSpectrumSource(const std::string& name, SpectrumKind kind) const;
     // Whether that rgb / spectrum / blackbody value changes with wavelength (rgb: unequal
     // components; spectrum: not one value over the visible range). False when absent.
     bool spectrallyVarying(const std::string& name) const;

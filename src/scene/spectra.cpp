@@ -14,7 +14,7 @@ namespace ps {
 namespace {
 
 // Everything is integrated on a 1 nm grid over the visible range of the CIE tables.
-constexpr int kLambdaMin = 360, kLambdaMax = 830, kSamples = kLambdaMax - kLambdaMin + 1;
+constexpr int kGridMin = 360, kGridMax = 830, kSamples = kGridMax - kGridMin + 1;
 
 // CIE 1931 colour matching functions: the multi-lobe Gaussian fit of Wyman, Sloan and
 // Shirley 2013 ("Simple analytic approximations to the CIE XYZ color matching functions").
@@ -63,7 +63,7 @@ struct Tables {
     Tables() {
         double xyzW[3] = {0, 0, 0};
         for (int i = 0; i < kSamples; ++i) {
-            double l = kLambdaMin + i;
+            double l = kGridMin + i;
             cmf[i][0] = cieX(l);
             cmf[i][1] = cieY(l);
             cmf[i][2] = cieZ(l);
@@ -90,7 +90,7 @@ const Tables& tables() {
 // Samples a function of wavelength onto the 1 nm grid.
 template <typename F>
 void sampleGrid(F&& f, double out[kSamples]) {
-    for (int i = 0; i < kSamples; ++i) out[i] = f(double(kLambdaMin + i));
+    for (int i = 0; i < kSamples; ++i) out[i] = f(double(kGridMin + i));
 }
 
 Spectrum convert(const double s[kSamples], SpectrumKind kind) {
@@ -113,8 +113,8 @@ Spectrum convert(const double s[kSamples], SpectrumKind kind) {
     for (double& v : xyz) v /= norm;
     double rgb[3];
     toRGB(xyz, rgb);
-    Spectrum out;
-    for (int c = 0; c < 3; ++c) out[c] = float(std::max(0.0, rgb[c] / t.white[c]));  // out-of-gamut parts clip
+    auto channel = [&](int c) { return float(std::max(0.0, rgb[c] / t.white[c])); };  // out-of-gamut parts clip
+    const Spectrum out(channel(0), channel(1), channel(2));
     return albedo ? clamp(out, 0, 1) : out;
 }
 
@@ -145,7 +145,7 @@ Spectrum chromaticityToRGB(double x, double y) {
 }
 
 bool sampledSpectrumIsConstant(const std::vector<float>& lambda, const std::vector<float>& value) {
-    if (lambda.empty() || lambda.size() != value.size() || lambda.front() > kLambdaMin || lambda.back() < kLambdaMax) return false;
+    if (lambda.empty() || lambda.size() != value.size() || lambda.front() > kGridMin || lambda.back() < kGridMax) return false;
     return std::all_of(value.begin(), value.end(), [&](float v) { return v == value[0]; });
 }
 
@@ -155,7 +155,7 @@ Spectrum sampledSpectrumToRGB(const std::vector<float>& lambda, const std::vecto
     if (n == 0) return Spectrum(0.0f);
     size_t j = 0;  // lambda[j] <= l < lambda[j+1]; the grid ascends, so j only moves forward
     for (int i = 0; i < kSamples; ++i) {
-        double l = kLambdaMin + i;
+        double l = kGridMin + i;
         if (l < lambda[0] || l > lambda[n - 1]) continue;
         while (j + 1 < n && lambda[j + 1] <= l) ++j;
         if (j + 1 >= n) {
@@ -185,7 +185,7 @@ std::vector<Spectrum> reflectanceSampleWeights(const std::vector<float>& lambda)
         };
         double xyz[3] = {0, 0, 0}, rgb[3];
         for (int i = 0; i < kSamples; ++i) {
-            double v = hat(double(kLambdaMin + i)) * t.illum[i] / t.yD65;
+            double v = hat(double(kGridMin + i)) * t.illum[i] / t.yD65;
             for (int c = 0; c < 3; ++c) xyz[c] += v * t.cmf[i][c];
         }
         toRGB(xyz, rgb);

@@ -94,8 +94,21 @@ float SpectrumSource::at(float lambda) const {
 }
 
 SpectralValues SpectrumSource::sample(const SampledWavelengths& w) const {
+    // One dispatch for the four wavelengths (this runs at every hit in spectral mode).
     SpectralValues out;
-    for (int i = 0; i < kWavelengthSamples; ++i) out[size_t(i)] = at(w.lambda[size_t(i)]);
+    auto each = [&](auto f) {
+        for (int i = 0; i < kWavelengthSamples; ++i) out[size_t(i)] = f(w.lambda[size_t(i)]);
+    };
+    std::visit(Overload{
+                   [&](const Constant& s) { out.fill(s.c); },
+                   [&](const Tabulated& s) { each([&](float l) { return s.table->at(l); }); },
+                   [&](const Dense& s) { each([&](float l) { return s.s->at(l); }); },
+                   [&](const Blackbody& s) { each([&](float l) { return planck(l, s.kelvin) * s.normalization; }); },
+                   [&](const RGBAlbedo& s) { each([&](float l) { return s.poly(l); }); },
+                   [&](const RGBUnbounded& s) { each([&](float l) { return s.scale * s.poly(l); }); },
+                   [&](const RGBIlluminant& s) { each([&](float l) { return s.scale * s.poly(l) * s.illuminant->at(l); }); },
+               },
+               v_);
     return out;
 }
 

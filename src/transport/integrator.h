@@ -30,13 +30,16 @@ struct PathStats {
 // The BxDF at a surface hit (textures evaluated, `mix` resolved), allocated in scratch;
 // nullptr for `interface` materials, which do not scatter. A bump or normal map of the
 // resolved material replaces si's shading frame first (ns, dpdu): every integrator builds
-// its frame from si after this call, so all of them use the mapped one.
-inline const BxDF* surfaceBxDF(SurfaceInteraction& si, ScratchBuffer& scratch) {
+// its frame from si after this call, so all of them use the mapped one. In spectral mode
+// (lambda not null) the textures are evaluated at the path's wavelengths, and the BxDFs
+// built once for RGB mode are not used.
+inline const BxDF* surfaceBxDF(SurfaceInteraction& si, ScratchBuffer& scratch, SampledWavelengths* lambda = nullptr) {
     if (!si.material) return nullptr;
     const bool maps = si.material->needsShadingDerivatives();
-    if (!maps)
+    if (!maps && !lambda)
         if (const BxDF* b = si.material->constantBxDF()) return b;
     MaterialEvalContext ctx;
+    ctx.lambda = lambda;
     ctx.p = si.p;
     ctx.n = si.ng;  // textures see the geometric normal, as pbrt-v4's do
     ctx.uv = si.uv;
@@ -50,7 +53,8 @@ inline const BxDF* surfaceBxDF(SurfaceInteraction& si, ScratchBuffer& scratch) {
             ctx.dpdu = si.dpdu;
         }
     }
-    if (const BxDF* b = material->constantBxDF()) return b;
+    if (!lambda)
+        if (const BxDF* b = material->constantBxDF()) return b;
     return material->bxdf(ctx, scratch);
 }
 
@@ -63,6 +67,9 @@ struct SampleContext {
     int sampleIndex = 0;  // the pixel sample's index (splats alternate half-buffers by it)
     int px = 0, py = 0;   // the pixel
     float filterWeight = 1;  // the camera sample's filter weight f/pdf
+    // Spectral mode: the sample's wavelengths (null in RGB mode). Li returns the values at
+    // them; a dispersive interface may terminate the secondary ones (their pdf becomes 0).
+    SampledWavelengths* lambda = nullptr;
 };
 
 class Integrator {
@@ -73,6 +80,8 @@ public:
     // True if the integrator splats; each camera sample then also traces one light path,
     // and the film normalises splats by the number of samples taken.
     virtual bool splats() const { return false; }
+    // Whether Li handles SampleContext::lambda (spectral mode, `--color spectral`).
+    virtual bool supportsSpectral() const { return false; }
 };
 
 // Names: "path", "light", "bdpt", "pssmlt", "mmlt" (Markov chains over BDPT: render() runs its own

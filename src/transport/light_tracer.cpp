@@ -12,7 +12,7 @@ void LightTracer::splatEmitter(const PathVertex& v, SampleContext& ctx) const {
     const Scene& scene = bdpt_.subpaths().scene();
     auto cs = scene.camera().sampleWi(v.p, v.time, ctx.sampler.get2D());
     if (!cs || !(v.pdfFwd > 0)) return;
-    Spectrum Le = v.light->L(v.p, v.ng, v.uv, cs->wi);
+    Spectrum Le = v.light->L(v.p, v.ng, v.uv, cs->wi, nullptr);
     if (Le.isBlack()) return;
     float cosLight = v.onSurface() ? std::fabs(dot(v.ng, cs->wi)) : 1.0f;
     Spectrum L = Le * (cosLight * cs->We / (cs->pdf * v.pdfFwd));

@@ -5,11 +5,12 @@
 namespace ps {
 
 Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
-                                  float uLight, Vec2 u, float time, PathStats& stats) const {
+                                  float uLight, Vec2 u, float time, const SampledWavelengths* lambda,
+                                  PathStats& stats) const {
     float pmf;
     const Light* light = scene_.sampleLight(uLight, &pmf);
     if (!light || !(pmf > 0)) return {};
-    auto ls = light->sampleLi(LightSampleContext{si.p, si.ng}, u);
+    auto ls = light->sampleLi(LightSampleContext{si.p, si.ng, lambda}, u);
     if (!ls || ls->L.isBlack() || !(ls->pdf > 0)) return {};
     Vec3 wiLocal = frame.toLocal(ls->wi);
     Spectrum f = bxdf.f(woLocal, wiLocal, TransportMode::Radiance) * absCosTheta(wiLocal);
@@ -24,11 +25,12 @@ Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& fra
 
 Spectrum PathTracer::Li(const Ray& ray, SampleContext& ctx) const {
     return withConcreteSampler(ctx.sampler,
-                               [&](auto& sampler) { return estimate(ray, sampler, ctx.scratch, ctx.stats); });
+                               [&](auto& sampler) { return estimate(ray, sampler, ctx.scratch, ctx.stats, ctx.lambda); });
 }
 
 template <typename S>
-Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& scratch, PathStats& stats) const {
+Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& scratch, PathStats& stats,
+                              SampledWavelengths* lambda) const {
     Spectrum L, beta(1.0f);
     Ray ray = cameraRay;
     int depth = 0;
@@ -54,7 +56,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
         ++stats.rays;
         if (!scene_.intersect(ray, si)) {
             for (const Light* light : scene_.infiniteLights()) {
-                Spectrum Le = light->Le(ray);
+                Spectrum Le = light->Le(ray, lambda);
                 if (Le.isBlack()) continue;
                 if (depth == 0 || specularBounce) {
                     L += beta * Le;
@@ -68,7 +70,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
 
         // Emission found by the path (s = 0 strategy), MIS-weighted against light sampling.
         if (si.areaLight) {
-            Spectrum Le = si.areaLight->L(si.p, si.ng, si.uv, si.wo);
+            Spectrum Le = si.areaLight->L(si.p, si.ng, si.uv, si.wo, lambda);
             if (!Le.isBlack()) {
                 if (depth == 0 || specularBounce) {
                     L += beta * Le;
@@ -79,7 +81,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
             }
         }
 
-        const BxDF* bxdf = surfaceBxDF(si, scratch);
+        const BxDF* bxdf = surfaceBxDF(si, scratch, lambda);
         if (!bxdf) {
             // `interface`: not a scattering event; continue straight through.
             specularBounce = true;
@@ -97,7 +99,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
         haveSamples = false;
         uint8_t flags = bxdf->flags();
         if (flags & (kDiffuse | kGlossy))
-            L += beta * sampleDirect(si, frame, *bxdf, woLocal, uLight, uLightPoint, ray.time, stats);
+            L += beta * sampleDirect(si, frame, *bxdf, woLocal, uLight, uLightPoint, ray.time, lambda, stats);
         if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) break;
         Vec3 wi = frame.toWorld(bs->wi);
         Spectrum weight = bs->f * (absCosTheta(bs->wi) / bs->pdf);

@@ -10,15 +10,16 @@ class PathTracer final : public Integrator {
 public:
     PathTracer(const Scene& scene, int maxDepth) : scene_(scene), maxDepth_(maxDepth) {}
     Spectrum Li(const Ray& ray, SampleContext& ctx) const override;
+    bool supportsSpectral() const override { return true; }
 
 private:
     // The estimator, instantiated per concrete sampler so its calls inline on the hot path.
     template <typename S>
-    Spectrum estimate(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats) const;
+    Spectrum estimate(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats, SampledWavelengths* lambda) const;
     // Direct lighting at a surface by one light sample (uLight picks the light, u the point on
     // it), MIS-weighted against BSDF sampling.
     Spectrum sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
-                          float uLight, Vec2 u, float time, PathStats& stats) const;
+                          float uLight, Vec2 u, float time, const SampledWavelengths* lambda, PathStats& stats) const;
 
     const Scene& scene_;
     int maxDepth_;

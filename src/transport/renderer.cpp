@@ -10,6 +10,7 @@
 #include "mc/estimator.h"
 #include "transport/checkpoint.h"
 #include "transport/film_reduction.h"
+#include "transport/spectral_film.h"
 #include "mc/sampler.h"
 #include "render/distributed.h"
 
@@ -112,6 +113,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     if ((options.resume || options.checkpoint) && options.adaptive != AdaptiveMode::None)
         throw InputError("adaptive sampling (--adaptive) does not yet write or resume checkpoints: path, light and "
                          "bdpt with uniform sampling and the Metropolis integrators do");
+    if (scene.settings().spectral) requireSpectralSupport(scene, integrator, scene.settings().integrator);
     requireFilmMemory(scene, integrator, options);
     // Markov chains have their own driver: a chain is not a per-camera-ray estimate.
     if (mlt) return renderMetropolis(scene, *mlt, options);

@@ -38,6 +38,7 @@ SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, con
         for (const std::string& n : samplerNames()) names += (names.empty() ? "" : ", ") + n;
         throw InputError("unknown sampler \"" + options.sampler + "\" (available: " + names + ")");
     }
+    if (scene.settings().spectral) spectral_.emplace(scene.settings());
     prototypes_[1] = createSampler(options.sampler, mix64(options.seed ^ 0x5bd1e9955bd1e995ULL), spp, resolution);
 }
 
@@ -76,11 +77,16 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                         cs.pFilm = {px + 0.5f + fs.offset.x, py + 0.5f + fs.offset.y};
                         cs.pLens = hasLens_ ? sampler.get2D() : Vec2(0.5f, 0.5f);
                         if (hasMotion_) cs.time = sampler.get1D();
+                        // Spectral mode: the sample's wavelengths, from the next dimension.
+                        SampledWavelengths lambda;
+                        if (spectral_) lambda = SpectralFilm::sampleWavelengths(sampler.get1D());
                         float cameraWeight = 1;
                         Ray ray = scene_.camera().generateRay(cs, &cameraWeight);
                         SampleContext ctx{sampler, st.scratch, st.stats, film, si, px, py, fs.weight};
+                        if (spectral_) ctx.lambda = &lambda;
                         // A ray the lens blocks is a black sample (still counted).
                         Spectrum L = cameraWeight > 0 ? integrator_.Li(ray, ctx) * cameraWeight : Spectrum(0.0f);
+                        if (spectral_) L = spectral_->toRendering(L, lambda);
                         st.scratch.reset();
                         film.addSample(px, py, L * imagingRatio_, fs.weight, si);
                     }

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -18,6 +19,7 @@
 #include "film/film.h"
 #include "render/scene.h"
 #include "transport/integrator.h"
+#include "transport/spectral_film.h"
 
 namespace ps {
 
@@ -73,7 +75,8 @@ private:
     std::vector<Tile> tiles_;
     const float imagingRatio_;
     const bool hasLens_;
-    const bool hasMotion_;  // the camera sample draws a time (only then: static scenes keep their streams)
+    const bool hasMotion_;
+    std::optional<SpectralFilm> spectral_;  // spectral mode's sensor (null in RGB mode)  // the camera sample draws a time (only then: static scenes keep their streams)
     Share share_;
     std::unique_ptr<Sampler> prototypes_[2];
     tbb::enumerable_thread_specific<ThreadState> states_;

@@ -295,10 +295,10 @@ Spectrum Subpaths::Le(const PathVertex& v, const PathVertex& to) const {
     Vec3 w = directionTo(v, to);
     if (v.isInfiniteLight()) {
         Spectrum L;
-        for (const Light* light : scene_.infiniteLights()) L += light->Le(Ray{v.p, -w});
+        for (const Light* light : scene_.infiniteLights()) L += light->Le(Ray{v.p, -w}, nullptr);
         return L;
     }
-    return v.light->L(v.p, v.ng, v.uv, w);
+    return v.light->L(v.p, v.ng, v.uv, w, nullptr);
 }
 
 bool Subpaths::visible(const PathVertex& a, const PathVertex& b, PathStats& stats) const {

@@ -76,7 +76,7 @@ std::vector<Case> cases() {
          kHeader + "AttributeBegin\n  ConcatTransform [ 1 0 0 0  0 1 0 0  0 0 0 0  0 0 0 1 ]\nAttributeEnd\nShape \"sphere\"", {},
          0, {}, "", {"singular", "error"}},
         {"dispersion_warning", kHeader + "Material \"dielectric\" \"rgb eta\" [ 1.4 1.5 1.6 ]\nShape \"sphere\"", {}, 0,
-         {":7:", "dispersion is not modelled"}},
+         {":7:", "dispersion is modelled in spectral mode only"}},
         {"no_dispersion_warning_for_constant_eta",
          kHeader + "Material \"dielectric\" \"rgb eta\" [ 1.5 1.5 1.5 ]\nShape \"sphere\"\n"
                    "Material \"dielectric\" \"spectrum eta\" [ 300 1.33 900 1.33 ]\nShape \"sphere\"",

@@ -281,7 +281,7 @@ TEST(Alpha, CutOutEmitterSamplesPresentPointsOnly) {
         const Light& light = *scene->lights()[size_t(i % 2)];
         if (auto s = light.sampleLe(u, uDir)) {
             ++le;
-            leEmitting += !light.L(s->ray.o, s->n, Vec2(), s->ray.d).isBlack();
+            leEmitting += !light.L(s->ray.o, s->n, Vec2(), s->ray.d, nullptr).isBlack();
         }
         if (auto s = light.sampleLi(LightSampleContext{Vec3(0, 0, 0), Vec3(0, 0, 1)}, u)) {
             ++li;

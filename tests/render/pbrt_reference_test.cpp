@@ -15,6 +15,8 @@
 //   coated-diffuse floor as RGB: our path tracer shows the same offset where it can render).
 // - A grey scene (grey reflectances, white light, glass of constant index) renders the same
 //   in RGB and spectrally: it is compared with no allowance at all.
+// - Spectral mode (--color spectral) renders as pbrt-v4 does: its cases have no allowance
+//   and a luminance ratio of 1.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -75,6 +77,7 @@ struct Reference {
     // Where scene and image live: ../shared (scenes/ and refs/), or this repository's
     // tests/data/pbrt-v4 (both in one folder).
     bool inRepository = false;
+    bool spectral = false;  // rendered with --color spectral
 };
 
 double luminance(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
@@ -91,6 +94,7 @@ TEST_P(PbrtReference, BlockMeansAgree) {
     Image pbrt = readImage(imagePath.string());
     SceneDescription desc = parseSceneFile(scenePath.string());
     auto scene = buildScene(desc);
+    scene->settings().spectral = ref.spectral;
     auto integrator = createIntegrator(scene->settings().integrator, *scene);
     ASSERT_EQ(scene->pixelBounds().width(), pbrt.width);
     ASSERT_EQ(scene->pixelBounds().height(), pbrt.height);
@@ -188,9 +192,11 @@ INSTANTIATE_TEST_SUITE_P(Shared, PbrtReference,
                                            Reference{"veach-mis/scene-v4-320x180.pbrt", "veach-mis-path-4096spp.pfm", 32, 8, {0.025, 0.01, 0.01}, 1.0},
                                            Reference{"veach-bidir/scene-v4-256.pbrt", "veach-bidir-bdpt-512spp.pfm", 16, 8, {0.03, 0.03, 0.03}, 1.0},
                                            Reference{"caustic-glass/caustic-glass-v4-210x300.pbrt", "caustic-glass-bdpt-1024spp.pfm", 16, 8, {0.035, 0.035, 0.035}, 0.9810},
-                                           Reference{"grey-box.pbrt", "grey-box-path-16384spp.pfm", 256, 8, {0, 0, 0}, 1.0, true}),
+                                           Reference{"grey-box.pbrt", "grey-box-path-16384spp.pfm", 256, 8, {0, 0, 0}, 1.0, true},
+                                           Reference{"cornell-box/scene-v4-256.pbrt", "cornell-box-path-4096spp.pfm", 4, 32, {0, 0, 0}, 1.0, false, true},
+                                           Reference{"grey-box.pbrt", "grey-box-path-16384spp.pfm", 256, 8, {0, 0, 0}, 1.0, true, true}),
                          [](const ::testing::TestParamInfo<Reference>& i) {
-                             std::string s = i.param.image;
+                             std::string s = std::string(i.param.image) + (i.param.spectral ? "_spectral" : "");
                              for (char& ch : s)
                                  if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
                              return s;

@@ -90,7 +90,7 @@ Spectrum PathSpace::contribution(const MltPath& x, Vec2* pRaster) const {
         Vec3 w = d / std::sqrt(d2);
         return cosAt(a, w) * cosAt(b, w) / d2;
     };
-    Spectrum f = x[0].light->L(x[0].p, x[0].ng, x[0].uv, unitTo(x[0], x[1])) * geometry(x[0], x[1]);
+    Spectrum f = x[0].light->L(x[0].p, x[0].ng, x[0].uv, unitTo(x[0], x[1]), nullptr) * geometry(x[0], x[1]);
     for (int i = 1; i < k && !f.isBlack(); ++i) {
         const MltVertex& v = x[size_t(i)];
         if (v.kind != MltVertex::Kind::Surface || !v.bxdf) return {};

@@ -1,0 +1,34 @@
+// Spectral mode (`--color spectral`, math/spectrum.h) between the estimator and the film:
+// each camera sample draws its wavelengths, and the radiance the path brings back at them
+// goes through the film's sensor (pbrt-v4's PixelSensor, cie1931 with white balance) to the
+// rendering space's RGB before it reaches the film, so that the film, its variance, adaptive
+// sampling and the AOVs see colour as in RGB mode.
+#pragma once
+#include "math/spectrum.h"
+#include "render/scene.h"
+#include "spectral/sensor.h"
+#include "spectral/wavelengths.h"
+
+namespace ps {
+
+class Integrator;
+
+class SpectralFilm {
+public:
+    explicit SpectralFilm(const RenderSettings& settings);
+    // pbrt-v4's SampleVisible: four wavelengths stratified from one sample dimension.
+    static SampledWavelengths sampleWavelengths(float u) { return SampledWavelengths::sampleVisible(u); }
+    // The rendering space's linear RGB (before the imaging ratio, which the caller applies as in
+    // RGB mode) of radiance L at w; wavelengths with pdf 0 (terminated) contribute nothing.
+    Spectrum toRendering(const Spectrum& L, const SampledWavelengths& w) const;
+
+private:
+    Sensor sensor_;             // its imaging ratio 1
+    Matrix3 renderingFromXYZ_;  // the sensor's output space (white-balanced) to the rendering space
+};
+
+// Throws InputError, naming what is missing, unless the integrator, every light and every
+// material of the scene support spectral mode.
+void requireSpectralSupport(const Scene& scene, const Integrator& integrator, const std::string& integratorName);
+
+}  // namespace ps
