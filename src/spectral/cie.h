@@ -23,8 +23,11 @@ extern const float kCieZ[kCieSamples];
 // Index of the 1 nm sample nearest to lambda, or -1 outside the table (pbrt rounds with
 // lround, halves away from zero).
 inline int cieIndex(float lambda) {
-    const long i = std::lround(lambda) - kCieLambdaMin;
-    return (i >= 0 && i < kCieSamples) ? int(i) : -1;
+    // Halves away from zero is floor(lambda + 1/2) for the positive values that can hit the
+    // table, without lround's library call (this runs per wavelength at every light and
+    // film sample); NaN and negative values fall outside.
+    if (!(lambda >= kCieLambdaMin - 0.5f && lambda < kCieLambdaMax + 0.5f)) return -1;
+    return int(lambda + 0.5f) - kCieLambdaMin;
 }
 inline float denseLookup(const float* table, float lambda) {
     const int i = cieIndex(lambda);

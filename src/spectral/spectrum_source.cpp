@@ -93,6 +93,23 @@ float SpectrumSource::at(float lambda) const {
                       v_);
 }
 
+namespace {
+
+// The sigmoid polynomial at the four wavelengths: a grey (infinite constant term) once, else
+// without branches so that the four run as one vector operation.
+void polynomial(const SigmoidPolynomial& p, const SampledWavelengths& w, SpectralValues& out) {
+    if (!std::isfinite(p.c2) || (p.c0 == 0 && p.c1 == 0)) {
+        out.fill(p(0));
+        return;
+    }
+    for (int i = 0; i < kWavelengthSamples; ++i) {
+        const float l = w.lambda[size_t(i)], x = (p.c0 * l + p.c1) * l + p.c2;
+        out[size_t(i)] = 0.5f + x / (2 * std::sqrt(1 + x * x));
+    }
+}
+
+}  // namespace
+
 SpectralValues SpectrumSource::sample(const SampledWavelengths& w) const {
     // One dispatch for the four wavelengths (this runs at every hit in spectral mode).
     SpectralValues out;
@@ -104,9 +121,16 @@ SpectralValues SpectrumSource::sample(const SampledWavelengths& w) const {
                    [&](const Tabulated& s) { each([&](float l) { return s.table->at(l); }); },
                    [&](const Dense& s) { each([&](float l) { return s.s->at(l); }); },
                    [&](const Blackbody& s) { each([&](float l) { return planck(l, s.kelvin) * s.normalization; }); },
-                   [&](const RGBAlbedo& s) { each([&](float l) { return s.poly(l); }); },
-                   [&](const RGBUnbounded& s) { each([&](float l) { return s.scale * s.poly(l); }); },
-                   [&](const RGBIlluminant& s) { each([&](float l) { return s.scale * s.poly(l) * s.illuminant->at(l); }); },
+                   [&](const RGBAlbedo& s) { polynomial(s.poly, w, out); },
+                   [&](const RGBUnbounded& s) {
+                       polynomial(s.poly, w, out);
+                       for (float& v : out) v *= s.scale;
+                   },
+                   [&](const RGBIlluminant& s) {
+                       polynomial(s.poly, w, out);
+                       for (int i = 0; i < kWavelengthSamples; ++i)
+                           out[size_t(i)] *= s.scale * s.illuminant->at(w.lambda[size_t(i)]);
+                   },
                },
                v_);
     return out;

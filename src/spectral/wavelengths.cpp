@@ -1,6 +1,8 @@
 #include "spectral/wavelengths.h"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace ps {
 
@@ -11,6 +13,8 @@ constexpr double kB = 0.0072, kC = 538;
 const double kTanhLo = std::tanh(kB * (kLambdaMin - kC));
 const double kTanhHi = std::tanh(kB * (kLambdaMax - kC));
 const double kNorm = kB / (kTanhHi - kTanhLo);
+// The same in float for sampleVisible (namespace scope: no initialisation guard per call).
+const float tLo = float(kTanhLo), tRange = float(kTanhHi - kTanhLo), norm = float(kNorm);
 
 }  // namespace
 
@@ -26,13 +30,39 @@ float sampleVisibleWavelength(float u) {
     return float(std::fmin(std::fmax(lambda, kLambdaMin), kLambdaMax));
 }
 
+namespace {
+
+// Natural logarithm of a positive normal float, branch-free so that the four wavelengths'
+// run as one vector operation: x = m 2^e with m in [sqrt(1/2), sqrt(2)), and
+// log m = 2 atanh(s), s = (m - 1) / (m + 1), |s| < 0.172, by its series to s^9 (truncation
+// below 1e-9, so float rounding dominates).
+inline float logPositive(float x) {
+    int32_t bits;
+    std::memcpy(&bits, &x, 4);
+    // The exponent relative to sqrt(1/2) (bit pattern 0x3f3504f3), by an arithmetic shift.
+    const int32_t e = (bits - 0x3f3504f3) >> 23;
+    const int32_t mBits = bits - int32_t(uint32_t(e) << 23);
+    float m;
+    std::memcpy(&m, &mBits, 4);
+    const float sRatio = (m - 1) / (m + 1), s2 = sRatio * sRatio;
+    const float series = sRatio * (2 + s2 * (2.0f / 3 + s2 * (2.0f / 5 + s2 * (2.0f / 7 + s2 * (2.0f / 9)))));
+    return float(e) * 0.69314718f + series;
+}
+
+}  // namespace
+
 SampledWavelengths SampledWavelengths::sampleVisible(float u) {
+    // Every camera sample draws these, so one logarithm per wavelength and nothing else:
+    // the inverse CDF maps u to t = tanh(b (lambda - c)), so lambda = c + atanh(t) / b with
+    // atanh(t) = log((1 + t) / (1 - t)) / 2, and the density A / cosh^2 is A (1 - t^2).
     SampledWavelengths w;
     for (int i = 0; i < kWavelengthSamples; ++i) {
         float up = u + float(i) / kWavelengthSamples;
-        if (up > 1) up -= 1;
-        w.lambda[i] = sampleVisibleWavelength(up);
-        w.pdf[i] = visibleWavelengthPdf(w.lambda[i]);
+        up = up > 1 ? up - 1 : up;
+        const float t = tLo + up * tRange;
+        const float lambda = float(kC) + logPositive((1 + t) / (1 - t)) * float(0.5 / kB);
+        w.lambda[i] = lambda < kLambdaMin ? kLambdaMin : (lambda > kLambdaMax ? kLambdaMax : lambda);
+        w.pdf[i] = norm * (1 - t * t);
     }
     return w;
 }

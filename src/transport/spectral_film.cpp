@@ -1,5 +1,6 @@
 #include "transport/spectral_film.h"
 
+#include "spectral/cie.h"
 #include "transport/integrator.h"
 #include "util/error.h"
 
@@ -10,8 +11,7 @@ SpectralFilm::SpectralFilm(const RenderSettings& settings) {
     SensorSettings s;
     s.whiteBalance = settings.whiteBalance;
     const RGBColorSpace& output = settings.filmColorSpace ? *settings.filmColorSpace : srgbColorSpace();
-    sensor_ = Sensor::create(s, output).sensor;
-    Matrix3 m = sensor_.outputFromSensor();
+    Matrix3 m = Sensor::create(s, output).sensor.outputFromSensor();
     // The film holds the rendering space (linear sRGB) and converts to its colour space when
     // it writes the image: undo that conversion here.
     if (const auto& out = settings.outputColorMatrix) {
@@ -19,13 +19,26 @@ SpectralFilm::SpectralFilm(const RenderSettings& settings) {
         for (int k = 0; k < 9; ++k) o.a[k / 3][k % 3] = (*out)[size_t(k)];
         m = o.inverse() * m;
     }
-    renderingFromXYZ_ = m;
+    // The rendering space's RGB matching functions on the 1 nm grid.
+    for (int k = 0; k < kCieSamples; ++k) {
+        const auto v = m * std::array<double, 3>{kCieX[k], kCieY[k], kCieZ[k]};
+        renderingCmf_[size_t(k)] = {float(v[0]), float(v[1]), float(v[2])};
+    }
 }
 
 Spectrum SpectralFilm::toRendering(const Spectrum& L, const SampledWavelengths& w) const {
-    const auto xyz = sensor_.toSensorXYZ({L[0], L[1], L[2], L[3]}, w);
-    const auto rgb = renderingFromXYZ_ * xyz;
-    return {float(rgb[0]), float(rgb[1]), float(rgb[2])};
+    // The sensor's estimate (Sensor::toSensorXYZ: the mean over the wavelengths of
+    // cmf(lambda) L / pdf, pdf 0 skipped) with the matching functions already taken to the
+    // rendering space (renderingCmf_), in float: this runs once per camera sample.
+    float rgb[3] = {0, 0, 0};
+    for (int i = 0; i < kWavelengthSamples; ++i) {
+        const float pdf = w.pdf[size_t(i)];
+        const int k = cieIndex(w.lambda[size_t(i)]);
+        if (pdf == 0 || k < 0) continue;
+        const float v = L[i] / pdf;
+        for (int c = 0; c < 3; ++c) rgb[c] += renderingCmf_[size_t(k)][size_t(c)] * v;
+    }
+    return {rgb[0] * (1.0f / kWavelengthSamples), rgb[1] * (1.0f / kWavelengthSamples), rgb[2] * (1.0f / kWavelengthSamples)};
 }
 
 void requireSpectralSupport(const Scene& scene, const Integrator& integrator, const std::string& integratorName) {

@@ -4,8 +4,11 @@
 // rendering space's RGB before it reaches the film, so that the film, its variance, adaptive
 // sampling and the AOVs see colour as in RGB mode.
 #pragma once
+#include <array>
+
 #include "math/spectrum.h"
 #include "render/scene.h"
+#include "spectral/cie.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelengths.h"
 
@@ -23,8 +26,9 @@ public:
     Spectrum toRendering(const Spectrum& L, const SampledWavelengths& w) const;
 
 private:
-    Sensor sensor_;             // its imaging ratio 1
-    Matrix3 renderingFromXYZ_;  // the sensor's output space (white-balanced) to the rendering space
+    // The CIE matching functions at each whole nanometre taken through the sensor's output
+    // matrix (white balance included) to the rendering space; the sensor's imaging ratio is 1.
+    std::array<std::array<float, 3>, kCieSamples> renderingCmf_;
 };
 
 // Throws InputError, naming what is missing, unless the integrator, every light and every
