@@ -207,6 +207,11 @@ void RenderCommand::attach(CLI::App& app) {
                      "mlt only: the mutations' weights, KEY=VALUE,... with keys bidirectional, lens-subpath, lens, "
                      "multi-chain, caustic (default 1 each; a mutation is chosen among those that apply to the path in "
                      "proportion to its weight; 0 switches one off; bidirectional must stay > 0)");
+    cmd_->add_option("--mlt-direct", mltDirect_,
+                     "mlt only: render the paths of at most one bounce (emission seen directly and direct lighting) "
+                     "apart, with N samples per pixel of the path tracer, and leave them out of the chains (default 0: "
+                     "the chains render every path)")
+        ->check(CLI::NonNegativeNumber);
     cmd_->add_flag("--quiet", quiet_, "No progress bar or statistics on the terminal");
 }
 
@@ -235,6 +240,13 @@ int RenderCommand::run() {
             throw InputError("--mlt-mutations sets the mutations of Veach's MLT: it needs --integrator mlt (the "
                              "integrator here is \"" + settings.integrator + "\")");
         settings.mltMutations = mltMutations_;
+    }
+    if (mltDirect_ >= 0) {
+        if (settings.integrator != "mlt")
+            throw InputError("--mlt-direct renders direct lighting apart from Veach's MLT: it needs --integrator mlt (the "
+                             "integrator here is \"" + settings.integrator + "\")");
+        // Carried with the mutations' weights: mlt's own configuration.
+        settings.mltMutations += (settings.mltMutations.empty() ? "direct=" : ",direct=") + std::to_string(mltDirect_);
     }
     if (settings.integrator == "mlt" && (largeStepProbability_ >= 0 || sigma_ > 0))
         throw InputError("--large-step-probability and --sigma are parameters of the primary-sample-space Metropolis "

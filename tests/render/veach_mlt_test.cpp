@@ -102,6 +102,50 @@ TEST(VeachMLT, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
                                   32, 16, {{"mlt", 128}}, 0.02});
 }
 
+// Direct lighting apart (--mlt-direct): the path tracer's paths of at most one bounce plus the
+// chains' longer ones make BDPT's image, on a diffuse box and on the mirror scene, where the
+// light seen in the mirror (L S E, two edges) passes from the chains to the path tracer.
+TEST(VeachMLT, DirectLightingApartAgreesWithBDPT) {
+    expectAgreement(AgreementCase{"box, direct apart", box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), {"bdpt", "mlt:direct=4"},
+                                  16, 16, {{"mlt:direct=4", 64}}, 0.02});
+    expectAgreement(AgreementCase{"light seen in a mirror, direct apart", lightSeenInAMirror(), {"bdpt", "mlt:direct=4"},
+                                  32, 16, {{"mlt:direct=4", 128}}, 0.02});
+}
+
+// What the chains leave out is exactly what the path tracer renders apart: the bootstrap's b
+// without the paths of at most one bounce is b times the share of the longer paths in the
+// image, 1 - mean(path tracer at maxdepth 1) / mean(BDPT), within 4 sigma of the three
+// estimates.
+TEST(VeachMLT, DirectLightingApartLeavesOnlyLongerPathsToTheChains) {
+    const std::string scene = box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1");
+    std::string direct = scene;
+    direct.replace(direct.find(R"("integer maxdepth" [ 5 ])"), 24, R"("integer maxdepth" [ 1 ])");
+    // Image means over seeds: their mean and its standard error.
+    auto mean = [](const std::string& text, int spp, const char* integrator, double* se) {
+        RunningStats s;
+        for (uint64_t seed = 1; seed <= 8; ++seed) {
+            const Image im = renderString(text, spp, seed, 0, integrator).image;
+            double m = 0;
+            for (size_t i = 0; i < im.rgb.size(); i += 3) m += Spectrum(im.rgb[i], im.rgb[i + 1], im.rgb[i + 2]).luminance();
+            s.add(m / double(im.rgb.size() / 3));
+        }
+        *se = s.standardError();
+        return s.mean();
+    };
+    double sb = 0, sp = 0;
+    const double mb = mean(scene, 64, "bdpt", &sb), mp = mean(direct, 64, "path", &sp);
+    RenderResult all = renderString(scene, 1, 3, 0, "mlt"), apart = renderString(scene, 1, 4, 0, "mlt:direct=1");
+    const double expected = 1 - mp / mb, got = apart.metropolis.b / all.metropolis.b;
+    const double sigma = std::sqrt(std::pow(sp / mb, 2) + std::pow(mp * sb / (mb * mb), 2) +
+                                   std::pow(got * all.metropolis.bRelativeError, 2) +
+                                   std::pow(got * apart.metropolis.bRelativeError, 2));
+    std::printf("  longer paths' share: b ratio %.4f, 1 - mean(path, maxdepth 1) / mean(bdpt) %.4f (%.2f sigma)\n", got,
+                expected, (got - expected) / sigma);
+    EXPECT_GT(expected, 0.1);
+    EXPECT_LT(expected, 0.9);
+    EXPECT_LT(std::fabs(got - expected), 4 * sigma);
+}
+
 // Layered surfaces, sampled by the path space's own mixture (MltVertex::mixed): a smooth-
 // coated diffuse sphere (its coating's mirror and the rest) and a back wall of conductor
 // under a rough coating, f being the layered BxDFs' deterministic estimates in both.

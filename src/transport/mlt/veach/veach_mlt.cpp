@@ -18,6 +18,7 @@
 #include "transport/film_reduction.h"
 #include "transport/mlt/chain_ranks.h"
 #include "transport/mlt/bootstrap.h"
+#include "transport/path_tracer.h"
 #include "transport/render_monitor.h"
 #include "util/error.h"
 
@@ -49,7 +50,13 @@ struct PathState {
     double f = 0;
 };
 
-bool evaluate(const PathSpace& space, PathState& s) {
+// A path shorter than minVertices (rendered apart: direct lighting) has target 0.
+bool evaluate(const PathSpace& space, int minVertices, PathState& s) {
+    if (int(s.path.size()) < minVertices) {
+        s.C = Spectrum();
+        s.f = 0;
+        return false;
+    }
     s.C = space.contribution(s.path, &s.pRaster);
     const double f = s.C.luminance();
     s.f = f > 0 && std::isfinite(f) ? f : 0.0;
@@ -84,7 +91,7 @@ double bootstrapSample(const VeachMLTIntegrator& integrator, uint64_t seed, int6
     space.walk(camera, maxV, TransportMode::Radiance, time, rng, *out.arena, stats);
     MltPath y;
     double total = 0;
-    for (int n = 2; n <= maxV; ++n)
+    for (int n = integrator.minChainVertices(); n <= maxV; ++n)
         for (int s = 0; s < n; ++s) {
             const int t = n - s;
             if (s > int(light.size()) || t > int(camera.size())) continue;
@@ -181,6 +188,21 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     tbb::enumerable_thread_specific<PathState> scratchStates;
     tbb::enumerable_thread_specific<PathStats> threadStats;
 
+    // Direct lighting apart: the path tracer's image of the paths of at most one bounce.
+    RenderResult direct;
+    if (integrator.directSpp() > 0) {
+        const PathTracer directOnly(scene, 1);
+        RenderOptions o = options;
+        o.spp = integrator.directSpp();
+        o.timeLimit = 0;
+        o.progress = false;
+        o.adaptive = AdaptiveMode::None;
+        o.resume = nullptr;
+        o.checkpointEvery = -1;
+        o.checkpoint = nullptr;
+        direct = render(scene, directOnly, o);
+    }
+
     RenderResult result;
     MetropolisStats& ms = result.metropolis;
     ms.present = true;
@@ -225,7 +247,8 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     std::vector<Chain> all(static_cast<size_t>(chains));
     std::atomic<bool> stop{false};
     std::atomic<long long> done{0};
-    const double bootstrapSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
+    const double bootstrapSeconds =
+        direct.seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
     result.seconds = bootstrapSeconds;
     if (bootstrapCancelled) {
         warning("mlt: interrupted during the bootstrap, before any chain ran; the image is black");
@@ -281,7 +304,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                         if (kind < int(Mutation::Count)) ++ch.counts.proposed[kind];
                         if (!made) {
                             if (kind < int(Mutation::Count)) ++ch.counts.failed[kind];
-                        } else if (!evaluate(space, ch.y) || !(ratio > 0)) {
+                        } else if (!evaluate(space, integrator.minChainVertices(), ch.y) || !(ratio > 0)) {
                             ++ch.counts.invalid;
                         } else {
                             const double r = ch.y.f / ch.x.f * ratio;
@@ -338,6 +361,14 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         warning(std::string(kUnsupportedCoating) + " (met by a chain after the bootstrap: those paths are missing)");
     chain_ranks::perProcess(ms, chainDone, chainAccepted, chainProposed);
     finishChains(scene, film, options, total, bootstrapCancelled, result);
+    // The direct part is an independent estimate: images and variances add (the error
+    // estimate and efficiency stay the chains').
+    if (integrator.directSpp() > 0 && direct.image.rgb.size() == result.image.rgb.size()) {
+        for (size_t i = 0; i < result.image.rgb.size(); ++i) result.image.rgb[i] += direct.image.rgb[i];
+        if (direct.variance.rgb.size() == result.variance.rgb.size())
+            for (size_t i = 0; i < result.variance.rgb.size(); ++i) result.variance.rgb[i] += direct.variance.rgb[i];
+        result.stats += direct.stats;
+    }
     return result;
 }
 
