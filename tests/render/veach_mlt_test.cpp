@@ -175,6 +175,31 @@ std::string lightSeenInACoating() {
     return scene;
 }
 
+// An area light seen at grazing angles (about 80 degrees from the normal) in a smooth coating
+// over a diffuse floor, where the coating's mirror weight R / cos differs most from R: paths
+// E S L of the mixed vertex's mirror role, and the floor's diffuse light.
+std::string lightSeenGrazingInACoating() {
+    return std::string(R"(
+        LookAt 0 0.4 3  0 0.2 0  0 1 0
+        Camera "perspective" "float fov" [ 35 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        )") + mltIntegrator(100000) + R"(
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 4 4 4 ] "bool twosided" true
+          Shape "bilinearmesh" "point3 P" [ -0.6 0.1 -2   0.6 0.1 -2   -0.6 0.9 -2   0.6 0.9 -2 ]
+        AttributeEnd
+        Material "coateddiffuse" "rgb reflectance" [ 0.2 0.3 0.2 ]
+        Shape "bilinearmesh" "point3 P" [ -3 0 3   3 0 3   -3 0 -3   3 0 -3 ]
+    )";
+}
+
+TEST(VeachMLT, AgreesWithBDPTOnALightSeenGrazingInACoating) {
+    expectAgreement(AgreementCase{"light seen grazing in a coating", lightSeenGrazingInACoating(), {"bdpt", "mlt"}, 32, 16,
+                                  {{"mlt", 512}}, 0.02});
+}
+
 // Each mutation makes a correct image: the bidirectional mutation (for ergodicity) with each
 // other one alone, on the scene whose paths that mutation moves: block and image means
 // against BDPT. The other tests run every mutation together.
