@@ -64,11 +64,13 @@ int main(int argc, char** argv) {
                    "Integrators to compare (mlt:KEY=VALUE,... is mlt with those --mlt-mutations weights)");
     app.add_option("--json", jsonPath, "Write the results as JSON");
     int chains = 0, bootstrap = 0;
-    double largeStep = -1, sigma = 0;
+    double largeStep = -1, sigma = 0, cameraSteps = -1;
     app.add_option("--chains", chains, "Metropolis: chains (default: the scene's)");
     app.add_option("--bootstrap", bootstrap, "Metropolis: bootstrap samples (default: the scene's)");
     app.add_option("--large-step-probability", largeStep, "Metropolis: large-step probability (default: the scene's)");
     app.add_option("--sigma", sigma, "Metropolis: small-step sigma (default: the scene's)");
+    app.add_option("--camera-step-probability", cameraSteps,
+                   "pssmlt, mmlt: share of small steps that move only the camera subpath (default 0.5)");
     double strategyPilot = -1;
     std::string savePrefix;
     app.add_option("--save", savePrefix, "Also write each render as PREFIX-INTEGRATOR-SEED.pfm (and the reference as PREFIX-ref.pfm)");
@@ -90,6 +92,7 @@ int main(int argc, char** argv) {
         if (bootstrap > 0) st.mltBootstrapSamples = bootstrap;
         if (largeStep >= 0) st.mltLargeStepProbability = float(largeStep);
         if (sigma > 0) st.mltSigma = float(sigma);
+        if (cameraSteps >= 0) st.mltCameraStepProbability = float(cameraSteps);
         if (strategyPilot >= 0) st.mltStrategyPilot = float(strategyPilot);
         const double refMean = imageMean(ref);
         if (!savePrefix.empty()) writeImage(savePrefix + "-ref.pfm", ref);

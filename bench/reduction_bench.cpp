@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
         double bytes = 0;
         for (int r = 0; r < runs; ++r) {
             // A copy of the whole film's sums (Film::accumulators), summed on rank 0 (timed
-            // alone, between barriers, as the statistics' reduction_seconds) and copied back.
+            // alone, between barriers, as the statistics' film reduction) and copied back.
             distributed::barrier();
             const double t0 = now();
             Film::Accumulators sums = film.accumulators();

@@ -34,6 +34,9 @@ void report(const char* prefix, const char* what) {
 
 int main(int argc, char** argv) {
     ps::distributed::start(argc, argv);
+    // One voice per job: rank 0 prints warnings; the others keep theirs for rank 0 to print
+    // those it did not meet itself (RenderCommand).
+    if (!ps::distributed::isRoot()) ps::setWarningsQuiet(true);
     CLI::App app{"pathspace: a physically based renderer (Veach's robust Monte Carlo light transport).\n"
                  "Exit status: 0 success, 1 internal error, 2 bad input, 130 interrupted (image so far written)."};
     app.require_subcommand(1);
@@ -52,6 +55,10 @@ int main(int argc, char** argv) {
         if (mc.parsed() && ps::distributed::size() > 1)
             throw ps::InputError("mc runs in one process: start it without mpirun");
         return ps::distributed::finish(mc.parsed() ? mc.run() : render.run());
+    } catch (const ps::distributed::JobInputError& e) {
+        // Raised by every process at once: one report, and no process aborts the others.
+        if (ps::distributed::isRoot()) std::fprintf(stderr, "%s\n", ps::printableMessage(e.what()).c_str());
+        return ps::distributed::finish(ps::kExitBadInput, true);
     } catch (const ps::InputError& e) {
         report("", e.what());
         return ps::distributed::finish(ps::kExitBadInput);

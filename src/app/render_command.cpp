@@ -113,6 +113,23 @@ nlohmann::json inputFileHashes(const std::string& sceneFile) {
     return files;
 }
 
+// One voice per job: the warnings of the other processes (which print none) reach rank 0,
+// which prints each it has not given itself (most, from parsing the scene, every process
+// meets) and counts it.
+void gatherWarnings() {
+    if (distributed::size() == 1) return;
+    distributed::Purpose purpose("warnings");
+    std::vector<char> mine;
+    if (!distributed::isRoot())
+        for (const std::string& w : warningMessages()) mine.insert(mine.end(), w.c_str(), w.c_str() + w.size() + 1);
+    const std::vector<char> all = distributed::gatherBytesToRoot(mine);
+    for (size_t at = 0; at < all.size();) {
+        const std::string w(all.data() + at);
+        warning(w);
+        at += w.size() + 1;
+    }
+}
+
 }  // namespace
 
 void RenderCommand::attach(CLI::App& app) {
@@ -194,6 +211,11 @@ void RenderCommand::attach(CLI::App& app) {
                      "Metropolis (pssmlt, mmlt) only: probability in [0, 1] that a mutation draws every random number afresh "
                      "(overrides \"largestepprobability\"; default 0.3)")
         ->check(probabilityCheck());
+    cmd_->add_option("--camera-step-probability", cameraStepProbability_,
+                     "Metropolis (pssmlt, mmlt) only: probability in [0, 1] that a small step moves only the camera "
+                     "subpath and the connection, keeping the light subpath and the strategy (default 0.5; 0: every "
+                     "small step moves every random number, as pbrt-v4's)")
+        ->check(probabilityCheck());
     cmd_->add_option("--sigma", sigma_,
                      "Metropolis (pssmlt, mmlt) only: standard deviation (> 0) of a small step's perturbation of each random "
                      "number (overrides \"sigma\"; default 0.01)")
@@ -248,18 +270,21 @@ int RenderCommand::run() {
         // Carried with the mutations' weights: mlt's own configuration.
         settings.mltMutations += (settings.mltMutations.empty() ? "direct=" : ",direct=") + std::to_string(mltDirect_);
     }
-    if (settings.integrator == "mlt" && (largeStepProbability_ >= 0 || sigma_ > 0))
-        throw InputError("--large-step-probability and --sigma are parameters of the primary-sample-space Metropolis "
-                         "integrators (pssmlt, mmlt); mlt's mutations change paths, not random numbers");
-    if (chains_ > 0 || bootstrap_ > 0 || largeStepProbability_ >= 0 || sigma_ > 0) {
+    if (settings.integrator == "mlt" && (largeStepProbability_ >= 0 || sigma_ > 0 || cameraStepProbability_ >= 0))
+        throw InputError("--large-step-probability, --camera-step-probability and --sigma are parameters of the "
+                         "primary-sample-space Metropolis integrators (pssmlt, mmlt); mlt's mutations change paths, "
+                         "not random numbers");
+    if (chains_ > 0 || bootstrap_ > 0 || largeStepProbability_ >= 0 || sigma_ > 0 || cameraStepProbability_ >= 0) {
         if (settings.integrator != "pssmlt" && settings.integrator != "mmlt" && settings.integrator != "mlt")
-            throw InputError("--chains, --bootstrap, --large-step-probability and --sigma are Metropolis parameters: "
+            throw InputError("--chains, --bootstrap, --large-step-probability, --camera-step-probability and --sigma are "
+                             "Metropolis parameters: "
                              "they need --integrator pssmlt, mmlt or mlt (the integrator here is \"" + settings.integrator +
                              "\")");
         if (chains_ > 0) settings.mltChains = chains_;
         if (bootstrap_ > 0) settings.mltBootstrapSamples = bootstrap_;
         if (largeStepProbability_ >= 0) settings.mltLargeStepProbability = float(largeStepProbability_);
         if (sigma_ > 0) settings.mltSigma = float(sigma_);
+        if (cameraStepProbability_ >= 0) settings.mltCameraStepProbability = float(cameraStepProbability_);
     }
     if (!crop_.empty()) {
         int W = scene->camera().params().xRes, H = scene->camera().params().yRes;
@@ -295,16 +320,13 @@ int RenderCommand::run() {
     // the image; not threads, processes or time), then the checkpoint resumed from, checked
     // before anything is rendered or written.
     if (checkpointEvery_ >= 0 && checkpoint_.empty()) throw InputError("--checkpoint-every needs --checkpoint FILE");
-    if ((!checkpoint_.empty() || !resume_.empty()) &&
-        (adaptive != AdaptiveMode::None || settings.integrator == "pssmlt" || settings.integrator == "mmlt" ||
-         settings.integrator == "mlt" || bdpt))
-        throw InputError(std::string(adaptive != AdaptiveMode::None ? "adaptive sampling (--adaptive)"
-                                     : bdpt                         ? "--bdpt-strategies"
-                                                                    : "Metropolis (pssmlt, mmlt, mlt)") +
-                         " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling do");
+    if ((!checkpoint_.empty() || !resume_.empty()) && (adaptive != AdaptiveMode::None || bdpt))
+        throw InputError(std::string(adaptive != AdaptiveMode::None ? "adaptive sampling (--adaptive)" : "--bdpt-strategies") +
+                         " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling and "
+                         "the Metropolis integrators (pssmlt, mmlt, mlt) do");
     const PixelBounds& bounds = scene->pixelBounds();
     const bool checkpointing = !checkpoint_.empty() || !resume_.empty();
-    const nlohmann::json checkpointSettings = {
+    nlohmann::json checkpointSettings = {
         {"scene_file_hash", checkpointing ? fileHash(scene_) : ""},
         {"input_files", checkpointing ? inputFileHashes(scene_) : nlohmann::json::object()},
         {"integrator", settings.integrator},
@@ -315,9 +337,20 @@ int RenderCommand::run() {
         {"mis", mis_},
         {"resolution", {scene->camera().params().xRes, scene->camera().params().yRes}},
         {"pixels", {bounds.x0, bounds.x1, bounds.y0, bounds.y1}}};
+    // A Markov chain's course depends on every parameter of the chains and the bootstrap.
+    if (settings.integrator == "pssmlt" || settings.integrator == "mmlt" || settings.integrator == "mlt") {
+        checkpointSettings["chains"] = settings.mltChains;
+        checkpointSettings["bootstrap"] = settings.mltBootstrapSamples;
+        checkpointSettings["large_step_probability"] = settings.mltLargeStepProbability;
+        checkpointSettings["sigma"] = settings.mltSigma;
+        checkpointSettings["camera_step_probability"] = settings.mltCameraStepProbability;
+        checkpointSettings["strategy_pilot"] = settings.mltStrategyPilot;
+        checkpointSettings["mlt_mutations"] = settings.mltMutations;
+    }
     CheckpointState resumed;
     if (!resume_.empty()) {
         // Rank 0 reads it (the others need not see its file system) and says where it stands.
+        distributed::Purpose purpose("checkpoint");
         std::vector<int64_t> where{0, 1, 0};
         if (root) {
             resumed = readCheckpoint(resume_, checkpointSettings);
@@ -356,9 +389,20 @@ int RenderCommand::run() {
     }
     RenderResult r = render(*scene, *integrator, opts);
     // A signal to any process interrupted them all (each stops at the same pass boundary).
-    const bool interrupted = distributed::anyOf(gInterrupt.load());
+    bool interrupted = false;
+    {
+        distributed::Purpose purpose("stop decisions");
+        interrupted = distributed::anyOf(gInterrupt.load());
+    }
     if (bdpt) bdpt->strategyImages()->sumToRoot();
+    gatherWarnings();
     if (!root) return interrupted ? kExitInterrupted : kExitOk;
+    // The statistics count every collective of the render, these last ones included.
+    r.distributed.reductionBytes = distributed::traffic().bytes;
+    r.distributed.reductionSeconds = distributed::traffic().seconds;
+    nlohmann::json byPurpose = nlohmann::json::object();
+    for (const auto& [purpose, t] : distributed::trafficByPurpose())
+        byPurpose[purpose] = {{"bytes", t.bytes}, {"seconds", t.seconds}};
 
     for (const std::string& o : outputs) {
         writeImage(o, r.image);
@@ -384,6 +428,7 @@ int RenderCommand::run() {
         {"rank_seconds", r.distributed.rankSeconds},
         {"reduction_bytes", r.distributed.reductionBytes},
         {"reduction_seconds", r.distributed.reductionSeconds},
+        {"reduction_by_purpose", byPurpose},
         {"seed", settings.seed},
         {"maxdepth", settings.maxDepth},
         {"wall_time_s", r.seconds},
@@ -417,6 +462,7 @@ int RenderCommand::run() {
             {"chains", ms.chains},
             {"large_step_probability", settings.mltLargeStepProbability},
             {"sigma", settings.mltSigma},
+            {"camera_step_probability", settings.mltCameraStepProbability},
             {"mutations", ms.mutations},
             {"acceptance_rate", ms.acceptanceRate()},
             {"large_steps", ms.proposedLarge},
@@ -468,7 +514,7 @@ int RenderCommand::run() {
         std::printf("estimated error: mean relative variance %.3g, efficiency 1/(V T) %.3g\n", r.error.meanRelativeVariance,
                     r.efficiency);
         if (r.distributed.ranks > 1)
-            std::printf("%d processes (MPI) | film reduction %.3g MB per process in %.3f s\n", r.distributed.ranks,
+            std::printf("%d processes (MPI) | rank 0's collectives: %.3g MB in %.3f s\n", r.distributed.ranks,
                         r.distributed.reductionBytes / 1e6, r.distributed.reductionSeconds);
         if (ms.present)
             std::printf("metropolis: b %.4g | %d chains | %lld mutations | acceptance %.3f (large steps %.3f, small "

@@ -35,6 +35,7 @@ private:
     int chains_ = -1;
     int bootstrap_ = -1;
     double largeStepProbability_ = -1;
+    double cameraStepProbability_ = -1;
     double strategyPilot_ = -1;
     double sigma_ = -1;
     int mltDirect_ = -1;        // --mlt-direct N

@@ -11,6 +11,7 @@ PrimarySampleSampler::PrimarySampleSampler(uint64_t chainSeed, const PrimarySamp
     : params_(params) {
     if (params_.streamCount < 1) params_.streamCount = 1;
     streamIndex_.assign(size_t(params_.streamCount), 0);
+    smallSteps_.assign(size_t(params_.streamCount), 0);
     streams_.resize(size_t(params_.streamCount));
     reseed(chainSeed);
 }
@@ -20,24 +21,64 @@ void PrimarySampleSampler::reseed(uint64_t chainSeed) {
     normals_.reset();
 }
 
+void PrimarySampleSampler::save(ByteWriter& out) const {
+    out.put(rng_);
+    out.put(normals_);
+    out.put(iteration_);
+    out.put(lastLargeStep_);
+    out.put(uint8_t(largeStep_));
+    out.put(uint32_t(streams_.size()));
+    for (const std::vector<Value>& s : streams_) out.putVector(s);
+    out.putVector(smallSteps_);
+}
+
+void PrimarySampleSampler::load(ByteReader& in) {
+    rng_ = in.get<Rng>();
+    normals_ = in.get<NormalPairs>();
+    iteration_ = in.get<int64_t>();
+    lastLargeStep_ = in.get<int64_t>();
+    largeStep_ = in.get<uint8_t>() != 0;
+    if (in.get<uint32_t>() != streams_.size()) in.fail();
+    for (std::vector<Value>& s : streams_) s = in.getVector<Value>();
+    smallSteps_ = in.getVector<double>();
+    if (smallSteps_.size() != streams_.size()) in.fail();
+    touched_.clear();
+    restartStreams();
+}
+
 void PrimarySampleSampler::restartStreams() {
     stream_ = 0;
     std::fill(streamIndex_.begin(), streamIndex_.end(), 0);
 }
 
 void PrimarySampleSampler::startIteration() {
-    startIteration(iteration_ == 0 || rng_.uniformDouble() < params_.largeStepProbability);
+    const bool large = iteration_ == 0 || rng_.uniformDouble() < params_.largeStepProbability;
+    startIteration(large);
+    if (!large && params_.partialStepProbability > 0 && !params_.partialSteps.empty() &&
+        rng_.uniformDouble() < params_.partialStepProbability) {
+        const size_t n = params_.partialSteps.size();
+        const size_t k = std::min(n - 1, size_t(rng_.uniformDouble() * double(n)));
+        const PrimarySampleParams::PartialStep& p = params_.partialSteps[k];
+        moved_ = p.streams;
+        stepUnits_ = (p.sigma / params_.sigma) * (p.sigma / params_.sigma);
+    }
 }
 
 void PrimarySampleSampler::startIteration(bool largeStep) {
     ++iteration_;
     largeStep_ = largeStep || iteration_ == 1;
+    moved_ = ~0u;
+    stepUnits_ = 1;
     touched_.clear();
     restartStreams();
 }
 
 void PrimarySampleSampler::accept() {
-    if (largeStep_) lastLargeStep_ = iteration_;
+    if (largeStep_)
+        lastLargeStep_ = iteration_;
+    else
+        for (size_t k = 0; k < smallSteps_.size(); ++k)
+            if (moved_ >> k & 1u) smallSteps_[k] += stepUnits_;
     touched_.clear();
 }
 
@@ -46,14 +87,16 @@ void PrimarySampleSampler::reject() {
         Value& v = streams_[t.stream][t.index];
         v.value = v.backupValue;
         v.modified = v.backupModified;
+        v.steps = v.backupSteps;
     }
     touched_.clear();
     --iteration_;
 }
 
-// A small step of n iterations at once: a normal deviate of sigma * sqrt(n), wrapped.
-double PrimarySampleSampler::small(double v, int64_t steps) {
-    v += params_.sigma * std::sqrt(double(steps)) * normals_.next(rng_);
+// Small steps of a total variance of `units` sigma^2 at once (n steps of sigma: n units): a
+// normal deviate of sigma * sqrt(units), wrapped.
+double PrimarySampleSampler::small(double v, double units) {
+    v += params_.sigma * std::sqrt(units) * normals_.next(rng_);
     v -= std::floor(v);
     return v < 1.0 ? v : 0.0;  // v just below 0 can round up to 1
 }
@@ -64,20 +107,30 @@ double PrimarySampleSampler::read(int stream, size_t index) {
     Value& x = values[index];
     if (x.modified == iteration_) return x.value;  // read twice by one proposal
     // Bring the value to the chain's current state (the last accepted iteration): a value
-    // never read, or not read since an accepted large step, is uniform there; one read at
-    // iteration m < k - 1 has missed k - 1 - m small steps.
+    // never read, or not read since an accepted large step, is uniform there; otherwise it
+    // has missed the small steps its stream took since it was last read (every accepted
+    // iteration since, unless partial steps left the stream alone).
     const int64_t current = iteration_ - 1;
+    const double steps = smallSteps_[size_t(stream)];
     if (x.modified < 0 || x.modified < lastLargeStep_) {
         x.value = rng_.uniformDouble();
         x.modified = current;
-    } else if (x.modified < current) {
-        x.value = small(x.value, current - x.modified);
+        x.steps = steps;
+    } else if (x.steps < steps) {
+        x.value = small(x.value, steps - x.steps);
         x.modified = current;
+        x.steps = steps;
     }
     // That state is what a rejection restores; then this iteration's own step.
     x.backupValue = x.value;
     x.backupModified = x.modified;
-    x.value = largeStep_ ? rng_.uniformDouble() : small(x.value, 1);
+    x.backupSteps = x.steps;
+    if (largeStep_) {
+        x.value = rng_.uniformDouble();
+    } else if (moved_ >> stream & 1u) {
+        x.value = small(x.value, stepUnits_);
+        x.steps = steps + stepUnits_;
+    }
     x.modified = iteration_;
     touched_.push_back({uint32_t(stream), uint32_t(index)});
     return x.value;
@@ -100,13 +153,14 @@ Vec2 PrimarySampleSampler::get2D() {
 }
 
 bool PrimarySampleSampler::sameState(const PrimarySampleSampler& o) const {
-    if (iteration_ != o.iteration_ || lastLargeStep_ != o.lastLargeStep_ || streams_.size() != o.streams_.size())
+    if (iteration_ != o.iteration_ || lastLargeStep_ != o.lastLargeStep_ || smallSteps_ != o.smallSteps_ ||
+        streams_.size() != o.streams_.size())
         return false;
     for (size_t k = 0; k < streams_.size(); ++k) {
         const std::vector<Value>&a = streams_[k], &b = o.streams_[k];
         if (a.size() != b.size()) return false;
         for (size_t i = 0; i < a.size(); ++i)
-            if (a[i].value != b[i].value || a[i].modified != b[i].modified) return false;
+            if (a[i].value != b[i].value || a[i].modified != b[i].modified || a[i].steps != b[i].steps) return false;
     }
     return true;
 }

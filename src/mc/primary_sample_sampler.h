@@ -22,6 +22,7 @@
 #include "mc/metropolis.h"
 #include "mc/rng.h"
 #include "mc/sampler.h"
+#include "util/byte_stream.h"
 
 namespace ps {
 
@@ -29,6 +30,18 @@ struct PrimarySampleParams {
     double sigma = 0.01;                // small-step standard deviation (pbrt-v4's default)
     double largeStepProbability = 0.3;  // chance that an iteration is a large step
     int streamCount = 1;                // dimension streams (see startStream)
+    // Partial small steps: with this probability a small step moves only the streams of one
+    // of `partialSteps` (bit masks of streams, chosen uniformly), the others keep their
+    // values. The choice does not depend on the state, so the step stays symmetric; a
+    // target whose streams are the two subpaths of a path then has steps that keep one
+    // subpath while the other moves (as the lens and caustic perturbations of thesis
+    // 11.4.3 do in path space). 0: every small step moves every stream.
+    double partialStepProbability = 0;
+    struct PartialStep {
+        uint32_t streams = 0;  // bit mask
+        double sigma = 0.01;   // its standard deviation
+    };
+    std::vector<PartialStep> partialSteps;
 };
 
 class PrimarySampleSampler final : public Sampler {
@@ -40,11 +53,15 @@ public:
     // Starts the next proposal. The first iteration of a chain is always a large step (every
     // value fresh); afterwards a large step with probability largeStepProbability.
     void startIteration();
-    void startIteration(bool largeStep);  // the step kind chosen by the caller
+    void startIteration(bool largeStep);  // the step kind chosen by the caller (every stream)
     // Keeps the proposal as the chain's state, or restores the state before it.
     void accept();
     void reject();
     bool largeStep() const { return largeStep_; }
+    // The streams the proposal's small step moves (every bit: all of them) and its standard
+    // deviation.
+    uint32_t movedStreams() const { return moved_; }
+    double stepSigma() const { return params_.sigma * std::sqrt(stepUnits_); }
     // Accepted iterations so far (between iterations; a proposal under way is the next one).
     int64_t acceptedIterations() const { return iteration_; }
 
@@ -75,15 +92,23 @@ public:
     struct Value {
         double value = 0;
         int64_t modified = -1;
-        double backupValue = 0;
+        double steps = 0;  // the variance, in units of sigma^2, of its stream's accepted small steps that it has taken
+        double backupValue = 0, backupSteps = 0;
         int64_t backupModified = -1;
     };
     const std::vector<Value>& values(int stream = 0) const { return streams_[size_t(stream)]; }
     bool sameState(const PrimarySampleSampler& o) const;
 
+    // The chain's whole state between iterations (a checkpoint): the values with their
+    // iterations and backups, the iteration counters and the random stream with its spare
+    // normal deviate, so that the restored chain goes on bit for bit. Not the parameters,
+    // which the restoring render has (its checkpoint's settings match).
+    void save(ByteWriter& out) const;
+    void load(ByteReader& in);
+
 private:
     double read(int stream, size_t index);
-    double small(double v, int64_t steps);
+    double small(double v, double units);
 
     PrimarySampleParams params_;
     Rng rng_;
@@ -92,6 +117,11 @@ private:
     int64_t iteration_ = 0;        // the proposal's iteration number (accepted ones + 1)
     int64_t lastLargeStep_ = 0;    // iteration of the last accepted large step
     bool largeStep_ = true;
+    uint32_t moved_ = ~0u;          // the streams the proposal's small step moves
+    double stepUnits_ = 1;          // its variance in units of sigma^2
+    // Per stream, the variance of the accepted small steps that moved it, in units of
+    // sigma^2: with every step of sigma, their number (exact in a double).
+    std::vector<double> smallSteps_;
     int stream_ = 0;
     std::vector<int64_t> streamIndex_;  // each stream's next value this iteration
     struct Touched {

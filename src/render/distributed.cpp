@@ -16,13 +16,26 @@ namespace ps::distributed {
 namespace {
 
 Traffic gTraffic;
+std::map<std::string, Traffic> gByPurpose;
+const char* gPurpose = nullptr;  // only the main thread runs collectives
 
 #if PATHSPACE_HAVE_MPI
-// Times one reduction and counts its payload.
+// Times one collective and counts its payload, in all and under the purpose in force.
 struct Timed {
-    explicit Timed(double bytes) : start(std::chrono::steady_clock::now()) { gTraffic.bytes += bytes; }
-    ~Timed() { gTraffic.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); }
+    explicit Timed(double bytes) : start(std::chrono::steady_clock::now()), purpose(gPurpose ? gPurpose : "other") {
+        add(bytes);
+    }
+    void add(double bytes) {
+        gTraffic.bytes += bytes;
+        gByPurpose[purpose].bytes += bytes;
+    }
+    ~Timed() {
+        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        gTraffic.seconds += s;
+        gByPurpose[purpose].seconds += s;
+    }
     std::chrono::steady_clock::time_point start;
+    const char* purpose;
 };
 
 bool gStarted = false;
@@ -91,10 +104,10 @@ void start(int& argc, char**& argv) {
 #endif
 }
 
-int finish(int code) {
+int finish(int code, bool together) {
 #if PATHSPACE_HAVE_MPI
     if (!gStarted) return code;
-    if (code != 0 && code != 130 && gSize > 1) MPI_Abort(MPI_COMM_WORLD, code);
+    if (code != 0 && code != 130 && gSize > 1 && !together) MPI_Abort(MPI_COMM_WORLD, code);
     MPI_Op_free(&gSumInt128);
     MPI_Type_free(&gInt128);
     MPI_Finalize();
@@ -129,6 +142,7 @@ bool anyOf(bool local) {
 #if PATHSPACE_HAVE_MPI
     if (gSize > 1) {
         int in = local ? 1 : 0, out = 0;
+        Timed t(sizeof in);
         check(MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD), "stop decision");
         return out != 0;
     }
@@ -177,10 +191,11 @@ void orToRoot(std::vector<uint64_t>& v) {
 
 void broadcastFromRoot(std::vector<int64_t>& v) {
 #if PATHSPACE_HAVE_MPI
-    if (gSize > 1)
-        inChunks(v.size(), [&](size_t at, int n) {
-            check(MPI_Bcast(v.data() + at, n, MPI_INT64_T, 0, MPI_COMM_WORLD), "broadcast");
-        });
+    if (gSize <= 1) return;
+    Timed t(double(v.size() * sizeof(int64_t)));
+    inChunks(v.size(), [&](size_t at, int n) {
+        check(MPI_Bcast(v.data() + at, n, MPI_INT64_T, 0, MPI_COMM_WORLD), "broadcast");
+    });
 #else
     (void)v;
 #endif
@@ -188,10 +203,11 @@ void broadcastFromRoot(std::vector<int64_t>& v) {
 
 void broadcastFromRoot(std::vector<uint64_t>& v) {
 #if PATHSPACE_HAVE_MPI
-    if (gSize > 1)
-        inChunks(v.size(), [&](size_t at, int n) {
-            check(MPI_Bcast(v.data() + at, n, MPI_UINT64_T, 0, MPI_COMM_WORLD), "broadcast");
-        });
+    if (gSize <= 1) return;
+    Timed t(double(v.size() * sizeof(uint64_t)));
+    inChunks(v.size(), [&](size_t at, int n) {
+        check(MPI_Bcast(v.data() + at, n, MPI_UINT64_T, 0, MPI_COMM_WORLD), "broadcast");
+    });
 #else
     (void)v;
 #endif
@@ -222,6 +238,7 @@ std::vector<double> gatherToRoot(double x) {
 #if PATHSPACE_HAVE_MPI
     if (gSize > 1) {
         std::vector<double> all(gRank == 0 ? size_t(gSize) : 0);
+        Timed t(sizeof x);
         check(MPI_Gather(&x, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD), "gather");
         return all;
     }
@@ -229,6 +246,96 @@ std::vector<double> gatherToRoot(double x) {
     return {x};
 }
 
+int64_t maxOf(int64_t x) {
+#if PATHSPACE_HAVE_MPI
+    if (gSize > 1) {
+        int64_t out = 0;
+        Timed t(sizeof x);
+        check(MPI_Allreduce(&x, &out, 1, MPI_INT64_T, MPI_MAX, MPI_COMM_WORLD), "maximum");
+        return out;
+    }
+#endif
+    return x;
+}
+
+std::vector<char> gatherBytesToRoot(const std::vector<char>& bytes) {
+#if PATHSPACE_HAVE_MPI
+    if (gSize > 1) {
+        // The sizes first (each process's share may exceed an int: sent in chunks of bytes).
+        const int64_t mine = int64_t(bytes.size());
+        std::vector<int64_t> sizes(gRank == 0 ? size_t(gSize) : 0);
+        Timed t(double(sizeof mine + bytes.size()));
+        check(MPI_Gather(&mine, 1, MPI_INT64_T, sizes.data(), 1, MPI_INT64_T, 0, MPI_COMM_WORLD), "gather");
+        std::vector<char> all;
+        if (gRank != 0) {
+            inChunks(bytes.size(), [&](size_t at, int n) {
+                check(MPI_Send(bytes.data() + at, n, MPI_BYTE, 0, 0, MPI_COMM_WORLD), "send");
+            });
+            return all;
+        }
+        all = bytes;
+        for (int r = 1; r < gSize; ++r) {
+            const size_t from = all.size();
+            all.resize(from + size_t(sizes[size_t(r)]));
+            inChunks(size_t(sizes[size_t(r)]), [&](size_t at, int n) {
+                check(MPI_Recv(all.data() + from + at, n, MPI_BYTE, r, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "receive");
+            });
+        }
+        return all;
+    }
+#endif
+    return bytes;
+}
+
+void broadcastBytes(std::vector<char>& bytes) {
+#if PATHSPACE_HAVE_MPI
+    if (gSize <= 1) return;
+    int64_t n = int64_t(bytes.size());
+    Timed t(double(sizeof n));
+    check(MPI_Bcast(&n, 1, MPI_INT64_T, 0, MPI_COMM_WORLD), "broadcast");
+    bytes.resize(size_t(n));
+    t.add(double(n));
+    inChunks(bytes.size(), [&](size_t at, int k) {
+        check(MPI_Bcast(bytes.data() + at, k, MPI_BYTE, 0, MPI_COMM_WORLD), "broadcast");
+    });
+#else
+    (void)bytes;
+#endif
+}
+
+std::string firstMessage(bool local, const std::string& message) {
+#if PATHSPACE_HAVE_MPI
+    if (gSize > 1) {
+        int mine = local ? gRank : gSize, first = gSize;
+        {
+            Timed t(sizeof mine);
+            check(MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD), "error decision");
+        }
+        if (first == gSize) return "";
+        int64_t n = int64_t(message.size());
+        Timed t(double(sizeof n));
+        check(MPI_Bcast(&n, 1, MPI_INT64_T, first, MPI_COMM_WORLD), "broadcast");
+        t.add(double(n));
+        std::string text = gRank == first ? message : std::string(size_t(n), '\0');
+        check(MPI_Bcast(text.data(), int(n), MPI_CHAR, first, MPI_COMM_WORLD), "broadcast");
+        return text;
+    }
+#endif
+    return local ? message : "";
+}
+
+void refuseTogether(bool local, const std::string& message) {
+    Purpose purpose("error decisions");
+    const std::string text = firstMessage(local, message);
+    if (!text.empty()) throw JobInputError(text);
+}
+
 Traffic traffic() { return gTraffic; }
+std::map<std::string, Traffic> trafficByPurpose() { return gByPurpose; }
+
+Purpose::Purpose(const char* name) : previous_(gPurpose) {
+    if (!gPurpose) gPurpose = name;
+}
+Purpose::~Purpose() { gPurpose = previous_; }
 
 }  // namespace ps::distributed

@@ -3,7 +3,11 @@
 // or run without a launcher, there is one process and every call is a no-op or the identity.
 #pragma once
 #include <cstdint>
+#include <map>
+#include <string>
 #include <vector>
+
+#include "util/error.h"
 
 namespace ps::distributed {
 
@@ -11,8 +15,9 @@ namespace ps::distributed {
 // nothing: a plain run stays a plain one-process program. Call once, first thing in main.
 void start(int& argc, char**& argv);
 // Ends MPI. With code != 0 in a job of several processes, aborts the whole job with that
-// code (the others may be waiting in a collective); else finalizes. Returns code.
-int finish(int code);
+// code (the others may be waiting in a collective), unless every process ends with it
+// `together` (a JobInputError): then, as on success, finalizes. Returns code.
+int finish(int code, bool together = false);
 
 int rank();   // 0 .. size() - 1; 0 without MPI
 int size();   // 1 without MPI
@@ -43,12 +48,49 @@ void mergeDisjoint(std::vector<uint64_t>& v);
 void mergeDisjoint(std::vector<double>& v);
 // Every process's value, in rank order, on rank 0 (elsewhere: empty).
 std::vector<double> gatherToRoot(double x);
+// The largest of the processes' values, on every process.
+int64_t maxOf(int64_t x);
+// Every process's bytes, concatenated in rank order, on rank 0 (elsewhere: empty).
+std::vector<char> gatherBytesToRoot(const std::vector<char>& bytes);
+// Rank 0's bytes on every process (any length: the others' vectors are resized).
+void broadcastBytes(std::vector<char>& bytes);
 
-// What the sums above moved and how long they took, over the whole run (this process).
+// The lowest rank for which `local` is set gives `message` (its own) to every process, which
+// all return it; "" when no process has one. Every process must call it: a refusal that one
+// process meets during a render becomes every process's, at the same point, so that all stop
+// together (no process left waiting in a collective) and rank 0 reports it once.
+std::string firstMessage(bool local, const std::string& message);
+
+// A refusal every process raised together (refuseTogether): rank 0 reports it, the others
+// stay silent, and the job ends with its status without an abort.
+class JobInputError : public InputError {
+public:
+    using InputError::InputError;
+};
+// Every process calls it at the same point; if `local` is set on any, all throw
+// JobInputError with the lowest such rank's `message`.
+void refuseTogether(bool local, const std::string& message);
+
+// What every collective above moved and how long it took, over the whole run (this process):
+// in all and by purpose (the label in force when it ran, see Purpose).
 struct Traffic {
-    double bytes = 0;    // payload bytes this process contributed
-    double seconds = 0;  // time spent inside the reductions
+    double bytes = 0;    // payload bytes this process contributed (sent, or received from rank 0)
+    double seconds = 0;  // time spent inside the collectives (waits for the others included)
 };
 Traffic traffic();
+std::map<std::string, Traffic> trafficByPurpose();
+// While one lives, the collectives this process runs count under `name` ("film", "stop
+// decisions", ...); the outermost label wins, so a helper's own label does not split a
+// caller's purpose. Without one they count under "other".
+class Purpose {
+public:
+    explicit Purpose(const char* name);
+    ~Purpose();
+    Purpose(const Purpose&) = delete;
+    Purpose& operator=(const Purpose&) = delete;
+
+private:
+    const char* previous_;
+};
 
 }  // namespace ps::distributed

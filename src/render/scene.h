@@ -35,6 +35,7 @@ struct RenderSettings {
     int mltChains = 1000;              // "chains"
     float mltLargeStepProbability = 0.3f;  // "largestepprobability"
     float mltSigma = 0.01f;                // "sigma"
+    float mltCameraStepProbability = 0.5f; // --camera-step-probability (no pbrt-v4 parameter)
     float mltStrategyPilot = 0.1f;         // mmlt: the bootstrap's share spent on its pilot
     std::string mltMutations;              // mlt: the mutations' weights, "KEY=VALUE,..." (--mlt-mutations)
     SourceLoc filmLoc;       // the Film directive, for errors found when the film is made

@@ -15,7 +15,9 @@ namespace ps {
 namespace {
 
 constexpr char kMagic[8] = {'P', 'S', 'C', 'K', 'P', 'T', '\n', '\0'};
-constexpr uint32_t kVersion = 2;  // 2: the partial pass
+// 2: the partial pass; 3: the chains' state (its size after version 2's header, which a
+// version 2 file, read as one with no chains, lacks).
+constexpr uint32_t kVersion = 3;
 constexpr uint32_t kByteOrder = 0x01020304;  // read back otherwise on a machine of the other order
 
 struct Header {
@@ -23,8 +25,10 @@ struct Header {
     uint32_t version, byteOrder;
     uint64_t metadataBytes, fixedCount, countCount, partialCount;
     uint64_t checksum;  // of every byte after the header
+    uint64_t chainBytes;
 };
-static_assert(sizeof(Header) == 56);
+static_assert(sizeof(Header) == 64);
+constexpr size_t kVersion2HeaderBytes = 56;
 
 // A 64-bit hash, eight bytes at a time: not cryptographic, it catches a damaged file.
 uint64_t hashBytes(const char* data, size_t n, uint64_t h) {
@@ -107,16 +111,19 @@ void writeCheckpoint(const std::string& path, const nlohmann::json& settings, co
     h.fixedCount = fixed.size();
     h.countCount = counts.size();
     h.partialCount = partial.size();
+    h.chainBytes = state.chains.size();
     uint64_t c = hashBytes(metadata.data(), metadata.size(), 1);
     c = hashBytes(reinterpret_cast<const char*>(fixed.data()), fixed.size() * sizeof(Fixed), c);
     c = hashBytes(reinterpret_cast<const char*>(counts.data()), counts.size() * sizeof(int64_t), c);
-    h.checksum = hashBytes(reinterpret_cast<const char*>(partial.data()), partial.size() * sizeof(uint64_t), c);
+    c = hashBytes(reinterpret_cast<const char*>(partial.data()), partial.size() * sizeof(uint64_t), c);
+    h.checksum = hashBytes(state.chains.data(), state.chains.size(), c);
 
     auto bytes = [](const void* p, size_t n) { return std::span<const char>(static_cast<const char*>(p), n); };
     writeFileAtomically(path,
                         {bytes(&h, sizeof h), bytes(metadata.data(), metadata.size()),
                          bytes(fixed.data(), fixed.size() * sizeof(Fixed)), bytes(counts.data(), counts.size() * sizeof(int64_t)),
-                         bytes(partial.data(), partial.size() * sizeof(uint64_t))},
+                         bytes(partial.data(), partial.size() * sizeof(uint64_t)),
+                         bytes(state.chains.data(), state.chains.size())},
                         "checkpoint");
 }
 
@@ -124,32 +131,39 @@ CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& se
     std::ifstream in(path, std::ios::binary);
     if (!in) refuse(path, "cannot open the file");
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    Header h;
-    if (bytes.size() < sizeof h || std::memcmp(bytes.data(), kMagic, 8) != 0)
+    Header h{};
+    if (bytes.size() < kVersion2HeaderBytes || std::memcmp(bytes.data(), kMagic, 8) != 0)
         refuse(path, "not a pathspace checkpoint");
-    std::memcpy(&h, bytes.data(), sizeof h);
+    std::memcpy(&h, bytes.data(), kVersion2HeaderBytes);
     if (h.byteOrder != kByteOrder) refuse(path, "written on a machine of the other byte order");
-    if (h.version != kVersion)
-        refuse(path, "format version " + std::to_string(h.version) + ", this pathspace reads version " +
+    if (h.version != kVersion && h.version != 2)
+        refuse(path, "format version " + std::to_string(h.version) + ", this pathspace reads versions 2 and " +
                          std::to_string(kVersion));
+    const size_t headerBytes = h.version == 2 ? kVersion2HeaderBytes : sizeof h;
+    if (bytes.size() < headerBytes) refuse(path, "truncated or damaged: shorter than its header");
+    std::memcpy(&h, bytes.data(), headerBytes);
     // Sizes first (a truncated file), in a way no huge count in a damaged header overflows.
-    const long double expected = (long double)sizeof h + h.metadataBytes + (long double)h.fixedCount * sizeof(Fixed) +
-                                 (long double)h.countCount * sizeof(int64_t) + (long double)h.partialCount * sizeof(uint64_t);
+    const long double expected = (long double)headerBytes + h.metadataBytes + (long double)h.fixedCount * sizeof(Fixed) +
+                                 (long double)h.countCount * sizeof(int64_t) + (long double)h.partialCount * sizeof(uint64_t) +
+                                 (long double)h.chainBytes;
     if (expected != (long double)bytes.size())
         refuse(path, "truncated or damaged: its header announces " + std::to_string((unsigned long long)expected) +
                          " bytes, the file has " + std::to_string(bytes.size()));
-    const char* at = bytes.data() + sizeof h;
+    const char* at = bytes.data() + headerBytes;
     const char* fixedAt = at + h.metadataBytes;
     const char* countsAt = fixedAt + h.fixedCount * sizeof(Fixed);
     const char* partialAt = countsAt + h.countCount * sizeof(int64_t);
+    const char* chainsAt = partialAt + h.partialCount * sizeof(uint64_t);
     uint64_t c = hashBytes(at, h.metadataBytes, 1);
     c = hashBytes(fixedAt, h.fixedCount * sizeof(Fixed), c);
     c = hashBytes(countsAt, h.countCount * sizeof(int64_t), c);
-    if (hashBytes(partialAt, h.partialCount * sizeof(uint64_t), c) != h.checksum)
+    c = hashBytes(partialAt, h.partialCount * sizeof(uint64_t), c);
+    if (h.version != 2) c = hashBytes(chainsAt, h.chainBytes, c);
+    if (c != h.checksum)
         refuse(path, "corrupt (its checksum does not match its contents)");
     CheckpointState s;
     try {
-        const nlohmann::json m = nlohmann::json::parse(bytes.substr(sizeof h, h.metadataBytes));
+        const nlohmann::json m = nlohmann::json::parse(bytes.substr(headerBytes, h.metadataBytes));
         const std::string diff = differences(settings, m.at("settings"));
         if (!diff.empty()) refuse(path, "made for another render (" + diff + ")");
         s.samplesPerPixel = m.at("samples_per_pixel").get<int>();
@@ -172,6 +186,7 @@ CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& se
     copy(s.sums.fixed.data(), fixedAt, h.fixedCount * sizeof(Fixed));
     copy(s.sums.counts.data(), countsAt, h.countCount * sizeof(int64_t));
     copy(s.partial.data(), partialAt, h.partialCount * sizeof(uint64_t));
+    s.chains.assign(chainsAt, chainsAt + h.chainBytes);
     return s;
 }
 

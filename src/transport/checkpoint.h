@@ -1,9 +1,10 @@
-// Checkpoints of a uniform render (path, light, bdpt): the film's exact sums after the last
-// whole pass (and, when the render stopped early, the samples of the pass it stopped in),
-// enough to continue it, on any number of processes, to the image one
-// uninterrupted run gives. The file: a fixed binary header (magic, version, section sizes, a
-// checksum of everything after it), JSON metadata (the settings that shape the image, where
-// the render stands), then the sums as raw integers.
+// Checkpoints of a render: the film's exact sums after the last whole pass (and, when a
+// uniform render stopped early, the samples of the pass it stopped in; for a Markov-chain
+// render, the bootstrap's results and every chain's whole state), enough to continue it, on
+// any number of processes, to the image one uninterrupted run gives. The file: a fixed
+// binary header (magic, version, section sizes, a checksum of everything after it), JSON
+// metadata (the settings that shape the image, where the render stands), then the sums as
+// raw integers and the chains' state as bytes.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -26,6 +27,10 @@ struct CheckpointState {
     long long samples = 0;    // camera samples in the sums
     PathStats stats;          // of those samples
     Film::Accumulators sums;  // over all processes (Film::accumulators)
+    // A Markov-chain render (transport/mlt/chain_checkpoint.h): its bootstrap's results and
+    // every chain's state, in chain order; empty for a uniform render. `samples` then counts
+    // mutations.
+    std::vector<char> chains;
 };
 
 // Writes atomically: a temporary file next to `path`, flushed to disk, then renamed over it,

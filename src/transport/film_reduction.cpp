@@ -35,17 +35,17 @@ void sumFilmInto(const Film& film, Film& whole) {
 bool reduceToRoot(Film& film, long long samples, RenderResult& result, const CheckpointState* resume) {
     DistributedStats& d = result.distributed;
     d.ranks = distributed::size();
+    distributed::Purpose purpose("film");
     for (double n : distributed::gatherToRoot(double(samples))) d.rankSamples.push_back((long long)n);
     d.rankSeconds = distributed::gatherToRoot(result.seconds);
     if (d.ranks == 1 && !resume) return true;
-    const distributed::Traffic before = distributed::traffic();
     sumFilmToRoot(film, resume, [&](size_t b, size_t e, const std::vector<Fixed>& fixed, const std::vector<int64_t>& counts) {
         if (b < e) film.setPixelSums(b, e, fixed.data(), counts.data());
         else film.setOtherCounts(counts);
     });
     const bool root = sumCountsToRoot(samples, result.stats, resume);
-    d.reductionBytes = distributed::traffic().bytes - before.bytes;
-    d.reductionSeconds = distributed::traffic().seconds - before.seconds;
+    d.reductionBytes = distributed::traffic().bytes;  // every collective so far (the caller may add later ones)
+    d.reductionSeconds = distributed::traffic().seconds;
     return root;
 }
 

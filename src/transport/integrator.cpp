@@ -26,6 +26,7 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
             const RenderSettings& st = scene.settings();
             MetropolisParams mp{st.mltBootstrapSamples, st.mltChains, st.mltLargeStepProbability, st.mltSigma,
                                 st.mltStrategyPilot};
+            mp.cameraStepProbability = st.mltCameraStepProbability;
             if (name == "mlt")
                 return std::make_unique<VeachMLTIntegrator>(scene, maxDepth, mp, parseMutationWeights(st.mltMutations));
             if (name == "mmlt") return std::make_unique<MMLTIntegrator>(scene, maxDepth, mp, heuristic);

@@ -47,7 +47,7 @@ bool renderUniform(SamplePasses& passes, Film& film, int spp, UniformProgress& a
         const bool whole = passes.run(
             film, [&](size_t p) { return SampleSpan{at.s0, s1, at.partial.empty() ? 0 : at.partial[p]}; },
             SamplePasses::Stream::Main, track ? &taken : nullptr);
-        if (distributed::anyOf(!whole)) {
+        if (distributed::Purpose p("stop decisions"); distributed::anyOf(!whole)) {
             if (track) {
                 if (at.partial.empty()) at.partial.assign(taken.size(), 0);
                 for (size_t i = 0; i < taken.size(); ++i) at.partial[i] |= taken[i];
@@ -109,9 +109,9 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
                          "(path); light tracing, BDPT and Metropolis splat onto the whole film");
     auto* veach = dynamic_cast<const VeachMLTIntegrator*>(&integrator);
     auto* mlt = dynamic_cast<const MetropolisIntegrator*>(&integrator);
-    if ((options.resume || options.checkpoint) && (mlt || veach || options.adaptive != AdaptiveMode::None))
-        throw InputError(std::string(mlt || veach ? "Metropolis (pssmlt, mmlt, mlt)" : "adaptive sampling (--adaptive)") +
-                         " does not yet write or resume checkpoints: path, light and bdpt with uniform sampling do");
+    if ((options.resume || options.checkpoint) && options.adaptive != AdaptiveMode::None)
+        throw InputError("adaptive sampling (--adaptive) does not yet write or resume checkpoints: path, light and "
+                         "bdpt with uniform sampling and the Metropolis integrators do");
     requireFilmMemory(scene, integrator, options);
     // Markov chains have their own driver: a chain is not a per-camera-ray estimate.
     if (mlt) return renderMetropolis(scene, *mlt, options);
@@ -143,6 +143,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     auto lastCheckpoint = std::chrono::steady_clock::now();
     auto afterPass = [&](int s1, int nextPass) {
         if (options.checkpointEvery < 0 || !options.checkpoint) return;
+        distributed::Purpose purpose("checkpoint");
         const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - lastCheckpoint).count();
         if (!distributed::anyOf(since >= options.checkpointEvery)) return;
         CheckpointState state;
@@ -165,12 +166,18 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
             case AdaptiveMode::None:
                 complete = renderUniform(passes, film, spp, at, bool(options.checkpoint), afterPass);
                 break;
-            case AdaptiveMode::Sequential: complete = renderSequential(passes, film, monitor, spp); break;
-            case AdaptiveMode::TwoStage:
+            case AdaptiveMode::Sequential: {
+                distributed::Purpose purpose("adaptive");
+                complete = renderSequential(passes, film, monitor, spp);
+                break;
+            }
+            case AdaptiveMode::TwoStage: {
+                distributed::Purpose purpose("adaptive");
                 pilot = std::make_unique<Film>(film.xRes(), film.yRes(), film.bounds());
                 pilot->setMaxComponentValue(film.maxComponentValue(), 1);  // its pixels may stand in for the film's
                 complete = renderTwoStage(passes, film, *pilot, monitor, spp);
                 break;
+            }
         }
         result.seconds = monitor.elapsed();
     }
@@ -178,7 +185,10 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     // Stopped early (a signal, --time): a last checkpoint, of everything taken so far, the
     // stopped pass's samples included, so that no finished work is lost.
     const bool finalCheckpoint = !complete && options.checkpoint && options.adaptive == AdaptiveMode::None;
-    if (finalCheckpoint) distributed::orToRoot(at.partial);
+    if (finalCheckpoint) {
+        distributed::Purpose purpose("checkpoint");
+        distributed::orToRoot(at.partial);
+    }
     if (!reduceToRoot(film, passes.samplesDone(), result, resume)) return result;
     // Pixels a stop left without second-stage samples: the (whole) pilot's stand in.
     if (pilot) film.adoptEmptyPixels(*pilot);

@@ -70,6 +70,7 @@ void StrategyImages::splat(int s, Vec2 pRaster, Spectrum weighted, Spectrum unwe
 
 void StrategyImages::sumToRoot() {
     if (distributed::size() == 1) return;
+    distributed::Purpose purpose("strategy images");
     distributed::sumToRoot(sums_);
     distributed::sumToRoot(weights_);
     for (const auto& f : splatFilms_) sumFilmInto(*f, *f);

@@ -10,6 +10,7 @@ namespace ps {
 namespace {
 std::mutex gMutex;
 std::set<std::string> gSeen;
+std::vector<std::string> gInOrder;
 std::atomic<int> gCount{0};
 std::atomic<bool> gQuiet{false};
 }  // namespace
@@ -49,6 +50,7 @@ std::string printableMessage(std::string_view text) {
 void warning(const std::string& msg) {
     std::lock_guard<std::mutex> lock(gMutex);
     if (!gSeen.insert(msg).second) return;  // once per distinct message
+    gInOrder.push_back(msg);
     ++gCount;
     if (!gQuiet) std::fprintf(stderr, "warning: %s\n", printableMessage(msg).c_str());
 }
@@ -56,6 +58,10 @@ void warning(const std::string& msg) {
 void warning(const SourceLoc& loc, const std::string& msg) { warning(loc.str() + ": " + msg); }
 
 int warningCount() { return gCount; }
+std::vector<std::string> warningMessages() {
+    std::lock_guard<std::mutex> lock(gMutex);
+    return gInOrder;
+}
 void setWarningsQuiet(bool quiet) { gQuiet = quiet; }
 
 }  // namespace ps

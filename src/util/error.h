@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace ps {
 
@@ -48,6 +49,8 @@ std::string printableMessage(std::string_view text);
 void warning(const std::string& msg);
 void warning(const SourceLoc& loc, const std::string& msg);
 int warningCount();
+// The distinct warnings so far, in the order they were first given.
+std::vector<std::string> warningMessages();
 // Silence stderr output of warnings (they are still counted), e.g. in tests.
 void setWarningsQuiet(bool quiet);
 

@@ -320,9 +320,10 @@ TEST_F(Cli, MisOption) {
     EXPECT_EQ(run("render --quiet --integrator bdpt --mis nope " + scene + " -o " + out).status, 2);
 }
 
-// --chains, --bootstrap, --large-step-probability and --sigma override the scene's Metropolis
-// parameters and reach the chains: the statistics report the chains and bootstrap samples
-// used, a large-step probability of 1 leaves no small step, and sigma changes the image.
+// --chains, --bootstrap, --large-step-probability, --camera-step-probability and --sigma
+// override the scene's Metropolis parameters and reach the chains: the statistics report the
+// chains and bootstrap samples used, a large-step probability of 1 leaves no small step, and
+// sigma and the camera steps change the image.
 TEST_F(Cli, MetropolisOptions) {
     const std::string scene = write("s.pbrt", kSmallScene);
     const std::string base = "render --quiet --integrator pssmlt --spp 2 --seed 3 " + scene;
@@ -332,7 +333,9 @@ TEST_F(Cli, MetropolisOptions) {
         EXPECT_EQ(r.status, 0) << opts << "\n" << r.out;
         return nlohmann::json::parse(std::ifstream(json))["metropolis"];
     };
-    nlohmann::json m = stats("--chains 7 --bootstrap 300 --large-step-probability 1 --sigma 0.05", "a");
+    nlohmann::json m =
+        stats("--chains 7 --bootstrap 300 --large-step-probability 1 --sigma 0.05 --camera-step-probability 0.25", "a");
+    EXPECT_NEAR(m["camera_step_probability"].get<double>(), 0.25, 1e-7);
     EXPECT_EQ(m["chains"], 7);
     EXPECT_EQ(m["bootstrap_samples"], 300);
     EXPECT_DOUBLE_EQ(m["large_step_probability"].get<double>(), 1.0);
@@ -343,11 +346,14 @@ TEST_F(Cli, MetropolisOptions) {
     EXPECT_GT(d["small_steps"].get<long long>(), 0);
     stats("--chains 7 --bootstrap 300 --sigma 0.2", "s");
     EXPECT_NE(ps::readImage((dir / "d.pfm").string()).rgb, ps::readImage((dir / "s.pfm").string()).rgb);
+    stats("--chains 7 --bootstrap 300 --camera-step-probability 0", "c");
+    EXPECT_NE(ps::readImage((dir / "d.pfm").string()).rgb, ps::readImage((dir / "c.pfm").string()).rgb);
 
     // Out of range, not a whole number, or with an integrator that has no chains: exit 2 and
     // a message naming the option.
     for (const std::string bad : {"--chains 0", "--chains 2.5", "--bootstrap -1", "--large-step-probability 1.5",
-                                  "--large-step-probability -0.1", "--sigma 0", "--sigma nan"}) {
+                                  "--large-step-probability -0.1", "--sigma 0", "--sigma nan",
+                                  "--camera-step-probability 2"}) {
         Result r = run(base + " " + bad + " -o " + (dir / "x.pfm").string());
         EXPECT_EQ(r.status, 2) << bad << "\n" << r.out;
         EXPECT_NE(r.out.find(bad.substr(0, bad.find(' '))), std::string::npos) << bad << "\n" << r.out;

@@ -11,11 +11,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "film/film.h"
 #include "image/image.h"
+#include "furnace_scene.h"
 #include "run_mpi.h"
 #include "sky_scene.h"
 
@@ -204,21 +207,6 @@ TEST_F(Mpi, BdptStrategyImagesIndependentOfProcesses) {
 
 namespace {
 
-// kFurnaceExact's scene (tests/render/mlt_scenes.h) without its Integrator line: a sphere
-// lit from inside, every pixel exactly Le (1 - 0.6^6) / 0.4 at maxdepth 5. Veach's MLT
-// renders it (kSkyScene has an infinite light, which mlt does not support).
-const char* kFurnace = R"(LookAt 0 0 0  0 0 1  0 1 0
-Camera "perspective" "float fov" [ 60 ]
-Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
-PixelFilter "box"
-WorldBegin
-AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
-Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]
-ReverseOrientation
-Shape "sphere" "float radius" [ 1 ]
-)";
-const double kFurnaceValue = (1 - std::pow(0.6, 6)) / 0.4;
-
 // The mean over the image of the pixels' channel means.
 double imageMean(const ps::Image& img) {
     double s = 0;
@@ -377,4 +365,89 @@ TEST_F(Mpi, KilledProcessEndsTheJobAndItsCheckpointResumes) {
     EXPECT_EQ(stats("resumed.json")["camera_paths"], stats("full.json")["camera_paths"]);
     EXPECT_TRUE(bytes(path("resumed.pfm")) == bytes(path("full.pfm")))
         << "resumed from the killed job's checkpoint, the image differs from the uninterrupted one";
+}
+
+// One voice per job: a warning that every process meets parsing the scene is printed once
+// (by rank 0) and counted once; a refusal that a process meets during the render (mlt's
+// smooth coating over a smooth conductor, met in the bootstrap by the process that takes
+// its one block of samples) is raised by every process together: one message, exit status
+// 2, no abort of the job and no hang.
+TEST_F(Mpi, OneVoicePerJob) {
+    PS_SKIP_WITHOUT_MPI();
+    const std::string base = R"(LookAt 0 0.5 2  0 0.5 0  0 1 0
+Camera "perspective" "float fov" [ 30 ]
+Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ] "float bogus" [ 1 ]
+WorldBegin
+AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+  Shape "bilinearmesh" "point3 P" [ -0.2 1 -0.2   0.2 1 -0.2   -0.2 1 0.2   0.2 1 0.2 ]
+AttributeEnd
+)";
+    auto occurrences = [](const std::string& text, const std::string& what) {
+        int n = 0;
+        for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+        return n;
+    };
+    const std::string warned = write("warned.pbrt", base + "Shape \"sphere\" \"float radius\" [ 0.2 ]\n");
+    const Result w = runMpi(2, "render --quiet " + warned + " --spp 4 -o " + path("w.pfm") + " --stats " + path("w.json"));
+    ASSERT_EQ(w.status, 0) << w.out;
+    EXPECT_EQ(occurrences(w.out, "unused parameter \"float bogus\""), 1) << w.out;
+    EXPECT_EQ(stats("w.json")["warnings"], 1);
+
+    const std::string coated = write("coated.pbrt", base + "Material \"coatedconductor\"\nShape \"sphere\" \"float radius\" [ 0.2 ]\n");
+    const auto start = std::chrono::steady_clock::now();
+    const Result r = runMpi(2, "render --quiet " + coated + " --integrator mlt --spp 1 --bootstrap 256 --chains 4 -o " +
+                                   path("c.pfm"));
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("refused in %.2f s, status %d\n", seconds, r.status);
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.status, 124) << "the job hung until its watchdog ended it";
+    EXPECT_EQ(occurrences(r.out, "coatedconductor whose coating and conductor are both smooth"), 1) << r.out;
+    EXPECT_EQ(occurrences(r.out, "rank 1"), 0) << r.out;
+    EXPECT_EQ(occurrences(r.out, "MPI_ABORT"), 0) << r.out;
+    EXPECT_FALSE(fs::exists(path("c.pfm")));
+}
+
+// reduction_bytes counts every collective of the render, by purpose, and each purpose what
+// the code sends: for the path tracer on 2 processes, the film's reduction (each pixel's
+// 128-bit sums and its count, the film's other count, the statistics gathered with them),
+// a stop decision after each of the 4 passes and one after the render, the warnings' size;
+// for pssmlt, the same splat film, every chain's counts and at least the bootstrap's weights
+// and a film per checkpoint. The purposes add up to the total.
+TEST_F(Mpi, ReductionBytesCountEveryTransfer) {
+    PS_SKIP_WITHOUT_MPI();
+    auto purposes = [&](const std::string& name) {
+        const nlohmann::json j = stats(name);
+        double sum = 0;
+        std::map<std::string, double> by;
+        for (const auto& [purpose, t] : j["reduction_by_purpose"].items()) {
+            by[purpose] = t["bytes"].get<double>();
+            sum += by[purpose];
+            std::printf("%s: %s %.0f bytes\n", name.c_str(), purpose.c_str(), by[purpose]);
+        }
+        EXPECT_EQ(sum, j["reduction_bytes"].get<double>());
+        return by;
+    };
+    constexpr double kPixelBytes = 16 * ps::Film::kPixelSums + 8, kStatistics = 6 * 8 + 2 * 8;
+    render(2, "path", "--spp 8 --threads 1");  // passes of 1, 2, 4 and 1 samples
+    const double pixels = 32 * 24;
+    std::map<std::string, double> p = purposes("path.json");
+    EXPECT_EQ(p["film"], pixels * kPixelBytes + 8 + kStatistics);
+    EXPECT_EQ(p["stop decisions"], 4 * 4 + 4);
+    EXPECT_EQ(p["warnings"], 8);
+    EXPECT_EQ(p.size(), 3u);
+
+    const std::string furnace = write("furnace.pbrt", kFurnace);
+    const Result r = runMpi(2, "render --quiet " + furnace + " --integrator pssmlt --spp 64 --bootstrap 3000 --chains 13 "
+                               "--threads 1 --checkpoint " + path("ck") + " --checkpoint-every 0 -o " + path("m.pfm") +
+                               " --stats " + path("m.json"));
+    ASSERT_EQ(r.status, 0) << r.out;
+    const double splatPixels = 16 * 16, depths = 6, checkpoints = stats("m.json")["checkpoints"].get<double>();
+    const double sums = splatPixels * kPixelBytes + (splatPixels * 6 + 1) * 8;  // a splat film's
+    std::map<std::string, double> m = purposes("m.json");
+    EXPECT_EQ(m["film"], sums + kStatistics);
+    EXPECT_EQ(m["chain counts"], 13 * (6 + 3 * depths) * 8);
+    EXPECT_GE(m["bootstrap merge"], 3000 * 8);
+    EXPECT_EQ(checkpoints, 4);
+    EXPECT_GE(m["checkpoint"], checkpoints * sums);
 }

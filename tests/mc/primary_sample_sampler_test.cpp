@@ -168,6 +168,54 @@ TEST(PrimarySampleChain, ReproducesTwoDimensionalDensityWithConditionalReads) {
               1e-5);
 }
 
+// Partial steps (a share of the small steps moves only some streams, each kind with its own
+// sigma) keep the target's density: the same 2-D densities with u0 and u1 on two streams,
+// one of them read only where u0 >= 0.4, so that u1 catches up across steps that did and did
+// not move its stream.
+PrimarySampleParams partialParams() {
+    PrimarySampleParams params;
+    params.streamCount = 2;
+    params.largeStepProbability = 0.05;
+    params.partialStepProbability = 0.6;
+    params.partialSteps = {{1u, 0.03}, {2u, 0.005}};
+    return params;
+}
+
+TargetValue twoStreamTarget(PrimarySampleSampler& s) {
+    s.startStream(1);
+    float u1 = s.get1D();
+    s.startStream(0);
+    float u0 = s.get1D();
+    int i0 = std::min(int(u0 * 8), 7), i1 = std::min(int(u1 * 8), 7);
+    return {bumpy(u0) * kUp(u1), i0 * 8 + i1};
+}
+
+TargetValue splitTwoStreamTarget(PrimarySampleSampler& s) {
+    s.startStream(0);
+    float u0 = s.get1D();
+    if (u0 < 0.4f) return {gLeft(u0), std::min(int(u0 * 10), kLeftBins - 1)};
+    s.startStream(1);
+    float u1 = s.get1D();
+    int i0 = std::min(int((u0 - 0.4f) * 10), kRightBins0 - 1), i1 = std::min(int(u1 * kRightBins1), kRightBins1 - 1);
+    return {hRight(u0) * kUp(u1), kLeftBins + i0 * kRightBins1 + i1};
+}
+
+TEST(PrimarySampleChain, PartialStepsKeepTheDensity) {
+    std::vector<double> exact;
+    for (int i0 = 0; i0 < 8; ++i0)
+        for (int i1 = 0; i1 < 8; ++i1)
+            exact.push_back(integrate(bumpy, i0 / 8.0, (i0 + 1) / 8.0) * integrate(kUp, i1 / 8.0, (i1 + 1) / 8.0));
+    double total = 0;
+    for (double v : exact) total += v;
+    for (double& v : exact) v /= total;
+    EXPECT_GT(acrossChains(twoStreamTarget, exact, 64, 71, partialParams(), 20000, true, "2 streams, partial steps").pValue,
+              1e-5);
+    EXPECT_GT(acrossChains(splitTwoStreamTarget, exactSplitBins(), 64, 72, partialParams(), 20000, false,
+                           "2-D conditional, partial steps")
+                  .pValue,
+              1e-5);
+}
+
 // With large steps only, the proposals are independent uniform points whatever the target
 // and the acceptances: the values of one proposal, and of successive proposals, fill the
 // unit square uniformly (samples independent, so Pearson's chi-square applies per sample).
@@ -248,44 +296,84 @@ TEST(PrimarySampleChain, LazyCatchUpIsTheMissedSmallStepsAtOnce) {
     EXPECT_GT(fresh.pValue, 1e-5);
 }
 
+// With partial steps a value catches up on the steps that moved its stream only, each with
+// its own variance: read once, then left alone while the other stream is read by steps of
+// every kind, its displacement when read again over the variance of the steps its stream
+// took (every accepted iteration's, before partial steps existed) has mean 1.
+TEST(PrimarySampleChain, LazyCatchUpCountsOnlyTheStepsThatMovedItsStream) {
+    PrimarySampleParams params = partialParams();
+    params.largeStepProbability = 0;
+    RunningStats ratio;
+    for (int k = 0; k < 20000; ++k) {
+        PrimarySampleSampler s(hashCombine(47, uint64_t(k)), params);
+        s.startIteration();
+        s.startStream(1);
+        const double before = s.get1D();
+        s.accept();
+        double variance = 0;
+        for (int i = 0; i < 24; ++i) {
+            s.startIteration();
+            s.startStream(0);
+            s.get1D();
+            if (s.movedStreams() >> 1 & 1u) variance += s.stepSigma() * s.stepSigma();
+            s.accept();
+        }
+        s.startIteration(false);  // every stream: one more step of sigma
+        variance += params.sigma * params.sigma;
+        s.startStream(1);
+        double d = s.get1D() - before;
+        d -= std::floor(d + 0.5);
+        ratio.add(d * d / variance);
+    }
+    const double z = (ratio.mean() - 1) / ratio.standardError();
+    std::printf("[ kernel   ] partial steps' catch-up: displacement^2 / variance %.4f (%.2f sigma from 1)\n", ratio.mean(), z);
+    EXPECT_LT(std::fabs(z), 4.0);
+}
+
 // A rejected proposal restores, bit for bit, every value it moved: with a target that reads
 // the same values at every state, the whole sampler is as before. A value that the proposal
 // first brought up to date (not read by the current state) keeps that up-to-date value,
 // stamped with the last accepted iteration: the state it stood for all along.
 TEST(PrimarySampleChain, RejectionRestoresTheStateBitIdentically) {
-    PrimarySampleParams params;
-    params.streamCount = 3;
-    PrimarySampleSampler s(51, params);
-    auto target = [](PrimarySampleSampler& smp) {
-        double f = 1;
-        for (int stream = 2; stream >= 0; --stream) {
-            smp.startStream(stream);
-            for (int i = 0; i < 3; ++i) f *= 0.1 + bumpy(smp.get1D());
+    for (bool partial : {false, true}) {
+        PrimarySampleParams params;
+        params.streamCount = 3;
+        if (partial) {
+            params.partialStepProbability = 0.5;
+            params.partialSteps = {{1u, 0.02}, {6u, 0.01}};
         }
-        return f;
-    };
-    s.startIteration();
-    double fx = target(s);
-    s.accept();
-    int rejectedSmall = 0, rejectedLarge = 0;
-    for (int i = 0; i < 2000; ++i) {
-        const PrimarySampleSampler before = s;
+        PrimarySampleSampler s(51, params);
+        auto target = [](PrimarySampleSampler& smp) {
+            double f = 1;
+            for (int stream = 2; stream >= 0; --stream) {
+                smp.startStream(stream);
+                for (int i = 0; i < 3; ++i) f *= 0.1 + bumpy(smp.get1D());
+            }
+            return f;
+        };
         s.startIteration();
-        double fy = target(s);
-        if (Rng(uint64_t(i), 5).uniformDouble() < acceptanceProbability(fx, fy)) {
-            s.accept();
-            fx = fy;
-            continue;
+        double fx = target(s);
+        s.accept();
+        int rejectedSmall = 0, rejectedLarge = 0;
+        for (int i = 0; i < 2000; ++i) {
+            const PrimarySampleSampler before = s;
+            s.startIteration();
+            double fy = target(s);
+            if (Rng(uint64_t(i), 5).uniformDouble() < acceptanceProbability(fx, fy)) {
+                s.accept();
+                fx = fy;
+                continue;
+            }
+            bool large = s.largeStep();
+            s.reject();
+            ASSERT_TRUE(s.sameState(before)) << "iteration " << i;
+            ++(large ? rejectedLarge : rejectedSmall);
         }
-        bool large = s.largeStep();
-        s.reject();
-        ASSERT_TRUE(s.sameState(before)) << "iteration " << i;
-        ++(large ? rejectedLarge : rejectedSmall);
+        std::printf("[ kernel   ] restored exactly after %d rejected small and %d rejected large steps%s\n", rejectedSmall,
+                    rejectedLarge, partial ? " (partial steps)" : "");
+        EXPECT_GT(rejectedSmall, 100);
+        EXPECT_GT(rejectedLarge, 100);
     }
-    std::printf("[ kernel   ] restored exactly after %d rejected small and %d rejected large steps\n", rejectedSmall,
-                rejectedLarge);
-    EXPECT_GT(rejectedSmall, 100);
-    EXPECT_GT(rejectedLarge, 100);
 
     // Conditional reads: every value the state had read is restored bit for bit.
     PrimarySampleSampler c(52, PrimarySampleParams{});

@@ -194,7 +194,7 @@ TEST(MetropolisOptions, PbrtMltIntegratorReadsPbrtParametersAndDefaults) {
 // target comes from the splats of t = 1 connections. Block and image means against BDPT.
 TEST_P(Metropolis, AgreesWithBDPTOnAGlassCaustic) {
     const std::string scene = glassCaustic();
-    expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", GetParam()}, 128, 16, {{GetParam(), mutations(64)}},
+    expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", GetParam()}, 128, 16, {{GetParam(), mutations(80)}},
                                   0.02});
 }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "app/furnace_scene.h"
+
 namespace ps::test {
 
 // The chain parameters of the tests: a bootstrap and chain count sized for small films. The
@@ -14,22 +16,13 @@ inline std::string mltIntegrator(int bootstrapSamples = 50000) {
            std::to_string(bootstrapSamples) + " ]";
 }
 
-// A sphere lit from inside by its own emission, albedo 0.6: every pixel sees Le sum_k 0.6^k.
+// A sphere lit from inside by its own emission, albedo 0.6: every pixel sees Le sum_k 0.6^k
+// (app/furnace_scene.h's scene, with the tests' Integrator line).
 inline std::string furnace() {
-    return std::string(R"(
-        LookAt 0 0 0  0 0 1  0 1 0
-        Camera "perspective" "float fov" [ 60 ]
-        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
-        PixelFilter "box"
-        )") + mltIntegrator() + R"(
-        WorldBegin
-        AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
-        Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]
-        ReverseOrientation
-        Shape "sphere" "float radius" [ 1 ]
-    )";
+    std::string text = kFurnace;
+    return text.insert(text.find("WorldBegin"), mltIntegrator() + "\n");
 }
-inline const double kFurnaceExact = (1 - std::pow(0.6, 6)) / 0.4;
+inline const double kFurnaceExact = kFurnaceValue;
 
 // A 1 x 1 x 1 box open towards the camera with coloured walls; `light` and `walls` set the
 // emission and the side walls' reflectances.

@@ -66,9 +66,12 @@ Samples sampleIndependently(const BootstrapContext& ctx, int64_t first, const Bo
             }
         });
     });
-    distributed::mergeDisjoint(out.weight);
-    distributed::mergeDisjoint(blockSums);
-    cancelled = distributed::anyOf(cancelled.load());
+    {
+        distributed::Purpose purpose("bootstrap merge");
+        distributed::mergeDisjoint(out.weight);
+        distributed::mergeDisjoint(blockSums);
+        cancelled = distributed::anyOf(cancelled.load());
+    }
     if (learn) {
         std::vector<double> total(stride, 0.0);
         for (int64_t block = 0; block < blocks; ++block)

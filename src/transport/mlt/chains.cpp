@@ -18,6 +18,7 @@
 #include "mc/primary_sample_sampler.h"
 #include "render/distributed.h"
 #include "transport/film_reduction.h"
+#include "transport/mlt/chain_checkpoint.h"
 #include "transport/mlt/chain_ranks.h"
 #include "transport/render_monitor.h"
 #include "util/error.h"
@@ -108,6 +109,7 @@ void gatherCounts(std::vector<ChainCounts>& counts, size_t depths) {
             records.put(c, k++, cc.shareAt[d]);
         }
     }
+    distributed::Purpose purpose("chain counts");
     records.gatherToRoot();
     if (!distributed::isRoot()) return;
     for (int c = 0; c < int(counts.size()); ++c) {
@@ -124,6 +126,67 @@ void gatherCounts(std::vector<ChainCounts>& counts, size_t depths) {
             cc.shareAt[d] = records.real(c, k++);
         }
     }
+}
+
+// A chain's whole state between passes (chain_checkpoint.h), and back.
+void saveChain(const Chain& ch, const ChainCounts& cc, ByteWriter& out) {
+    out.put(ch.rng);
+    out.put(int64_t(ch.remaining));
+    out.put(ch.x.f);
+    out.put(int32_t(ch.x.depth));
+    out.put(int32_t(ch.x.strategy));
+    out.putVector(ch.x.splats);
+    ch.sampler->save(out);
+    for (long long v : {cc.proposedLarge, cc.acceptedLarge, cc.proposedSmall, cc.acceptedSmall, cc.invalid, cc.done})
+        out.put(int64_t(v));
+    out.putVector(cc.proposedAt);
+    out.putVector(cc.acceptedAt);
+    out.putVector(cc.shareAt);
+}
+
+void loadChain(ByteReader in, const PrimarySampleParams& pss, size_t depths, Chain& ch, ChainCounts& cc) {
+    ch.rng = in.get<Rng>();
+    ch.remaining = in.get<int64_t>();
+    ch.x.f = in.get<double>();
+    ch.x.depth = in.get<int32_t>();
+    ch.x.strategy = in.get<int32_t>();
+    ch.x.splats = in.getVector<PathContribution>();
+    ch.sampler = std::make_unique<PrimarySampleSampler>(0, pss);
+    ch.sampler->load(in);
+    for (long long* v : {&cc.proposedLarge, &cc.acceptedLarge, &cc.proposedSmall, &cc.acceptedSmall, &cc.invalid, &cc.done})
+        *v = in.get<int64_t>();
+    cc.proposedAt = in.getVector<long long>();
+    cc.acceptedAt = in.getVector<long long>();
+    cc.shareAt = in.getVector<double>();
+    if (cc.proposedAt.size() != depths || cc.acceptedAt.size() != depths || cc.shareAt.size() != depths ||
+        ch.remaining < 0 || !in.atEnd())
+        in.fail();
+}
+
+// What the chains and the statistics need of the bootstrap, for a checkpoint, and back.
+std::vector<char> saveBootstrap(const Bootstrap& boot, int64_t samples) {
+    ByteWriter out;
+    out.put(boot.b);
+    out.put(boot.bRelativeError);
+    out.put(samples);
+    out.put(boot.pilotSamples);
+    out.putVector(boot.choice.weights());
+    out.putVector(boot.groups.count);
+    return std::move(out.bytes());
+}
+
+Bootstrap loadBootstrap(ByteReader in, const MetropolisIntegrator& integrator, int64_t& samples) {
+    Bootstrap boot;
+    boot.b = in.get<double>();
+    boot.bRelativeError = in.get<double>();
+    samples = in.get<int64_t>();
+    boot.pilotSamples = in.get<int64_t>();
+    const std::vector<float> weights = in.getVector<float>();
+    boot.groups.count = in.getVector<int64_t>();
+    boot.choice = integrator.defaultChoice();
+    if (int(weights.size()) != boot.choice.size() || !in.atEnd()) in.fail();
+    if (!weights.empty()) boot.choice = boot.choice.withWeights(weights);
+    return boot;
 }
 
 }  // namespace
@@ -155,6 +218,12 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     pss.sigma = mp.sigma;
     pss.largeStepProbability = mp.largeStepProbability;
     pss.streamCount = integrator.streamCount();
+    // Camera steps (thesis 11.4.3's lens perturbation, in primary sample space): a share of
+    // the small steps moves the camera subpath and the connection and keeps the light
+    // subpath and the strategy, which are what is hard to find where light comes through a
+    // narrow opening.
+    pss.partialStepProbability = mp.cameraStepProbability;
+    pss.partialSteps = {{1u << BDPTIntegrator::kCameraStream | 1u << BDPTIntegrator::kConnectionStream, mp.sigma}};
 
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     tbb::enumerable_thread_specific<ChainEvaluator> evaluators;
@@ -168,13 +237,20 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     // Bootstrap: b, the strategy choice and the weights of the candidate initial states. It
     // counts against the time budget, and a cancellation during it leaves a black image (b
     // unknown). Over several processes it is shared (chain_ranks.h), their clocks start together.
+    // A resumed render takes the bootstrap's results and every chain's state from its
+    // checkpoint (chain_checkpoint.h) and runs no bootstrap.
+    const long long total = std::max(1LL, (long long)std::max(1, options.spp) * bounds.area());
+    const int chains = int(std::min<long long>(std::max(1, mp.chains), total));
+    ChainCheckpoints checkpoints(options, chains);
     distributed::barrier();
     const auto startTime = std::chrono::steady_clock::now();
     const BootstrapContext bctx{integrator, pss, options.seed, options.cancel, arena, evaluators};
-    const Bootstrap boot = runBootstrap(bctx);
+    int64_t nBoot = 0;
+    const Bootstrap boot = checkpoints.resuming() ? loadBootstrap(checkpoints.bootstrap(), integrator, nBoot) : runBootstrap(bctx);
+    if (!checkpoints.resuming()) nBoot = int64_t(boot.weights.size());
+    const std::vector<char> bootBytes = options.checkpoint ? saveBootstrap(boot, nBoot) : std::vector<char>();
     const StrategyChoice& choice = boot.choice;
     const bool bootstrapCancelled = boot.cancelled;
-    const int64_t nBoot = int64_t(boot.weights.size());
     ms.bootstrapSamples = nBoot;
     ms.pilotSamples = boot.pilotSamples;
     ms.b = boot.b;
@@ -185,13 +261,12 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     if (integrator.bootstrapGroups() == depths)
         for (int d = 0; d < depths; ++d) ms.depths[size_t(d)].bootstrapSamples = boot.groups.count[size_t(d)];
 
-    const long long total = std::max(1LL, (long long)std::max(1, options.spp) * bounds.area());
-    const int chains = int(std::min<long long>(std::max(1, mp.chains), total));
     ms.chains = chains;
     std::atomic<bool> stop{false};
     std::atomic<long long> done{0};
     std::vector<ChainCounts> counts(static_cast<size_t>(chains));
     bool replayFailed = false;
+    long long doneBefore = 0;  // this process's chains' mutations resumed from a checkpoint
     const double bootstrapSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
     result.seconds = bootstrapSeconds;
     if (bootstrapCancelled) {
@@ -227,6 +302,10 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                 cc.proposedAt.assign(size_t(depths), 0);
                 cc.acceptedAt.assign(size_t(depths), 0);
                 cc.shareAt.assign(size_t(depths), 0.0);
+                if (checkpoints.resuming()) {
+                    loadChain(checkpoints.chain(c), pss, size_t(depths), ch, cc);
+                    return;
+                }
                 ch.rng = Rng(chainSeed(options.seed, c), 0x3c6ef372fe94f82bULL);
                 if (!startChain(bctx, boot, ch.rng, ch.sampler, ch.x)) {
                     replayMismatch = true;
@@ -237,11 +316,22 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
             });
         });
         constexpr long long kPass = 256;
-        const long long largestShare = total / chains + (total % chains ? 1 : 0);
+        // The chain with the most mutations left sets the passes (a resumed render's chains
+        // may stand a pass apart: a render stopped within a pass).
+        long long mostLeft = 0;
+        for (int c : mine) {
+            mostLeft = std::max(mostLeft, all[size_t(c)].remaining);
+            doneBefore += counts[size_t(c)].done;
+        }
         // The processes agree after every pass whether to go on (a time limit, a signal to any).
-        replayFailed = distributed::anyOf(replayMismatch.load());
-        bool halt = replayFailed || distributed::anyOf(stop.load());
-        for (long long pass = 0; pass * kPass < largestShare && !halt; ++pass) {
+        bool halt = false;
+        {
+            distributed::Purpose purpose("stop decisions");
+            mostLeft = distributed::maxOf(mostLeft);
+            replayFailed = distributed::anyOf(replayMismatch.load());
+            halt = replayFailed || distributed::anyOf(stop.load());
+        }
+        for (long long pass = 0; pass * kPass < mostLeft && !halt; ++pass) {
             arena.execute([&] {
                 tbb::parallel_for(size_t(0), mine.size(), [&](size_t m) {
                     if (stop.load(std::memory_order_relaxed)) return;
@@ -277,7 +367,21 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                     done.fetch_add(n, std::memory_order_relaxed);
                 });
             });
-            halt = distributed::anyOf(stop.load());
+            {
+                distributed::Purpose purpose("stop decisions");
+                halt = distributed::anyOf(stop.load());
+            }
+            // A checkpoint when one is due, and a last one when the render stops early.
+            if ((halt || (pass + 1) * kPass < mostLeft) && checkpoints.due(halt)) {
+                PathStats stats;
+                for (const ChainEvaluator& ev : evaluators) stats += ev.stats;
+                long long doneHere = -doneBefore;
+                for (int c : mine) doneHere += counts[size_t(c)].done;
+                checkpoints.write(
+                    film, bootBytes, mine,
+                    [&](int c, ByteWriter& out) { saveChain(all[size_t(c)], counts[size_t(c)], out); }, doneHere,
+                    stats, result);
+            }
         }
         result.seconds += monitor.elapsed();
     }
@@ -285,11 +389,11 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
         throw std::logic_error(name + ": a bootstrap sample replayed with a different contribution");
 
     // Every process's films, counts and statistics on rank 0; the others are done.
-    long long mutationsHere = 0;
+    long long mutationsHere = -doneBefore;  // this run's
     for (int c = 0; c < chains; ++c) mutationsHere += counts[size_t(c)].done;
     for (const ChainEvaluator& ev : evaluators) result.stats += ev.stats;
     gatherCounts(counts, size_t(depths));
-    const bool root = reduceToRoot(film, mutationsHere, result);
+    const bool root = reduceToRoot(film, mutationsHere, result, checkpoints.resume());
     if (distributed::size() > 1)
         for (const auto& f : depthFilms) sumFilmInto(*f, *f);
     if (!root) return result;

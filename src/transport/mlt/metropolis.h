@@ -39,6 +39,9 @@ struct MetropolisParams {
     double strategyPilot = 0.1;
     // For tests: also record the image of each path depth (RenderResult::depthImages).
     bool depthImages = false;
+    // The share of small steps that move only the camera subpath and the connection (a lens
+    // perturbation in primary sample space).
+    double cameraStepProbability = 0.5;
 };
 
 // A sample of a chain: its splats (each strategy's share of the path, at its film position)

@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -16,6 +17,7 @@
 #include "mc/primary_sample_sampler.h"
 #include "render/distributed.h"
 #include "transport/film_reduction.h"
+#include "transport/mlt/chain_checkpoint.h"
 #include "transport/mlt/chain_ranks.h"
 #include "transport/mlt/bootstrap.h"
 #include "transport/path_tracer.h"
@@ -150,6 +152,7 @@ void gatherCounts(std::vector<Chain>& all) {
             records.put(c, 2 + 2 * kinds + m, n.accepted[m]);
         }
     }
+    distributed::Purpose purpose("chain counts");
     records.gatherToRoot();
     if (!distributed::isRoot()) return;
     for (int c = 0; c < int(all.size()); ++c) {
@@ -162,6 +165,81 @@ void gatherCounts(std::vector<Chain>& all) {
             n.accepted[m] = records.count(c, 2 + 2 * kinds + m);
         }
     }
+}
+
+// A path's vertices as bytes (chain_checkpoint.h): each vertex whole, its pointers as indices
+// into the scene's lights and materials; the BxDFs are built again from the hits as traced.
+class PathCodec {
+public:
+    explicit PathCodec(const Scene& scene) : scene_(scene) {
+        for (size_t i = 0; i < scene.lights().size(); ++i) lights_[scene.lights()[i].get()] = int32_t(i);
+        for (size_t i = 0; i < scene.materials().size(); ++i) materials_[scene.materials()[i].get()] = int32_t(i);
+    }
+    void save(const PathState& s, ByteWriter& out) const {
+        out.put(uint32_t(s.path.size()));
+        for (const MltVertex& v : s.path) {
+            MltVertex plain = v;
+            plain.light = nullptr;
+            plain.bxdf = nullptr;
+            plain.si.material = nullptr;
+            plain.si.areaLight = nullptr;
+            out.put(plain);
+            out.put(index(lights_, v.light));
+            out.put(index(lights_, v.si.areaLight));
+            out.put(index(materials_, v.si.material));
+        }
+        out.put(s.C);
+        out.put(s.pRaster);
+        out.put(s.f);
+    }
+    void load(ByteReader& in, PathState& s) const {
+        s.arena->reset();
+        s.path.resize(in.get<uint32_t>());
+        for (MltVertex& v : s.path) {
+            v = in.get<MltVertex>();
+            v.light = pointer(scene_.lights(), in.get<int32_t>(), in);
+            v.si.areaLight = pointer(scene_.lights(), in.get<int32_t>(), in);
+            v.si.material = pointer(scene_.materials(), in.get<int32_t>(), in);
+            PathSpace::rebind(v, *s.arena);
+        }
+        s.C = in.get<Spectrum>();
+        s.pRaster = in.get<Vec2>();
+        s.f = in.get<double>();
+    }
+
+private:
+    template <class T>
+    static int32_t index(const std::unordered_map<const T*, int32_t>& of, const T* p) {
+        if (!p) return -1;
+        const auto it = of.find(p);
+        if (it == of.end()) throw std::logic_error("mlt: a path vertex refers to an object the scene does not list");
+        return it->second;
+    }
+    template <class Owner>
+    static auto pointer(const std::vector<Owner>& all, int32_t i, ByteReader& in) -> decltype(all[0].get()) {
+        if (i == -1) return nullptr;
+        if (i < 0 || size_t(i) >= all.size()) in.fail();
+        return all[size_t(i)].get();
+    }
+
+    const Scene& scene_;
+    std::unordered_map<const Light*, int32_t> lights_;
+    std::unordered_map<const Material*, int32_t> materials_;
+};
+
+void saveChain(const PathCodec& codec, const Chain& ch, ByteWriter& out) {
+    out.put(ch.rng);
+    out.put(int64_t(ch.remaining));
+    out.put(ch.counts);
+    codec.save(ch.x, out);
+}
+
+void loadChain(const PathCodec& codec, ByteReader in, Chain& ch) {
+    ch.rng = in.get<Rng>();
+    ch.remaining = in.get<int64_t>();
+    ch.counts = in.get<Counts>();
+    codec.load(in, ch.x);
+    if (ch.remaining < 0 || !in.atEnd()) in.fail();
 }
 
 }  // namespace
@@ -206,15 +284,20 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     RenderResult result;
     MetropolisStats& ms = result.metropolis;
     ms.present = true;
+    const long long total = std::max(1LL, (long long)std::max(1, options.spp) * bounds.area());
+    const int chains = int(std::min<long long>(std::max(1, mp.chains), total));
+    // A resumed render takes b and every chain's state from its checkpoint (chain_checkpoint.h).
+    ChainCheckpoints checkpoints(options, chains);
+    const PathCodec codec(scene);
     distributed::barrier();  // over several processes (chain_ranks.h) the clocks start together
     const auto startTime = std::chrono::steady_clock::now();
 
     // Bootstrap: b and the weights of the candidate initial states, each process taking its
     // blocks of samples and every process getting all the weights (chain_ranks.h).
     const int64_t nBoot = std::max(1, mp.bootstrapSamples);
-    std::vector<double> weights(size_t(nBoot), 0.0);
+    std::vector<double> weights(checkpoints.resuming() ? 0 : size_t(nBoot), 0.0);
     std::atomic<bool> bootstrapCancelled{false};
-    arena.execute([&] {
+    if (!checkpoints.resuming()) arena.execute([&] {
         constexpr int64_t kBlock = 256;
         tbb::parallel_for(int64_t(0), (nBoot + kBlock - 1) / kBlock, [&](int64_t block) {
             if (!chain_ranks::ownsBlock(block)) return;
@@ -227,8 +310,11 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                 weights[size_t(i)] = bootstrapSample(integrator, options.seed, i, threadStats.local(), s);
         });
     });
-    distributed::mergeDisjoint(weights);
-    bootstrapCancelled = distributed::anyOf(bootstrapCancelled.load());
+    {
+        distributed::Purpose purpose("bootstrap merge");
+        distributed::mergeDisjoint(weights);
+        bootstrapCancelled = distributed::anyOf(bootstrapCancelled.load());
+    }
     std::vector<double> cumulative(weights.size());
     double sum = 0, squares = 0;
     for (size_t i = 0; i < weights.size(); ++i) {
@@ -239,14 +325,24 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     ms.bootstrapSamples = nBoot;
     ms.b = bootstrapCancelled ? 0.0 : sum / n;
     ms.bRelativeError = ms.b > 0 ? std::sqrt(std::max(0.0, squares / n - ms.b * ms.b) / n) / ms.b : 0.0;
-    if (integrator.space().sawUnsupportedSurface()) throw InputError(kUnsupportedCoating);
+    if (checkpoints.resuming()) {
+        ByteReader in = checkpoints.bootstrap();
+        ms.b = in.get<double>();
+        ms.bRelativeError = in.get<double>();
+        if (!in.atEnd()) in.fail();
+    }
+    ByteWriter bootBytes;
+    bootBytes.put(ms.b);
+    bootBytes.put(ms.bRelativeError);
+    // Every process learns whether any met a surface the path space cannot sample, and all
+    // refuse together (rank 0 reports it once).
+    distributed::refuseTogether(integrator.space().sawUnsupportedSurface(), kUnsupportedCoating);
 
-    const long long total = std::max(1LL, (long long)std::max(1, options.spp) * bounds.area());
-    const int chains = int(std::min<long long>(std::max(1, mp.chains), total));
     ms.chains = chains;
     std::vector<Chain> all(static_cast<size_t>(chains));
     std::atomic<bool> stop{false};
     std::atomic<long long> done{0};
+    long long doneBefore = 0;  // this process's chains' mutations resumed from a checkpoint
     const double bootstrapSeconds =
         direct.seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
     result.seconds = bootstrapSeconds;
@@ -267,6 +363,10 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
             tbb::parallel_for(size_t(0), mine.size(), [&](size_t m) {
                 const int c = mine[m];
                 Chain& ch = all[size_t(c)];
+                if (checkpoints.resuming()) {
+                    loadChain(codec, checkpoints.chain(c), ch);
+                    return;
+                }
                 ch.rng = Rng(chainSeed(options.seed, c), 0x510e527fade682d1ULL);
                 // A bootstrap path in proportion to f / p, generated again from its stream.
                 const double pick = ch.rng.uniformDouble() * sum;
@@ -281,13 +381,24 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                 ch.remaining = total / chains + (c < total % chains ? 1 : 0);
             });
         });
-        if (distributed::anyOf(replayMismatch.load()))
+        if (distributed::Purpose p("stop decisions"); distributed::anyOf(replayMismatch.load()))
             throw std::logic_error("mlt: a bootstrap path generated again gave another f / p");
         constexpr long long kPass = 256;
-        const long long largestShare = total / chains + (total % chains ? 1 : 0);
+        // The chain with the most mutations left sets the passes (a resumed render's chains
+        // may stand a pass apart: a render stopped within a pass).
+        long long mostLeft = 0;
+        for (int c : mine) {
+            mostLeft = std::max(mostLeft, all[size_t(c)].remaining);
+            doneBefore += all[size_t(c)].counts.done;
+        }
         // The processes agree after every pass whether to go on (a time limit, a signal to any).
-        bool halt = distributed::anyOf(stop.load());
-        for (long long pass = 0; pass * kPass < largestShare && !halt; ++pass) {
+        bool halt = false;
+        {
+            distributed::Purpose purpose("stop decisions");
+            mostLeft = distributed::maxOf(mostLeft);
+            halt = distributed::anyOf(stop.load());
+        }
+        for (long long pass = 0; pass * kPass < mostLeft && !halt; ++pass) {
             arena.execute([&] {
                 tbb::parallel_for(size_t(0), mine.size(), [&](size_t m) {
                     if (stop.load(std::memory_order_relaxed)) return;
@@ -323,17 +434,30 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                     done.fetch_add(steps, std::memory_order_relaxed);
                 });
             });
-            halt = distributed::anyOf(stop.load());
+            {
+                distributed::Purpose purpose("stop decisions");
+                halt = distributed::anyOf(stop.load());
+            }
+            // A checkpoint when one is due, and a last one when the render stops early.
+            if ((halt || (pass + 1) * kPass < mostLeft) && checkpoints.due(halt)) {
+                PathStats stats;
+                for (const PathStats& s : threadStats) stats += s;
+                long long doneHere = -doneBefore;
+                for (int c : mine) doneHere += all[size_t(c)].counts.done;
+                checkpoints.write(
+                    film, bootBytes.bytes(), mine, [&](int c, ByteWriter& out) { saveChain(codec, all[size_t(c)], out); },
+                    doneHere, stats, result);
+            }
         }
         result.seconds += monitor.elapsed();
     }
 
     // Every process's film, counts and statistics on rank 0; the others are done.
-    long long mutationsHere = 0;
+    long long mutationsHere = -doneBefore;  // this run's
     for (const Chain& ch : all) mutationsHere += ch.counts.done;
     for (const PathStats& s : threadStats) result.stats += s;
     gatherCounts(all);
-    if (!reduceToRoot(film, mutationsHere, result)) return result;
+    if (!reduceToRoot(film, mutationsHere, result, checkpoints.resume())) return result;
 
     for (int m = 0; m < int(Mutation::Count); ++m) {
         if (!(integrator.mutations().weight(Mutation(m)) > 0)) continue;
