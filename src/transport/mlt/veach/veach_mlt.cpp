@@ -266,10 +266,11 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     tbb::enumerable_thread_specific<PathState> scratchStates;
     tbb::enumerable_thread_specific<PathStats> threadStats;
 
-    // Direct lighting apart: the path tracer's image of the paths of at most one bounce.
+    // Direct lighting apart: the path tracer's image of the paths of at most one bounce (of
+    // none at maxdepth 0: its depth counts bounces as the chains' paths count vertices).
     RenderResult direct;
     if (integrator.directSpp() > 0) {
-        const PathTracer directOnly(scene, 1);
+        const PathTracer directOnly(scene, std::min(1, space.maxDepth()));
         RenderOptions o = options;
         o.spp = integrator.directSpp();
         o.timeLimit = 0;
