@@ -183,7 +183,7 @@ TEST(VeachMLT, DirectLightingApartLeavesOnlyLongerPathsToTheChains) {
 // The direct part is the path tracer's image of the same depths: where no path is longer
 // (maxdepth 1, and 0: emission seen directly alone), the chains have nothing and the image
 // is the path tracer's at that maxdepth, bit for bit.
-TEST(VeachMLT, DirectLightingApartIsThePathTracersImageOfTheSameDepths) {
+TEST(VeachMLT, DirectPartIsThePathTracersImageOfTheSameDepths) {
     for (const char* depth : {"1", "0"}) {
         std::string scene = withBootstrap(box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), 2000);
         scene.replace(scene.find(R"("integer maxdepth" [ 5 ])"), 24,
