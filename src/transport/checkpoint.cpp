@@ -15,7 +15,7 @@ namespace ps {
 namespace {
 
 constexpr char kMagic[8] = {'P', 'S', 'C', 'K', 'P', 'T', '\n', '\0'};
-constexpr uint32_t kVersion = 2;  // 2: the partial pass
+constexpr uint32_t kVersion = 3;  // 2: the partial pass; 3: the film's sums in units of 2^-40
 constexpr uint32_t kByteOrder = 0x01020304;  // read back otherwise on a machine of the other order
 
 struct Header {
