@@ -382,6 +382,11 @@ int RenderCommand::run() {
     opts.progress = !quiet_;
     opts.cancel = &gInterrupt;
     opts.adaptive = adaptive;
+    // Only what will be shown or written: a quiet render without --stats or --aov variance
+    // leaves the film's luminance moments out (bench/README.md, scene loading).
+    opts.errorEstimate = !quiet_ || !statsFile_.empty();
+    opts.varianceImage = writeVariance;
+    opts.pixelSamples = false;
     if (!resume_.empty()) opts.resume = &resumed;
     if (!checkpoint_.empty()) {
         opts.checkpointEvery = checkpointEvery_ >= 0 ? checkpointEvery_ : 60;

@@ -209,7 +209,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     const MetropolisParams& mp = integrator.params();
     const PixelBounds& bounds = scene.pixelBounds();
     const Camera::Params& cp = scene.camera().params();
-    Film film(cp.xRes, cp.yRes, bounds, &scene.filter());
+    Film film(cp.xRes, cp.yRes, bounds, &scene.filter(), options.filmMoments());
     const int depths = integrator.maxDepth() + 1;
     std::vector<std::unique_ptr<Film>> depthFilms;
     if (mp.depthImages)
@@ -436,8 +436,8 @@ double finishChains(const Scene& scene, const Film& film, const RenderOptions& o
     result.targetSpp = std::max(1, options.spp);
     result.meanSpp = double(ms.mutations) / double(bounds.area());
     result.stoppedEarly = bootstrapCancelled || (ms.mutations < total && ms.b > 0);
-    result.pixelSamples.assign(size_t(bounds.area()), 0);
-    filmResults(film, lightPaths, scene.settings(), result);
+    if (options.pixelSamples) result.pixelSamples.assign(size_t(bounds.area()), 0);
+    filmResults(film, lightPaths, scene.settings(), options, result);
     return lightPaths;
 }
 

@@ -261,7 +261,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     const PathSpace& space = integrator.space();
     const PixelBounds& bounds = scene.pixelBounds();
     const Camera::Params& cp = scene.camera().params();
-    Film film(cp.xRes, cp.yRes, bounds, &scene.filter());
+    Film film(cp.xRes, cp.yRes, bounds, &scene.filter(), options.filmMoments());
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     tbb::enumerable_thread_specific<PathState> scratchStates;
     tbb::enumerable_thread_specific<PathStats> threadStats;
