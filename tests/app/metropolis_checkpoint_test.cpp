@@ -50,9 +50,12 @@ const std::vector<std::string> kIntegrators{"pssmlt", "mmlt", "mlt"};
 
 // A checkpoint after every pass of 256 mutations per chain (the last is written before the
 // last of 5 passes): resumed with another thread count, the render equals the uninterrupted
-// one, which itself does not depend on the checkpoints it wrote.
+// one, which itself does not depend on the checkpoints it wrote. mlt with direct lighting
+// apart too: its path tracer's part is rendered again, from the same seed, on resuming.
 TEST_F(MetropolisCheckpoint, ResumedEqualsUninterrupted) {
-    for (const std::string& integrator : kIntegrators) {
+    std::vector<std::string> configurations = kIntegrators;
+    configurations.push_back("mlt --mlt-direct 2");
+    for (const std::string& integrator : configurations) {
         SCOPED_TRACE(integrator);
         ASSERT_EQ(render("plain", integrator, "--spp 64 --threads 2").status, 0);
         const Result full = render("full", integrator, "--spp 64 --threads 2 --checkpoint " + path("ck") +
@@ -117,6 +120,7 @@ TEST_F(MetropolisCheckpoint, RefusesDamagedOrMismatchedCheckpoints) {
              {"other chains", "ck", "mlt", "--bootstrap 3000 --chains 14", "chains 14 here, 13 in the checkpoint"},
              {"other bootstrap", "ck", "mlt", "--bootstrap 3001 --chains 13", "bootstrap 3001 here, 3000 in the checkpoint"},
              {"other mutations", "ck", "mlt", kSame + " --mlt-mutations lens=0", "mlt_mutations"},
+             {"direct lighting apart", "ck", "mlt", kSame + " --mlt-direct 2", "mlt_mutations"},
              {"other integrator", "ck", "pssmlt", kSame, "integrator \"pssmlt\" here, \"mlt\" in the checkpoint"},
              {"other seed", "ck", "mlt", kSame + " --seed 5", "seed 5 here"}}) {
         SCOPED_TRACE(c.what);
