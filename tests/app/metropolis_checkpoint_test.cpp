@@ -21,9 +21,12 @@ namespace {
 class MetropolisCheckpoint : public SkyRenderTest {
 protected:
     // A render of the furnace to NAME.pfm (with its variance) and NAME.json, by one plain
-    // process (processes == 0) or under mpirun; its exit status and output.
-    Result render(const std::string& name, const std::string& integrator, const std::string& options, int processes = 0) {
-        const std::string args = "render --quiet " + write("furnace.pbrt", kFurnace) + " --integrator " + integrator +
+    // process (processes == 0) or under mpirun; its exit status and output (with its progress
+    // bar's last line unless quiet).
+    Result render(const std::string& name, const std::string& integrator, const std::string& options, int processes = 0,
+                  bool quiet = true) {
+        const std::string args = std::string("render ") + (quiet ? "--quiet " : "") + write("furnace.pbrt", kFurnace) +
+                                 " --integrator " + integrator +
                                  " --bootstrap 3000 --chains 13 " + options + " --aov variance -o " + path(name + ".pfm") +
                                  " --stats " + path(name + ".json");
         return processes == 0 ? runPathspace(args) : runMpi(processes, args);
@@ -63,9 +66,13 @@ TEST_F(MetropolisCheckpoint, ResumedEqualsUninterrupted) {
         ASSERT_EQ(full.status, 0) << full.out;
         EXPECT_EQ(stats("full.json")["checkpoints"], 4);
         expectSameRender("full", "plain");
-        const Result r = render("resumed", integrator, "--spp 64 --threads 1 --resume " + path("ck"));
+        const Result r = render("resumed", integrator, "--spp 64 --threads 1 --resume " + path("ck"), 0, false);
         ASSERT_EQ(r.status, 0) << r.out;
         expectSameRender("resumed", "plain");
+        // Its progress bar counts this run's mutations: it ends at 100%.
+        const size_t bar = r.out.rfind("rendering [");
+        ASSERT_NE(bar, std::string::npos) << r.out;
+        EXPECT_NE(r.out.find("100.0%", bar), std::string::npos) << r.out.substr(bar, 80);
         // This run made only the last pass's mutations.
         const long long here = stats("resumed.json")["rank_samples"][0].get<long long>();
         EXPECT_GT(here, 0);

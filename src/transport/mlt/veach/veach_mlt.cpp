@@ -357,8 +357,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         if (chainTime > 0) chainTime = std::max(options.timeLimit - bootstrapSeconds, 0.1 * options.timeLimit);
         long long mineTotal = 0;  // this process's chains (chain_ranks.h) and their mutations
         const std::vector<int> mine = chain_ranks::ownedChains(chains, total, &mineTotal);
-        Monitor monitor(options.progress && distributed::isRoot(), chainTime, options.cancel, stop, done,
-                        std::max(1LL, mineTotal));
+        const auto chainsStart = std::chrono::steady_clock::now();
         std::atomic<bool> replayMismatch{false};
         arena.execute([&] {
             tbb::parallel_for(size_t(0), mine.size(), [&](size_t m) {
@@ -392,6 +391,12 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
             mostLeft = std::max(mostLeft, all[size_t(c)].remaining);
             doneBefore += all[size_t(c)].counts.done;
         }
+        // The progress bar counts this run's mutations (a resumed render's bar ends at 100%);
+        // the chains' start counts against the budget.
+        const double startSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - chainsStart).count();
+        if (chainTime > 0) chainTime = std::max(chainTime - startSeconds, 1e-6);
+        Monitor monitor(options.progress && distributed::isRoot(), chainTime, options.cancel, stop, done,
+                        std::max(1LL, mineTotal - doneBefore));
         // The processes agree after every pass whether to go on (a time limit, a signal to any).
         bool halt = false;
         {
@@ -450,7 +455,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                     doneHere, stats, result);
             }
         }
-        result.seconds += monitor.elapsed();
+        result.seconds += startSeconds + monitor.elapsed();
     }
 
     // Every process's film, counts and statistics on rank 0; the others are done.
