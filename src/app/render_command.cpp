@@ -234,6 +234,11 @@ void RenderCommand::attach(CLI::App& app) {
                      "the film's sensor (cie1931, \"whitebalance\") makes colour, as pbrt-v4 renders (for now with "
                      "--integrator path only)")
         ->check(CLI::IsMember({"rgb", "spectral"}));
+    cmd_->add_option("--mlt-direct", mltDirect_,
+                     "mlt only: render the paths of at most one bounce (emission seen directly and direct lighting) "
+                     "apart, with N samples per pixel of the path tracer, and leave them out of the chains (default 0: "
+                     "the chains render every path)")
+        ->check(CLI::NonNegativeNumber);
     cmd_->add_flag("--quiet", quiet_, "No progress bar or statistics on the terminal");
 }
 
@@ -263,6 +268,13 @@ int RenderCommand::run() {
             throw InputError("--mlt-mutations sets the mutations of Veach's MLT: it needs --integrator mlt (the "
                              "integrator here is \"" + settings.integrator + "\")");
         settings.mltMutations = mltMutations_;
+    }
+    if (mltDirect_ >= 0) {
+        if (settings.integrator != "mlt")
+            throw InputError("--mlt-direct renders direct lighting apart from Veach's MLT: it needs --integrator mlt (the "
+                             "integrator here is \"" + settings.integrator + "\")");
+        // Carried with the mutations' weights: mlt's own configuration.
+        settings.mltMutations += (settings.mltMutations.empty() ? "direct=" : ",direct=") + std::to_string(mltDirect_);
     }
     if (settings.integrator == "mlt" && (largeStepProbability_ >= 0 || sigma_ > 0 || cameraStepProbability_ >= 0))
         throw InputError("--large-step-probability, --camera-step-probability and --sigma are parameters of the "
@@ -377,6 +389,11 @@ int RenderCommand::run() {
     opts.progress = !quiet_;
     opts.cancel = &gInterrupt;
     opts.adaptive = adaptive;
+    // Only what will be shown or written: a quiet render without --stats or --aov variance
+    // leaves the film's luminance moments out (bench/README.md, scene loading).
+    opts.errorEstimate = !quiet_ || !statsFile_.empty();
+    opts.varianceImage = writeVariance;
+    opts.pixelSamples = false;
     if (!resume_.empty()) opts.resume = &resumed;
     if (!checkpoint_.empty()) {
         opts.checkpointEvery = checkpointEvery_ >= 0 ? checkpointEvery_ : 60;

@@ -39,6 +39,7 @@ private:
     double cameraStepProbability_ = -1;
     double strategyPilot_ = -1;
     double sigma_ = -1;
+    int mltDirect_ = -1;        // --mlt-direct N
     std::string mltMutations_;  // --mlt-mutations KEY=VALUE,...  // --max-memory SIZE, checked by parseByteSize
     bool quiet_ = false;
 };

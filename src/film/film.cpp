@@ -11,9 +11,10 @@
 
 namespace ps {
 
-Film::Film(int xRes, int yRes, PixelBounds bounds, const Filter* splatFilter)
+Film::Film(int xRes, int yRes, PixelBounds bounds, const Filter* splatFilter, bool moments)
     : xRes_(xRes), yRes_(yRes), bounds_(bounds), pixels_(size_t(bounds.area())),
-      halves_(splatFilter ? size_t(bounds.area()) : 0), splatFilter_(splatFilter) {
+      moments_(moments ? size_t(bounds.area()) : 0), high_(size_t(bounds.area())),
+      halves_(splatFilter && moments ? size_t(bounds.area()) : 0), splatFilter_(splatFilter) {
     static std::atomic<uint64_t> nextId{1};
     id_ = nextId.fetch_add(1, std::memory_order_relaxed);
     if (splatFilter_) {
@@ -38,10 +39,10 @@ bool Film::perThreadSplatsFit(double pixels, int threads) {
     return kSplatBytesPerPixel * pixels * threads < kPerThreadSplatBytes;
 }
 
-double Film::estimateBytes(double pixels, bool splats, int threads) {
+double Film::estimateBytes(double pixels, bool splats, int threads, bool moments) {
     double perPixel = sizeof(Pixel) + 2 * 3 * sizeof(float) + sizeof(int);  // accumulators, two images, counts
+    if (moments) perPixel += sizeof(Moments) + (splats ? sizeof(Halves) : 0);
     if (splats) {
-        perPixel += sizeof(Halves);
         const double copies = perThreadSplatsFit(pixels, threads) ? threads : 1;
         perPixel += kSplatBytesPerPixel * (copies + 1);  // + the merged copy
     }
@@ -142,11 +143,17 @@ Image Film::image(double lightPaths) const {
     Image img(bounds_.width(), bounds_.height());
     for (int y = 0; y < bounds_.height(); ++y)
         for (int x = 0; x < bounds_.width(); ++x) {
-            const Pixel& p = pixels_[size_t(y) * bounds_.width() + x];
+            const size_t i = size_t(y) * bounds_.width() + x;
+            const Pixel& p = pixels_[i];
             Spectrum v;
-            if (p.weight != 0) {
-                const double w = fromFixed(p.weight);
-                v = Spectrum(float(fromFixed(p.sum[0]) / w), float(fromFixed(p.sum[1]) / w), float(fromFixed(p.sum[2]) / w));
+            if (const int64_t* h = high_.find(i)) {  // some sum of the pixel's block went past 64 bits
+                const double w = double(wideSum(p.weight, h[3]));
+                if (w != 0)
+                    v = Spectrum(float(double(wideSum(p.sum[0], h[0])) / w), float(double(wideSum(p.sum[1], h[1])) / w),
+                                 float(double(wideSum(p.sum[2], h[2])) / w));
+            } else if (p.weight != 0) {  // the same arithmetic on the same integers, in 64 bits
+                const double w = double(p.weight);
+                v = Spectrum(float(double(p.sum[0]) / w), float(double(p.sum[1]) / w), float(double(p.sum[2]) / w));
             }
             if (splatScale > 0) {
                 size_t i = size_t(y) * bounds_.width() + x;
@@ -163,14 +170,17 @@ Film::PixelEstimate Film::pixelEstimate(size_t i) const {
     const Pixel& p = pixels_[i];
     PixelEstimate e;
     e.samples = p.samples;
-    if (p.samples == 0) return e;
+    if (p.samples == 0 || moments_.empty()) return e;
     double n = double(p.samples);
-    e.mean = fromFixed(p.sumY) / n;
-    if (p.samples > 1) e.sampleVariance = std::max(0.0, (fromFixedSquare(p.sumY2) - n * e.mean * e.mean) / (n - 1));
+    e.mean = double(pixelSum(i, 4)) / kSumUnit / n;
+    if (p.samples > 1)
+        e.sampleVariance = std::max(0.0, (double(pixelSum(i, 5)) / kFixedSquareUnit - n * e.mean * e.mean) / (n - 1));
     return e;
 }
 
 double Film::pixelVariance(size_t i, double lightPaths, const std::vector<int64_t>& splats, double& mean) const {
+    mean = 0;
+    if (moments_.empty()) return 0;  // nothing to estimate from
     if (!splatFilter_) {
         PixelEstimate e = pixelEstimate(i);
         mean = e.mean;
@@ -192,7 +202,7 @@ double Film::pixelVariance(size_t i, double lightPaths, const std::vector<int64_
 
 Film::ErrorEstimate Film::errorEstimate(double lightPaths) const {
     ErrorEstimate e;
-    if (pixels_.empty()) return e;
+    if (pixels_.empty() || moments_.empty()) return e;
     const std::vector<int64_t> splats = mergedSplats();
     for (size_t i = 0; i < pixels_.size(); ++i) {
         double m = 0;
@@ -224,8 +234,13 @@ std::vector<int> Film::sampleCounts() const {
 }
 
 void Film::adoptEmptyPixels(const Film& other) {
-    for (size_t i = 0; i < pixels_.size() && i < other.pixels_.size(); ++i)
-        if (pixels_[i].samples == 0) pixels_[i] = other.pixels_[i];
+    for (size_t i = 0; i < pixels_.size() && i < other.pixels_.size(); ++i) {
+        if (pixels_[i].samples != 0) continue;
+        pixels_[i] = other.pixels_[i];
+        if (!moments_.empty()) moments_[i] = other.moments_.empty() ? Moments{} : other.moments_[i];
+        if (const int64_t* h = other.high_.find(i)) std::copy(h, h + kWideSums, high_.at(i));
+        else if (high_.find(i)) std::fill(high_.at(i), high_.at(i) + kWideSums, 0);
+    }
 }
 
 double Film::meanSamplesPerPixel() const {
@@ -252,21 +267,34 @@ void Film::setAccumulators(const Accumulators& a) {
     setOtherCounts(std::vector<int64_t>(a.counts.begin() + std::ptrdiff_t(pixels_.size()), a.counts.end()));
 }
 
+Fixed Film::pixelSum(size_t i, int k) const {
+    const Pixel& p = pixels_[i];
+    const int64_t low = k < 3 ? p.sum[k] : k == 3 ? p.weight : moments_.empty() ? 0 : k == 4 ? moments_[i].y : moments_[i].y2;
+    return wideSum(low, high_.word(i, k));
+}
+
 void Film::pixelSums(size_t begin, size_t end, Fixed* fixed, int64_t* counts) const {
     for (size_t i = begin; i < end; ++i, fixed += kFixedPerPixel) {
-        const Pixel& p = pixels_[i];
         const Halves h = halves_.empty() ? Halves() : halves_[i];
-        const Fixed f[kFixedPerPixel] = {p.sum[0], p.sum[1], p.sum[2], p.weight, p.sumY, p.sumY2,
-                                         h.y[0], h.y[1], h.weight[0], h.weight[1]};
-        std::copy(f, f + kFixedPerPixel, fixed);
-        *counts++ = p.samples;
+        for (int k = 0; k < kWideSums; ++k) fixed[k] = pixelSum(i, k);
+        const Fixed f[4] = {h.y[0], h.y[1], h.weight[0], h.weight[1]};
+        std::copy(f, f + 4, fixed + kWideSums);
+        *counts++ = pixels_[i].samples;
     }
 }
 
 void Film::setPixelSums(size_t begin, size_t end, const Fixed* f, const int64_t* counts) {
     for (size_t i = begin; i < end; ++i, f += kFixedPerPixel) {
         Pixel& p = pixels_[i];
-        p.sum[0] = f[0], p.sum[1] = f[1], p.sum[2] = f[2], p.weight = f[3], p.sumY = f[4], p.sumY2 = f[5];
+        int64_t low[kWideSums], high[kWideSums];
+        bool wide = false;
+        for (int k = 0; k < kWideSums; ++k) {
+            splitSum(f[k], low[k], high[k]);
+            wide = wide || high[k] != 0;
+        }
+        p.sum[0] = low[0], p.sum[1] = low[1], p.sum[2] = low[2], p.weight = low[3];
+        if (!moments_.empty()) moments_[i] = {low[4], low[5]};
+        if (wide || high_.find(i)) std::copy(high, high + kWideSums, high_.at(i));
         if (!halves_.empty()) {
             Halves& h = halves_[i];
             h.y[0] = f[6], h.y[1] = f[7], h.weight[0] = f[8], h.weight[1] = f[9];

@@ -9,14 +9,13 @@
 #include <vector>
 #include <memory>
 #include <tbb/enumerable_thread_specific.h>
+#include "film/exact_sum.h"
 #include "film/filter.h"
 #include "image/image.h"
 #include "math/spectrum.h"
 #include "util/zeroed_array.h"
 
 namespace ps {
-
-using Fixed = __int128;  // the film's fixed-point sums (see Film::Pixel)
 
 struct PixelBounds {
     int x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // half-open [x0,x1) x [y0,y1) in full-resolution raster
@@ -46,13 +45,16 @@ public:
     // anywhere on the film, thesis §10.2's t = 1 strategies); then the render error is
     // measured from two independent half-buffers (even and odd sample indices), because
     // a pixel's splats do not come from its own samples.
-    Film(int xRes, int yRes, PixelBounds bounds, const Filter* splatFilter = nullptr);
+    // `moments`: whether the film keeps what its error estimate needs (the luminance moments,
+    // and for a splatting film the half-buffers); without them errorEstimate, varianceImage
+    // and pixelEstimate have nothing to estimate from (the image is the same either way).
+    Film(int xRes, int yRes, PixelBounds bounds, const Filter* splatFilter = nullptr, bool moments = true);
 
     // Bytes a render holds at its peak for a film of `pixels` (crop region): the accumulators,
     // for splatting films the splat sums (per thread, or one shared array when those would
     // not fit) and their merged copy, and the images made from it (value, variance, sample
     // counts). Checked against the memory limit before a film is made.
-    static double estimateBytes(double pixels, bool splats, int threads);
+    static double estimateBytes(double pixels, bool splats, int threads, bool moments = true);
 
     // Film "maxcomponentvalue" m (default infinity: no clamping) for every camera sample and
     // splat, each measured as the value it would have as one camera sample of its pixel: the
@@ -79,14 +81,16 @@ public:
             rejected_.fetch_add(1, std::memory_order_relaxed);
         }
         Pixel& p = pixels_[i];
-        p.sum[0] += toFixed(double(L.r) * weight);
-        p.sum[1] += toFixed(double(L.g) * weight);
-        p.sum[2] += toFixed(double(L.b) * weight);
-        p.weight += toFixed(weight);
+        high_.carry(i, 0, addToSum(p.sum[0], double(L.r) * weight * kSumUnit));
+        high_.carry(i, 1, addToSum(p.sum[1], double(L.g) * weight * kSumUnit));
+        high_.carry(i, 2, addToSum(p.sum[2], double(L.b) * weight * kSumUnit));
+        high_.carry(i, 3, addToSum(p.weight, double(weight) * kSumUnit));
         p.samples += 1;
-        p.sumY += toFixed(y);
+        if (moments_.empty()) return;
+        Moments& m = moments_[i];
+        high_.carry(i, 4, addToSum(m.y, y * kSumUnit));
         const double yCapped = std::min(std::fabs(y), kMaxSquaredValue);
-        p.sumY2 += toFixedSquare(yCapped * yCapped);
+        high_.carry(i, 5, addToSum(m.y2, yCapped * yCapped * kFixedSquareUnit));
         if (splatFilter_) {
             Halves& h = halves_[i];
             h.y[sampleIndex & 1] += toFixed(y * weight);
@@ -139,6 +143,7 @@ public:
     };
     PixelEstimate pixelEstimate(size_t pixel) const;
     size_t pixelCount() const { return pixels_.size(); }
+    bool hasMoments() const { return !moments_.empty() || pixels_.empty(); }
     // Samples taken per pixel (crop region, row-major).
     std::vector<int> sampleCounts() const;
     // Pixels without samples take the other film's accumulators (same bounds, neither
@@ -167,47 +172,47 @@ public:
     std::vector<int64_t> otherCounts() const;
     void setOtherCounts(const std::vector<int64_t>& counts);
 
-    // Every sum is a 128-bit fixed-point integer, exact and so independent of the order in
-    // which samples arrive: the image does not depend on the thread schedule or on how the
-    // samples were split over processes (see accumulators()). Each sample's value is
-    // truncated to a multiple of 2^-64 (squares: 2^-32), which a float's product never misses
-    // by more than that; |value| < kMaxSampleValue per sample keeps 2^23 samples from overflow.
+    // Every per-pixel sum is an integer, exact and so independent of the order in which
+    // samples arrive: the image does not depend on the thread schedule or on how the samples
+    // were split over processes (see accumulators()). A camera sample's weighted values and
+    // its luminance are rounded to the nearest multiple of 2^-40 (1e-12: below a float's
+    // rounding for any pixel value over 1e-5), its squared luminance to 2^-32; each sum is
+    // 64 bits with a 128-bit high word where needed (film/exact_sum.h), so the sums are
+    // exact up to 2^127 units: |value| < kMaxSampleValue (2^40) per sample, 2^47 samples.
     // Squares would overflow sooner: a luminance above kMaxSquaredValue (3.4e10) enters the
     // variance estimate's sum of squares capped there (the estimate is then low, the image
-    // exact), which keeps that sum below 2^126 over 2^23 samples too.
-    static constexpr double kFixedUnit = 0x1p64, kFixedSquareUnit = 0x1p32;
+    // exact), which keeps that sum below 2^126 over 2^23 samples.
+    static constexpr double kSumUnit = 0x1p40, kFixedSquareUnit = 0x1p32;
     static constexpr double kMaxSampleValue = 0x1p40, kMaxSquaredValue = 0x1p35;
+    // The 128-bit fixed point of the half-buffers and of other per-pixel sums that must add
+    // up exactly over threads and processes (StrategyImages'): each value truncated to a
+    // multiple of 2^-64; kMaxSampleValue bounds a value.
+    static constexpr double kFixedUnit = 0x1p64;
     static Fixed toFixed(double v) { return truncateToFixed(v * kFixedUnit); }
-    static Fixed toFixedSquare(double v) { return truncateToFixed(v * kFixedSquareUnit); }
-    // Fixed(x) (truncation toward zero, |x| < 2^127) without the library call a compiler makes
-    // of a double-to-128-bit conversion (__fixdfti; the film alone took 8x as long as with
-    // double sums, bench/README.md). |x| = h 2^64 + l exactly: h 2^64 is exact and within a
-    // factor 2 of |x| when h > 0, so the subtraction is exact (Sterbenz), and l < 2^64.
-    static Fixed truncateToFixed(double x) {
-        const double a = std::fabs(x);
-        const double h = std::floor(a * 0x1p-64);
-        const Fixed f = Fixed(uint64_t(h)) << 64 | Fixed(uint64_t(a - h * 0x1p64));
-        return x < 0 ? -f : f;
-    }
     static double fromFixed(Fixed f) { return double(f) / kFixedUnit; }
-    static double fromFixedSquare(Fixed f) { return double(f) / kFixedSquareUnit; }
-    // (Public: other per-pixel sums that must add up exactly over threads and processes,
-    // StrategyImages', use the same fixed point; kMaxSampleValue bounds a value.)
 
 private:
+    // The low words of the sums (units of 2^-40: kSumUnit); their high words are in high_.
     struct Pixel {
-        Fixed sum[3] = {0, 0, 0};
-        Fixed weight = 0;
-        Fixed sumY = 0, sumY2 = 0;  // luminance moments
-        long long samples = 0;
+        int64_t sum[3];
+        int64_t weight;
+        long long samples;
     };
+    // The luminance and its square (units of 2^-40 and 2^-32), for the error estimate only:
+    // apart from Pixel so that a film that is not asked for one does not carry them.
+    struct Moments {
+        int64_t y, y2;
+    };
+    // Pixel's and Moments' sums as whole integers, in accumulators()' order.
+    static constexpr int kWideSums = 6;
+    Fixed pixelSum(size_t i, int k) const;
     // The half-buffers' luminance and weight sums (even and odd sample indices), apart from
-    // Pixel so that a film without splats does not carry them (64 of 176 bytes a pixel).
+    // Pixel so that a film without splats or an error estimate does not carry them.
     struct Halves {
         Fixed y[2] = {0, 0}, weight[2] = {0, 0};
     };
-    // Pixel's and Halves' Fixed members, in accumulators()'s order (a film without splats
-    // gives zero halves and takes none).
+    // Pixel's, Moments' and Halves' sums, in accumulators()'s order (a film without moments
+    // or splats gives zeros for them and takes none).
     static constexpr size_t kFixedPerPixel = kPixelSums;
     // Variance of pixel i's mean luminance and that mean (the half-buffer estimate when splatting).
     double pixelVariance(size_t i, double lightPaths, const std::vector<int64_t>& splats, double& mean) const;
@@ -237,7 +242,9 @@ private:
     float maxComponent_ = std::numeric_limits<float>::infinity();
     float splatMaxComponent_ = std::numeric_limits<float>::infinity();  // the same, in splat units
     ZeroedArray<Pixel> pixels_;
-    ZeroedArray<Halves> halves_;  // splatting films only, one per pixel
+    ZeroedArray<Moments> moments_;  // films with an error estimate only, one per pixel
+    HighWords<kWideSums> high_;
+    ZeroedArray<Halves> halves_;  // splatting films with an error estimate only, one per pixel
     std::atomic<long long> rejected_{0};
     const Filter* splatFilter_ = nullptr;
     // Splat sums [pixel][half][channel]: per thread without atomics when they fit in memory

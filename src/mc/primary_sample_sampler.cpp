@@ -51,13 +51,15 @@ void PrimarySampleSampler::restartStreams() {
     std::fill(streamIndex_.begin(), streamIndex_.end(), 0);
 }
 
-void PrimarySampleSampler::startIteration() {
+void PrimarySampleSampler::startIteration() { startIterationOfKind(~size_t(0)); }
+
+void PrimarySampleSampler::startIterationOfKind(size_t kind) {
     const bool large = iteration_ == 0 || rng_.uniformDouble() < params_.largeStepProbability;
     startIteration(large);
     if (!large && params_.partialStepProbability > 0 && !params_.partialSteps.empty() &&
         rng_.uniformDouble() < params_.partialStepProbability) {
         const size_t n = params_.partialSteps.size();
-        const size_t k = std::min(n - 1, size_t(rng_.uniformDouble() * double(n)));
+        const size_t k = kind < n ? kind : std::min(n - 1, size_t(rng_.uniformDouble() * double(n)));
         const PrimarySampleParams::PartialStep& p = params_.partialSteps[k];
         moved_ = p.streams;
         stepUnits_ = (p.sigma / params_.sigma) * (p.sigma / params_.sigma);

@@ -54,6 +54,11 @@ public:
     // value fresh); afterwards a large step with probability largeStepProbability.
     void startIteration();
     void startIteration(bool largeStep);  // the step kind chosen by the caller (every stream)
+    // As startIteration(), but a partial step, when one is taken, is partialSteps[kind]: the
+    // caller may choose it from the chain's state, provided that no partial step changes
+    // what decides it (each class of states then has a symmetric kernel of its own, and the
+    // chance of a partial step is the same in every class).
+    void startIterationOfKind(size_t kind);
     // Keeps the proposal as the chain's state, or restores the state before it.
     void accept();
     void reject();

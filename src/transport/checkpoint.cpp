@@ -15,9 +15,9 @@ namespace ps {
 namespace {
 
 constexpr char kMagic[8] = {'P', 'S', 'C', 'K', 'P', 'T', '\n', '\0'};
-// 2: the partial pass; 3: the chains' state (its size after version 2's header, which a
-// version 2 file, read as one with no chains, lacks).
-constexpr uint32_t kVersion = 3;
+// 2: the partial pass; 3: the chains' state; 4: the film's sums in units of 2^-40 (2^-64
+// before), which an earlier file's sums cannot be read as, so it is refused.
+constexpr uint32_t kVersion = 4;
 constexpr uint32_t kByteOrder = 0x01020304;  // read back otherwise on a machine of the other order
 
 struct Header {
@@ -28,7 +28,8 @@ struct Header {
     uint64_t chainBytes;
 };
 static_assert(sizeof(Header) == 64);
-constexpr size_t kVersion2HeaderBytes = 56;
+// The fields every version has where it has them: enough to read the version (56 bytes).
+constexpr size_t kCommonHeaderBytes = 56;
 
 // A 64-bit hash, eight bytes at a time: not cryptographic, it catches a damaged file.
 uint64_t hashBytes(const char* data, size_t n, uint64_t h) {
@@ -132,14 +133,16 @@ CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& se
     if (!in) refuse(path, "cannot open the file");
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     Header h{};
-    if (bytes.size() < kVersion2HeaderBytes || std::memcmp(bytes.data(), kMagic, 8) != 0)
+    if (bytes.size() < kCommonHeaderBytes || std::memcmp(bytes.data(), kMagic, 8) != 0)
         refuse(path, "not a pathspace checkpoint");
-    std::memcpy(&h, bytes.data(), kVersion2HeaderBytes);
+    std::memcpy(&h, bytes.data(), kCommonHeaderBytes);
     if (h.byteOrder != kByteOrder) refuse(path, "written on a machine of the other byte order");
-    if (h.version != kVersion && h.version != 2)
-        refuse(path, "format version " + std::to_string(h.version) + ", this pathspace reads versions 2 and " +
-                         std::to_string(kVersion));
-    const size_t headerBytes = h.version == 2 ? kVersion2HeaderBytes : sizeof h;
+    if (h.version != kVersion)
+        refuse(path, "format version " + std::to_string(h.version) + ", this pathspace reads version " +
+                         std::to_string(kVersion) + (h.version < kVersion ? " only (an earlier pathspace kept the film's "
+                                                                            "sums in other units): render again without --resume"
+                                                                          : " only"));
+    const size_t headerBytes = sizeof h;
     if (bytes.size() < headerBytes) refuse(path, "truncated or damaged: shorter than its header");
     std::memcpy(&h, bytes.data(), headerBytes);
     // Sizes first (a truncated file), in a way no huge count in a damaged header overflows.
@@ -158,7 +161,7 @@ CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& se
     c = hashBytes(fixedAt, h.fixedCount * sizeof(Fixed), c);
     c = hashBytes(countsAt, h.countCount * sizeof(int64_t), c);
     c = hashBytes(partialAt, h.partialCount * sizeof(uint64_t), c);
-    if (h.version != 2) c = hashBytes(chainsAt, h.chainBytes, c);
+    c = hashBytes(chainsAt, h.chainBytes, c);
     if (c != h.checksum)
         refuse(path, "corrupt (its checksum does not match its contents)");
     CheckpointState s;

@@ -71,7 +71,7 @@ void requireFilmMemory(const Scene& scene, const Integrator& integrator, const R
     int threads = tbb::this_task_arena::max_concurrency();
     if (options.threads > 0) threads = std::min(threads, options.threads);
     const double pixels = double(b.area());
-    double bytes = Film::estimateBytes(pixels, integrator.splats(), threads);
+    double bytes = Film::estimateBytes(pixels, integrator.splats(), threads, options.filmMoments());
     // A two-stage render also holds a pilot film and its allocation arrays, about one more
     // film's worth. (The sequential rule's arrays are gone before the output images exist.)
     // So does a sequential one over several processes (rank 0's sum of the films).
@@ -87,7 +87,8 @@ void requireFilmMemory(const Scene& scene, const Integrator& integrator, const R
 
 }  // namespace
 
-void filmResults(const Film& film, double lightPaths, const RenderSettings& settings, RenderResult& result) {
+void filmResults(const Film& film, double lightPaths, const RenderSettings& settings, const RenderOptions& options,
+                 RenderResult& result) {
     result.lightPaths = lightPaths;
     result.image = film.image(lightPaths);
     if (const auto& m = settings.outputColorMatrix)
@@ -98,9 +99,9 @@ void filmResults(const Film& film, double lightPaths, const RenderSettings& sett
                                         (*m)[3] * v.r + (*m)[4] * v.g + (*m)[5] * v.b,
                                         (*m)[6] * v.r + (*m)[7] * v.g + (*m)[8] * v.b});
             }
-    result.variance = film.varianceImage(lightPaths);
+    if (options.varianceImage) result.variance = film.varianceImage(lightPaths);
     result.rejectedSamples = film.rejectedSamples();
-    result.error = film.errorEstimate(lightPaths);
+    if (options.errorEstimate) result.error = film.errorEstimate(lightPaths);
     result.efficiency = efficiency(result.error.meanRelativeVariance, result.seconds);
 }
 
@@ -120,7 +121,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     if (veach) return renderVeachMLT(scene, *veach, options);
     const PixelBounds& bounds = scene.pixelBounds();
     Film film(scene.camera().params().xRes, scene.camera().params().yRes, bounds,
-              integrator.splats() ? &scene.filter() : nullptr);
+              integrator.splats() ? &scene.filter() : nullptr, options.filmMoments());
     film.setMaxComponentValue(scene.settings().maxComponentValue, scene.settings().imagingRatio);
     const int spp = std::max(1, options.spp);
 
@@ -212,9 +213,9 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     result.meanSpp = (double(std::accumulate(result.distributed.rankSamples.begin(), result.distributed.rankSamples.end(), 0LL)) +
                       double(resume ? resume->samples : 0)) /
                      double(bounds.area());
-    result.pixelSamples = film.sampleCounts();
+    if (options.pixelSamples) result.pixelSamples = film.sampleCounts();
     result.stoppedEarly = !complete;
-    filmResults(film, lightPaths, scene.settings(), result);
+    filmResults(film, lightPaths, scene.settings(), options, result);
     return result;
 }
 

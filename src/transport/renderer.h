@@ -35,6 +35,13 @@ struct RenderOptions {
     const CheckpointState* resume = nullptr;
     double checkpointEvery = -1;
     std::function<void(const CheckpointState&)> checkpoint;
+    // What the result holds besides the image, for a caller that will not show or write it
+    // to leave out: the error estimate (result.error and efficiency), the variance image and
+    // the per-pixel sample counts. Without the first two the film keeps no luminance moments
+    // (16 of its 56 bytes a pixel; a splatting film's half-buffers too), unless adaptive
+    // sampling needs them.
+    bool errorEstimate = true, varianceImage = true, pixelSamples = true;
+    bool filmMoments() const { return errorEstimate || varianceImage || adaptive != AdaptiveMode::None; }
 };
 
 // What a Markov-chain render (transport/mlt/) adds to the statistics.
@@ -111,8 +118,9 @@ struct RenderResult {
 
 // What a finished film gives every driver's result: the image (in the film's colour space),
 // variance image, rejected samples, error estimate and efficiency (result.seconds set), splats
-// normalised by lightPaths.
-void filmResults(const Film& film, double lightPaths, const RenderSettings& settings, RenderResult& result);
+// normalised by lightPaths; what options leave out stays empty.
+void filmResults(const Film& film, double lightPaths, const RenderSettings& settings, const RenderOptions& options,
+                 RenderResult& result);
 
 // Throws InputError before anything is allocated if the film would exceed the memory limit
 // (util/memory_limit.h), naming the scene's Film directive.

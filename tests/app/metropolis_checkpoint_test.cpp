@@ -21,9 +21,12 @@ namespace {
 class MetropolisCheckpoint : public SkyRenderTest {
 protected:
     // A render of the furnace to NAME.pfm (with its variance) and NAME.json, by one plain
-    // process (processes == 0) or under mpirun; its exit status and output.
-    Result render(const std::string& name, const std::string& integrator, const std::string& options, int processes = 0) {
-        const std::string args = "render --quiet " + write("furnace.pbrt", kFurnace) + " --integrator " + integrator +
+    // process (processes == 0) or under mpirun; its exit status and output (with its progress
+    // bar's last line unless quiet).
+    Result render(const std::string& name, const std::string& integrator, const std::string& options, int processes = 0,
+                  bool quiet = true) {
+        const std::string args = std::string("render ") + (quiet ? "--quiet " : "") + write("furnace.pbrt", kFurnace) +
+                                 " --integrator " + integrator +
                                  " --bootstrap 3000 --chains 13 " + options + " --aov variance -o " + path(name + ".pfm") +
                                  " --stats " + path(name + ".json");
         return processes == 0 ? runPathspace(args) : runMpi(processes, args);
@@ -50,9 +53,12 @@ const std::vector<std::string> kIntegrators{"pssmlt", "mmlt", "mlt"};
 
 // A checkpoint after every pass of 256 mutations per chain (the last is written before the
 // last of 5 passes): resumed with another thread count, the render equals the uninterrupted
-// one, which itself does not depend on the checkpoints it wrote.
+// one, which itself does not depend on the checkpoints it wrote. mlt with direct lighting
+// apart too: its path tracer's part is rendered again, from the same seed, on resuming.
 TEST_F(MetropolisCheckpoint, ResumedEqualsUninterrupted) {
-    for (const std::string& integrator : kIntegrators) {
+    std::vector<std::string> configurations = kIntegrators;
+    configurations.push_back("mlt --mlt-direct 2");
+    for (const std::string& integrator : configurations) {
         SCOPED_TRACE(integrator);
         ASSERT_EQ(render("plain", integrator, "--spp 64 --threads 2").status, 0);
         const Result full = render("full", integrator, "--spp 64 --threads 2 --checkpoint " + path("ck") +
@@ -60,9 +66,13 @@ TEST_F(MetropolisCheckpoint, ResumedEqualsUninterrupted) {
         ASSERT_EQ(full.status, 0) << full.out;
         EXPECT_EQ(stats("full.json")["checkpoints"], 4);
         expectSameRender("full", "plain");
-        const Result r = render("resumed", integrator, "--spp 64 --threads 1 --resume " + path("ck"));
+        const Result r = render("resumed", integrator, "--spp 64 --threads 1 --resume " + path("ck"), 0, false);
         ASSERT_EQ(r.status, 0) << r.out;
         expectSameRender("resumed", "plain");
+        // Its progress bar counts this run's mutations: it ends at 100%.
+        const size_t bar = r.out.rfind("rendering [");
+        ASSERT_NE(bar, std::string::npos) << r.out;
+        EXPECT_NE(r.out.find("100.0%", bar), std::string::npos) << r.out.substr(bar, 80);
         // This run made only the last pass's mutations.
         const long long here = stats("resumed.json")["rank_samples"][0].get<long long>();
         EXPECT_GT(here, 0);
@@ -117,6 +127,7 @@ TEST_F(MetropolisCheckpoint, RefusesDamagedOrMismatchedCheckpoints) {
              {"other chains", "ck", "mlt", "--bootstrap 3000 --chains 14", "chains 14 here, 13 in the checkpoint"},
              {"other bootstrap", "ck", "mlt", "--bootstrap 3001 --chains 13", "bootstrap 3001 here, 3000 in the checkpoint"},
              {"other mutations", "ck", "mlt", kSame + " --mlt-mutations lens=0", "mlt_mutations"},
+             {"direct lighting apart", "ck", "mlt", kSame + " --mlt-direct 2", "mlt_mutations"},
              {"other integrator", "ck", "pssmlt", kSame, "integrator \"pssmlt\" here, \"mlt\" in the checkpoint"},
              {"other seed", "ck", "mlt", kSame + " --seed 5", "seed 5 here"}}) {
         SCOPED_TRACE(c.what);

@@ -23,6 +23,7 @@ namespace {
 struct TargetValue {
     double f = 0;
     int cell = 0;
+    size_t kind = ~size_t(0);  // the partial step kind the state takes (startIterationOfKind); default: uniform
 };
 using Target = std::function<TargetValue(PrimarySampleSampler&)>;
 
@@ -37,7 +38,7 @@ std::vector<double> chainHistogram(const Target& target, int cells, uint64_t see
     sampler.accept();
     std::vector<double> hist(size_t(cells), 0.0);
     for (int i = 0; i < burnIn + iterations; ++i) {
-        sampler.startIteration();
+        sampler.startIterationOfKind(x.kind);
         TargetValue y = target(sampler);
         double a = acceptanceProbability(x.f, y.f);
         if (i >= burnIn && expectedValues) {
@@ -214,6 +215,39 @@ TEST(PrimarySampleChain, PartialStepsKeepTheDensity) {
                            "2-D conditional, partial steps")
                   .pValue,
               1e-5);
+}
+
+// Partial step kinds chosen by the state (as mmlt's light-tracing states take light steps):
+// a third stream's value c decides the class, and the class the kind, class A moving stream
+// 0 only and class B stream 1 only. No partial step moves c, so each class has a symmetric
+// kernel and the chance of a partial step is the same in both: the density is kept.
+TargetValue classedTarget(PrimarySampleSampler& s) {
+    s.startStream(2);
+    const float c = s.get1D();
+    s.startStream(0);
+    const float u0 = s.get1D();
+    s.startStream(1);
+    const float u1 = s.get1D();
+    const int k = c < 0.5f ? 0 : 1, i0 = std::min(int(u0 * 4), 3), i1 = std::min(int(u1 * 4), 3);
+    return {(k == 0 ? 1.0 : 2.0) * bumpy(u0) * kUp(u1), (k * 4 + i0) * 4 + i1, size_t(k)};
+}
+
+TEST(PrimarySampleChain, PartialStepKindsChosenByTheStateKeepTheDensity) {
+    std::vector<double> exact;
+    for (int k = 0; k < 2; ++k)
+        for (int i0 = 0; i0 < 4; ++i0)
+            for (int i1 = 0; i1 < 4; ++i1)
+                exact.push_back((k == 0 ? 1.0 : 2.0) * integrate(bumpy, i0 / 4.0, (i0 + 1) / 4.0) *
+                                integrate(kUp, i1 / 4.0, (i1 + 1) / 4.0));
+    double total = 0;
+    for (double v : exact) total += v;
+    for (double& v : exact) v /= total;
+    PrimarySampleParams params;
+    params.streamCount = 3;
+    params.largeStepProbability = 0.05;
+    params.partialStepProbability = 0.6;
+    params.partialSteps = {{1u, 0.03}, {2u, 0.03}};
+    EXPECT_GT(acrossChains(classedTarget, exact, 64, 73, params, 20000, true, "kinds chosen by the state").pValue, 1e-5);
 }
 
 // With large steps only, the proposals are independent uniform points whatever the target

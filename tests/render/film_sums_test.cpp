@@ -121,3 +121,72 @@ TEST(FilmSums, HugeSamplesDoNotOverflowTheSquares) {
     // of the cap squared, 2^23 * 2^70 * 2^32 = 2^125 exactly.
     EXPECT_TRUE(film.accumulators().fixed[5] == Fixed(1) << 125) << "the sum of squares overflowed or was not capped";
 }
+
+// Sums that leave 64 bits (a light seen directly at many samples) carry into their high
+// words: in any order and split, the film's sums are the exact integer sums of the rounded
+// values (computed here in 128 bits independently), and the image is the same bit for bit.
+TEST(FilmSums, SumsPastSixtyFourBitsAreExact) {
+    const PixelBounds bounds{0, 3, 0, 1};
+    std::vector<Sample> s;
+    Rng rng(11);
+    // Pixel 0: large values (each near 2^20 radiance units: 2^63 units in about 8 of
+    // them), some negative so that the sum crosses the limit both ways; pixel 1: values
+    // large enough to need a high word each (|v| 2^40 >= 2^62); pixel 2: ordinary values.
+    for (int i = 0; i < 300000; ++i) {
+        const int x = i % 3;
+        float v = x == 0 ? float((rng.uniform() < 0.8 ? 1 : -1) * 0x1p20 * (0.5 + rng.uniform()))
+                  : x == 1 ? float(0x1p24 * (1 + rng.uniform()))
+                           : float(rng.uniform());
+        s.push_back({x, 0, i, Spectrum(v, 0.5f * v, 0.25f), 0.5f + rng.uniform(), Vec2()});
+    }
+    Film inOrder(3, 1, bounds), reversed(3, 1, bounds), merged(3, 1, bounds);
+    for (const Sample& x : s) inOrder.addSample(x.x, x.y, x.L, x.weight, x.index);
+    for (auto it = s.rbegin(); it != s.rend(); ++it) reversed.addSample(it->x, it->y, it->L, it->weight, it->index);
+    Film::Accumulators total;
+    for (int part = 0; part < 2; ++part) {
+        Film f(3, 1, bounds);
+        for (const Sample& x : s)
+            if ((x.index / 7) % 2 == part) f.addSample(x.x, x.y, x.L, x.weight, x.index);
+        Film::Accumulators a = f.accumulators();
+        if (part == 0) total = a;
+        else
+            for (size_t i = 0; i < a.fixed.size(); ++i) total.fixed[i] += a.fixed[i];
+    }
+    for (size_t i = 0; i < 3; ++i) total.counts[i] = inOrder.accumulators().counts[i];
+    merged.setAccumulators(total);
+    // The red and weight sums of each pixel, exactly: each term rounded to a multiple of 2^-40.
+    Fixed red[3] = {0, 0, 0}, weight[3] = {0, 0, 0};
+    for (const Sample& x : s) {
+        red[x.x] += Fixed(std::nearbyint(double(x.L.r) * x.weight * Film::kSumUnit));
+        weight[x.x] += Fixed(std::nearbyint(double(x.weight) * Film::kSumUnit));
+    }
+    EXPECT_TRUE(red[0] > Fixed(1) << 64 && red[1] > Fixed(1) << 70) << "the sums should need high words";
+    for (const Film* f : {&inOrder, &reversed, &merged}) {
+        const Film::Accumulators a = f->accumulators();
+        for (int p = 0; p < 3; ++p) {
+            EXPECT_TRUE(a.fixed[size_t(p) * Film::kPixelSums + 0] == red[p]) << "pixel " << p;
+            EXPECT_TRUE(a.fixed[size_t(p) * Film::kPixelSums + 3] == weight[p]) << "pixel " << p;
+        }
+        EXPECT_TRUE(sameBits(f->image(), inOrder.image()));
+        EXPECT_TRUE(sameBits(f->varianceImage(), inOrder.varianceImage()));
+    }
+    // And the image is made from the whole sums.
+    for (int p = 0; p < 3; ++p)
+        EXPECT_EQ(inOrder.image().get(p, 0).r, float(double(red[p]) / double(weight[p]))) << "pixel " << p;
+    EXPECT_EQ(inOrder.rejectedSamples(), 0);
+}
+
+// A film without the error estimate's moments makes the same image, bit for bit, and
+// estimates nothing.
+TEST(FilmSums, MomentsDoNotChangeTheImage) {
+    const PixelBounds bounds{0, 5, 0, 4};
+    Film with(5, 4, bounds, nullptr, true), without(5, 4, bounds, nullptr, false);
+    for (const Sample& x : samples(2000)) {
+        with.addSample(x.x, x.y, x.L, x.weight, x.index);
+        without.addSample(x.x, x.y, x.L, x.weight, x.index);
+    }
+    EXPECT_TRUE(sameBits(with.image(), without.image()));
+    EXPECT_GT(with.errorEstimate().meanVariance, 0.0);
+    EXPECT_EQ(without.errorEstimate().meanVariance, 0.0);
+    EXPECT_TRUE(without.hasMoments() == false && with.hasMoments());
+}

@@ -262,7 +262,7 @@ RenderResult renderDepths(const std::string& text, const std::string& integrator
 // share (measured with a bootstrap ten times larger), under the test's 4 sigma of 2-3%
 // (pssmlt) and 7-9% (mmlt).
 TEST_P(Metropolis, EachDepthsShareConvergesToBDPTs) {
-    const int maxDepth = 3, renders = 16;
+    const int maxDepth = 3, renders = 24;
     std::string scene = box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1");
     scene.replace(scene.find("maxdepth\" [ 5 ]"), 15, "maxdepth\" [ 3 ]");
     scene.replace(scene.find("bootstrapsamples\" [ 50000 ]"), 27,
@@ -299,7 +299,7 @@ TEST_P(Metropolis, EachDepthsShareConvergesToBDPTs) {
         EXPECT_LT(std::fabs(z), 4.0) << "depth " << d;
         EXPECT_LT(4 * se, 0.1 * ref) << "depth " << d << ": too noisy to detect a 10% error in a depth's share";
         // 1/sqrt(12) = 0.29 for independent batches; 0.7 leaves room for the spread's own
-        // noise over 16 seeds and for the chains' correlation.
+        // noise over 24 seeds and for the chains' correlation.
         EXPECT_LT(shrink, 0.7) << "depth " << d;
         EXPECT_LT(std::fabs(zImage), 4.0) << "depth " << d;
     }

@@ -8,6 +8,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
 #include "agreement.h"
@@ -102,6 +103,100 @@ TEST(VeachMLT, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
                                   32, 16, {{"mlt", 128}}, 0.02});
 }
 
+// Direct lighting apart (--mlt-direct): the path tracer's paths of at most one bounce plus the
+// chains' longer ones make BDPT's image, on a diffuse box, on the mirror scene, where the
+// light seen in the mirror (L S E, two edges) passes from the chains to the path tracer.
+TEST(VeachMLT, DirectLightingApartAgreesWithBDPT) {
+    expectAgreement(AgreementCase{"box, direct apart", box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), {"bdpt", "mlt:direct=4"},
+                                  16, 16, {{"mlt:direct=4", 64}}, 0.02});
+    expectAgreement(AgreementCase{"light seen in a mirror, direct apart", lightSeenInAMirror(), {"bdpt", "mlt:direct=4"},
+                                  32, 16, {{"mlt:direct=4", 128}}, 0.02});
+}
+
+// The light seen through the glass sphere (L S S E, two bounces) stays with the chains.
+TEST(VeachMLT, DirectLightingApartAgreesWithBDPTOnAGlassCaustic) {
+    expectAgreement(AgreementCase{"glass caustic, direct apart", glassCaustic(), {"bdpt", "mlt:direct=4"}, 128, 16,
+                                  {{"mlt:direct=4", 256}}, 0.02});
+}
+
+namespace {
+
+// The box's film widened by the box filter's radius, half a pixel, on every side: a pixel
+// more each way and the screen window grown to match. b integrates over that region (the
+// chains' camera rays pass through the filter's margin, PathSpace::filmMargin, and the
+// camera's importance is normalised over it), so it is the widened image's mean, not the
+// film's (5% apart on the box: its margin sees the walls' dark front edges).
+std::string onTheWidenedFilm(std::string scene) {
+    auto replace = [&](const std::string& from, const std::string& to) {
+        const size_t at = scene.find(from);
+        if (at == std::string::npos) throw std::logic_error("onTheWidenedFilm: no \"" + from + "\"");
+        scene.replace(at, from.size(), to);
+    };
+    replace(R"("integer xresolution" [ 24 ] "integer yresolution" [ 24 ])",
+            R"("integer xresolution" [ 25 ] "integer yresolution" [ 25 ])");
+    replace(R"(Camera "perspective" "float fov" [ 30 ])",
+            R"(Camera "perspective" "float fov" [ 30 ] "float screenwindow" [ -1.0416667 1.0416667 -1.0416667 1.0416667 ])");
+    return scene;
+}
+
+// Mean luminance of a scene's images over `seeds` seeds: their mean and its standard error.
+double meanLuminance(const std::string& text, int spp, const char* integrator, int seeds, double* se) {
+    RunningStats s;
+    for (uint64_t seed = 1; seed <= uint64_t(seeds); ++seed) {
+        const Image im = renderString(text, spp, seed, 0, integrator).image;
+        double m = 0;
+        for (size_t i = 0; i < im.rgb.size(); i += 3) m += Spectrum(im.rgb[i], im.rgb[i + 1], im.rgb[i + 2]).luminance();
+        s.add(m / double(im.rgb.size() / 3));
+    }
+    *se = s.standardError();
+    return s.mean();
+}
+
+}  // namespace
+
+// What the chains leave out is exactly what the path tracer renders apart, and b is right
+// without it: on the widened film, b equals BDPT's image mean, and b with direct lighting
+// apart equals BDPT's mean less the path tracer's at maxdepth 1, within 4 sigma (b's from
+// its bootstrap, whose spread across seeds bench/README.md measures; the images' across
+// seeds). Each side of each comparison is an independent estimate.
+TEST(VeachMLT, DirectLightingApartLeavesOnlyLongerPathsToTheChains) {
+    const std::string scene = withBootstrap(box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), 400000);
+    const std::string widened = onTheWidenedFilm(scene);
+    std::string direct = widened;
+    direct.replace(direct.find(R"("integer maxdepth" [ 5 ])"), 24, R"("integer maxdepth" [ 1 ])");
+    double sb = 0, sp = 0;
+    const double mb = meanLuminance(widened, 256, "bdpt", 8, &sb), mp = meanLuminance(direct, 256, "path", 8, &sp);
+    const RenderResult all = renderString(scene, 1, 3, 0, "mlt"), apart = renderString(scene, 1, 4, 0, "mlt:direct=1");
+    const double bAll = all.metropolis.b, bApart = apart.metropolis.b;
+    const double sAll = std::hypot(sb, bAll * all.metropolis.bRelativeError);
+    const double sApart = std::sqrt(sb * sb + sp * sp + std::pow(bApart * apart.metropolis.bRelativeError, 2));
+    std::printf("  b %.5f, bdpt's mean %.5f (%.2f sigma); b without direct lighting %.5f, bdpt's less the path "
+                "tracer's at maxdepth 1 %.5f (%.2f sigma)\n",
+                bAll, mb, (bAll - mb) / sAll, bApart, mb - mp, (bApart - (mb - mp)) / sApart);
+    EXPECT_GT(mp / mb, 0.1);
+    EXPECT_LT(mp / mb, 0.9);
+    EXPECT_LT(std::fabs(bAll - mb), 4 * sAll);
+    EXPECT_LT(std::fabs(bApart - (mb - mp)), 4 * sApart);
+    EXPECT_LT(4 * sApart, 0.02 * bApart) << "too noisy";
+}
+
+// The direct part is the path tracer's image of the same depths: where no path is longer
+// (maxdepth 1, and 0: emission seen directly alone), the chains have nothing and the image
+// is the path tracer's at that maxdepth, bit for bit.
+TEST(VeachMLT, DirectPartIsThePathTracersImageOfTheSameDepths) {
+    for (const char* depth : {"1", "0"}) {
+        std::string scene = withBootstrap(box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), 2000);
+        scene.replace(scene.find(R"("integer maxdepth" [ 5 ])"), 24,
+                      std::string(R"("integer maxdepth" [ )") + depth + " ]");
+        const RenderResult mlt = renderString(scene, 1, 5, 0, "mlt:direct=8");
+        const RenderResult path = renderString(scene, 8, 5, 0, "path");
+        EXPECT_EQ(mlt.metropolis.b, 0) << "maxdepth " << depth;
+        const PixelComparison c = comparePixels(mlt.image, path.image);
+        EXPECT_EQ(c.differ, 0) << "maxdepth " << depth;
+        EXPECT_EQ(c.nonFinite, 0) << "maxdepth " << depth;
+    }
+}
+
 // Layered surfaces, sampled by the path space's own mixture (MltVertex::mixed): a smooth-
 // coated diffuse sphere (its coating's mirror and the rest) and a back wall of conductor
 // under a rough coating, f being the layered BxDFs' deterministic estimates in both.
@@ -129,6 +224,31 @@ std::string lightSeenInACoating() {
     const std::string from = R"(Material "conductor" "rgb reflectance" [ 0.9 0.9 0.9 ] "float roughness" [ 0 ])";
     scene.replace(scene.find(from), from.size(), R"(Material "coateddiffuse" "rgb reflectance" [ 0.2 0.3 0.2 ])");
     return scene;
+}
+
+// An area light seen at grazing angles (about 80 degrees from the normal) in a smooth coating
+// over a diffuse floor, where the coating's mirror weight R / cos differs most from R: paths
+// E S L of the mixed vertex's mirror role, and the floor's diffuse light.
+std::string lightSeenGrazingInACoating() {
+    return std::string(R"(
+        LookAt 0 0.4 3  0 0.2 0  0 1 0
+        Camera "perspective" "float fov" [ 35 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        )") + mltIntegrator(100000) + R"(
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 4 4 4 ] "bool twosided" true
+          Shape "bilinearmesh" "point3 P" [ -0.6 0.1 -2   0.6 0.1 -2   -0.6 0.9 -2   0.6 0.9 -2 ]
+        AttributeEnd
+        Material "coateddiffuse" "rgb reflectance" [ 0.2 0.3 0.2 ]
+        Shape "bilinearmesh" "point3 P" [ -3 0 3   3 0 3   -3 0 -3   3 0 -3 ]
+    )";
+}
+
+TEST(VeachMLT, AgreesWithBDPTOnALightSeenGrazingInACoating) {
+    expectAgreement(AgreementCase{"light seen grazing in a coating", lightSeenGrazingInACoating(), {"bdpt", "mlt"}, 32, 16,
+                                  {{"mlt", 512}}, 0.02});
 }
 
 // Each mutation makes a correct image: the bidirectional mutation (for ergodicity) with each

@@ -8,7 +8,7 @@
 // returns must be T(y -> x) / T(x -> y). (Through a specular chain T is the pseudo-density
 // of the unit-delta convention that f shares, not the plane's area density: a flat mirror
 // at 45 degrees gave 0.64 of the annulus' area, as cos / (d1^2 d2^2) against 1 / (d1 + d2)^2
-// predicts; the image tests against BDPT cover those chains.)
+// predicts; veach_perturbation_chi_test.cpp checks T through mirrors in that measure.)
 #include <gtest/gtest.h>
 
 #include <array>

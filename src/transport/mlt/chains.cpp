@@ -209,7 +209,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     const MetropolisParams& mp = integrator.params();
     const PixelBounds& bounds = scene.pixelBounds();
     const Camera::Params& cp = scene.camera().params();
-    Film film(cp.xRes, cp.yRes, bounds, &scene.filter());
+    Film film(cp.xRes, cp.yRes, bounds, &scene.filter(), options.filmMoments());
     const int depths = integrator.maxDepth() + 1;
     std::vector<std::unique_ptr<Film>> depthFilms;
     if (mp.depthImages)
@@ -221,9 +221,12 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     // Camera steps (thesis 11.4.3's lens perturbation, in primary sample space): a share of
     // the small steps moves the camera subpath and the connection and keeps the light
     // subpath and the strategy, which are what is hard to find where light comes through a
-    // narrow opening.
+    // narrow opening. A light-tracing state (t = 1) moves its light subpath instead
+    // (MetropolisIntegrator::partialStepKind), in the order of PartialStepKind.
     pss.partialStepProbability = mp.cameraStepProbability;
-    pss.partialSteps = {{1u << BDPTIntegrator::kCameraStream | 1u << BDPTIntegrator::kConnectionStream, mp.sigma}};
+    constexpr uint32_t kConnection = 1u << BDPTIntegrator::kConnectionStream;
+    pss.partialSteps = {{1u << BDPTIntegrator::kCameraStream | kConnection, mp.sigma},
+                        {1u << BDPTIntegrator::kLightStream | kConnection, mp.sigma}};
 
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     tbb::enumerable_thread_specific<ChainEvaluator> evaluators;
@@ -287,8 +290,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
         // This process's chains (chain_ranks.h) and their mutations (its progress bar's total).
         long long mineTotal = 0;
         const std::vector<int> mine = chain_ranks::ownedChains(chains, total, &mineTotal);
-        Monitor monitor(options.progress && distributed::isRoot(), chainTime, options.cancel, stop, done,
-                        std::max(1LL, mineTotal));
+        const auto chainsStart = std::chrono::steady_clock::now();
         std::atomic<bool> replayMismatch{false};
         // Every chain starts from a bootstrap state, then all advance in passes of a few
         // hundred mutations each, so that a render stopped early (time budget, Ctrl-C) has
@@ -323,6 +325,12 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
             mostLeft = std::max(mostLeft, all[size_t(c)].remaining);
             doneBefore += counts[size_t(c)].done;
         }
+        // The progress bar counts this run's mutations (a resumed render's bar ends at 100%);
+        // the chains' start counts against the budget.
+        const double startSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - chainsStart).count();
+        if (chainTime > 0) chainTime = std::max(chainTime - startSeconds, 1e-6);
+        Monitor monitor(options.progress && distributed::isRoot(), chainTime, options.cancel, stop, done,
+                        std::max(1LL, mineTotal - doneBefore));
         // The processes agree after every pass whether to go on (a time limit, a signal to any).
         bool halt = false;
         {
@@ -343,7 +351,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                     ChainCounts& cc = counts[size_t(c)];
                     PrimarySampleSampler& sampler = *ch.sampler;
                     for (long long k = 0; k < n; ++k) {
-                        sampler.startIteration();
+                        sampler.startIterationOfKind(integrator.partialStepKind(ch.x));
                         const bool large = sampler.largeStep();
                         integrator.evaluate(sampler, choice, ev, y);
                         const double a = acceptanceProbability(ch.x.f, y.f);
@@ -383,7 +391,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                     stats, result);
             }
         }
-        result.seconds += monitor.elapsed();
+        result.seconds += startSeconds + monitor.elapsed();
     }
     if (replayFailed)
         throw std::logic_error(name + ": a bootstrap sample replayed with a different contribution");
@@ -436,8 +444,8 @@ double finishChains(const Scene& scene, const Film& film, const RenderOptions& o
     result.targetSpp = std::max(1, options.spp);
     result.meanSpp = double(ms.mutations) / double(bounds.area());
     result.stoppedEarly = bootstrapCancelled || (ms.mutations < total && ms.b > 0);
-    result.pixelSamples.assign(size_t(bounds.area()), 0);
-    filmResults(film, lightPaths, scene.settings(), result);
+    if (options.pixelSamples) result.pixelSamples.assign(size_t(bounds.area()), 0);
+    filmResults(film, lightPaths, scene.settings(), options, result);
     return lightPaths;
 }
 

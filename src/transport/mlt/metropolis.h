@@ -106,6 +106,13 @@ public:
                                 double /*u2*/) const {}
     // Whether the chain itself chooses a path depth (per-depth acceptance statistics).
     virtual bool choosesDepth() const { return false; }
+    // The partial small steps (primary_sample_sampler.h) a state takes: camera steps move the
+    // camera subpath and the connection, light steps the light subpath and the connection.
+    // A state whose camera subpath is the lens vertex alone (t = 1) takes light steps, as a
+    // camera step could not move it under a pinhole. Neither kind moves the strategy that
+    // decides the kind, so the kernel stays symmetric.
+    enum PartialStepKind : size_t { kCameraSteps = 0, kLightSteps = 1 };
+    virtual PartialStepKind partialStepKind(const ChainState&) const { return kCameraSteps; }
 
     const BDPTIntegrator& bdpt() const { return bdpt_; }
     int maxDepth() const { return bdpt_.subpaths().maxDepth(); }

@@ -53,6 +53,12 @@ void MMLTIntegrator::chooseStrategy(PrimarySampleSampler& sampler, int strategy,
     sampler.set(kStrategyStream, 1, v2);
 }
 
+MetropolisIntegrator::PartialStepKind MMLTIntegrator::partialStepKind(const ChainState& x) const {
+    if (x.strategy < 0 || x.strategy >= int(strategies_.size())) return kCameraSteps;
+    const auto [depth, s] = strategies_[size_t(x.strategy)];
+    return depth + 2 - s == 1 ? kLightSteps : kCameraSteps;
+}
+
 void MMLTIntegrator::evaluate(PrimarySampleSampler& sampler, const StrategyChoice& choice, ChainEvaluator& ev,
                               ChainState& out) const {
     out.splats.clear();

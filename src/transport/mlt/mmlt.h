@@ -41,6 +41,7 @@ public:
     // As the bootstrap of a chain per depth would: the parameter's count per depth.
     int64_t bootstrapCount() const override { return int64_t(params_.bootstrapSamples) * (maxDepth() + 1); }
     bool choosesDepth() const override { return true; }
+    PartialStepKind partialStepKind(const ChainState& x) const override;
     // A bootstrap sample of a depth stands for every strategy of that depth, from one
     // camera and one light subpath just long enough: b's estimate is then BDPT's for that
     // depth, not one strategy's. Each state is weighted by scale times its luminance,

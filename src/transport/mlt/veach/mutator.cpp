@@ -47,6 +47,7 @@ VeachMutations parseMutationWeights(const std::string& spec) {
                          : key == "lens"         ? &w.lens
                          : key == "multi-chain"  ? &w.multiChain
                          : key == "caustic"      ? &w.caustic
+                         : key == "direct"       ? &w.direct
                                                  : nullptr;
         if (!target)
             throw InputError("--mlt-mutations: unknown mutation \"" + key +
@@ -56,6 +57,8 @@ VeachMutations parseMutationWeights(const std::string& spec) {
         const double v = std::strtod(value.c_str(), &end);
         if (value.empty() || *end != '\0' || !(v >= 0) || !std::isfinite(v))
             throw InputError("--mlt-mutations: \"" + item + "\" needs a weight >= 0, as in " + key + "=0.5");
+        if (target == &w.direct && v != std::floor(v))
+            throw InputError("--mlt-direct: \"" + value + "\" needs a whole number of samples per pixel");
         *target = v;
     }
     if (!(w.bidirectional > 0))

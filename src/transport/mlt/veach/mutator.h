@@ -19,11 +19,16 @@ struct VeachMutations {
     // generation density): the image must be BDPT's whatever the other mutations'
     // densities are, a check of the chain's bookkeeping alone.
     bool regenerate = false;
+    // Not a mutation: the path tracer's samples per pixel for the paths of at most one
+    // bounce, rendered apart from the chains (veach_mlt.h; key "direct", --mlt-direct N;
+    // 0: the chains render them).
+    double direct = 0;
     double weight(Mutation m) const;
 };
 
 // Weights from "KEY=VALUE,..." (keys bidirectional, lens-subpath, lens, multi-chain, caustic;
-// values >= 0; unnamed keys keep their defaults); InputError on anything else. The
+// values >= 0; unnamed keys keep their defaults; and direct=N, whole); InputError on
+// anything else. The
 // bidirectional mutation must keep a positive weight: the others alone cannot reach every
 // path (they keep a path's length and specular structure).
 VeachMutations parseMutationWeights(const std::string& spec);

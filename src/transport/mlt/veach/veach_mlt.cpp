@@ -20,6 +20,7 @@
 #include "transport/mlt/chain_checkpoint.h"
 #include "transport/mlt/chain_ranks.h"
 #include "transport/mlt/bootstrap.h"
+#include "transport/path_tracer.h"
 #include "transport/render_monitor.h"
 #include "util/error.h"
 
@@ -51,7 +52,13 @@ struct PathState {
     double f = 0;
 };
 
-bool evaluate(const PathSpace& space, PathState& s) {
+// A path shorter than minVertices (rendered apart: direct lighting) has target 0.
+bool evaluate(const PathSpace& space, int minVertices, PathState& s) {
+    if (int(s.path.size()) < minVertices) {
+        s.C = Spectrum();
+        s.f = 0;
+        return false;
+    }
     s.C = space.contribution(s.path, &s.pRaster);
     const double f = s.C.luminance();
     s.f = f > 0 && std::isfinite(f) ? f : 0.0;
@@ -86,7 +93,7 @@ double bootstrapSample(const VeachMLTIntegrator& integrator, uint64_t seed, int6
     space.walk(camera, maxV, TransportMode::Radiance, time, rng, *out.arena, stats);
     MltPath y;
     double total = 0;
-    for (int n = 2; n <= maxV; ++n)
+    for (int n = integrator.minChainVertices(); n <= maxV; ++n)
         for (int s = 0; s < n; ++s) {
             const int t = n - s;
             if (s > int(light.size()) || t > int(camera.size())) continue;
@@ -254,10 +261,26 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     const PathSpace& space = integrator.space();
     const PixelBounds& bounds = scene.pixelBounds();
     const Camera::Params& cp = scene.camera().params();
-    Film film(cp.xRes, cp.yRes, bounds, &scene.filter());
+    Film film(cp.xRes, cp.yRes, bounds, &scene.filter(), options.filmMoments());
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     tbb::enumerable_thread_specific<PathState> scratchStates;
     tbb::enumerable_thread_specific<PathStats> threadStats;
+
+    // Direct lighting apart: the path tracer's image of the paths of at most one bounce (of
+    // none at maxdepth 0: its depth counts bounces as the chains' paths count vertices).
+    RenderResult direct;
+    if (integrator.directSpp() > 0) {
+        const PathTracer directOnly(scene, std::min(1, space.maxDepth()));
+        RenderOptions o = options;
+        o.spp = integrator.directSpp();
+        o.timeLimit = 0;
+        o.progress = false;
+        o.adaptive = AdaptiveMode::None;
+        o.resume = nullptr;
+        o.checkpointEvery = -1;
+        o.checkpoint = nullptr;
+        direct = render(scene, directOnly, o);
+    }
 
     RenderResult result;
     MetropolisStats& ms = result.metropolis;
@@ -321,7 +344,8 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     std::atomic<bool> stop{false};
     std::atomic<long long> done{0};
     long long doneBefore = 0;  // this process's chains' mutations resumed from a checkpoint
-    const double bootstrapSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
+    const double bootstrapSeconds =
+        direct.seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
     result.seconds = bootstrapSeconds;
     if (bootstrapCancelled) {
         warning("mlt: interrupted during the bootstrap, before any chain ran; the image is black");
@@ -333,8 +357,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         if (chainTime > 0) chainTime = std::max(options.timeLimit - bootstrapSeconds, 0.1 * options.timeLimit);
         long long mineTotal = 0;  // this process's chains (chain_ranks.h) and their mutations
         const std::vector<int> mine = chain_ranks::ownedChains(chains, total, &mineTotal);
-        Monitor monitor(options.progress && distributed::isRoot(), chainTime, options.cancel, stop, done,
-                        std::max(1LL, mineTotal));
+        const auto chainsStart = std::chrono::steady_clock::now();
         std::atomic<bool> replayMismatch{false};
         arena.execute([&] {
             tbb::parallel_for(size_t(0), mine.size(), [&](size_t m) {
@@ -368,6 +391,12 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
             mostLeft = std::max(mostLeft, all[size_t(c)].remaining);
             doneBefore += all[size_t(c)].counts.done;
         }
+        // The progress bar counts this run's mutations (a resumed render's bar ends at 100%);
+        // the chains' start counts against the budget.
+        const double startSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - chainsStart).count();
+        if (chainTime > 0) chainTime = std::max(chainTime - startSeconds, 1e-6);
+        Monitor monitor(options.progress && distributed::isRoot(), chainTime, options.cancel, stop, done,
+                        std::max(1LL, mineTotal - doneBefore));
         // The processes agree after every pass whether to go on (a time limit, a signal to any).
         bool halt = false;
         {
@@ -392,7 +421,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                         if (kind < int(Mutation::Count)) ++ch.counts.proposed[kind];
                         if (!made) {
                             if (kind < int(Mutation::Count)) ++ch.counts.failed[kind];
-                        } else if (!evaluate(space, ch.y) || !(ratio > 0)) {
+                        } else if (!evaluate(space, integrator.minChainVertices(), ch.y) || !(ratio > 0)) {
                             ++ch.counts.invalid;
                         } else {
                             const double r = ch.y.f / ch.x.f * ratio;
@@ -426,7 +455,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                     doneHere, stats, result);
             }
         }
-        result.seconds += monitor.elapsed();
+        result.seconds += startSeconds + monitor.elapsed();
     }
 
     // Every process's film, counts and statistics on rank 0; the others are done.
@@ -462,6 +491,14 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         warning(std::string(kUnsupportedCoating) + " (met by a chain after the bootstrap: those paths are missing)");
     chain_ranks::perProcess(ms, chainDone, chainAccepted, chainProposed);
     finishChains(scene, film, options, total, bootstrapCancelled, result);
+    // The direct part is an independent estimate: images and variances add (the error
+    // estimate and efficiency stay the chains').
+    if (integrator.directSpp() > 0 && direct.image.rgb.size() == result.image.rgb.size()) {
+        for (size_t i = 0; i < result.image.rgb.size(); ++i) result.image.rgb[i] += direct.image.rgb[i];
+        if (direct.variance.rgb.size() == result.variance.rgb.size())
+            for (size_t i = 0; i < result.variance.rgb.size(); ++i) result.variance.rgb[i] += direct.variance.rgb[i];
+        result.stats += direct.stats;
+    }
     return result;
 }
 

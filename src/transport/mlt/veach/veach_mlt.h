@@ -13,6 +13,11 @@
 //  - chains own their random streams and advance in passes, splats are summed in fixed
 //    point, even and odd chains fill the film's two halves: the image does not depend on
 //    the thread count, and a stopped render has mutations from every chain.
+// Direct lighting apart (--mlt-direct N, as Veach did, thesis ch. 11): the paths of at most
+// one bounce (two edges: emission seen directly, and direct lighting through any BSDF) are
+// rendered first by the path tracer (next-event estimation with MIS) at N samples per pixel
+// and added to the image; the bootstrap's b and the chains' target leave them out (a proposal
+// of such a path has target 0 and is rejected). Off by default.
 #pragma once
 #include "transport/mlt/metropolis.h"
 #include "transport/mlt/veach/mutator.h"
@@ -35,6 +40,10 @@ public:
     const Mutator& mutator() const { return mutator_; }
     const MetropolisParams& params() const { return params_; }
     const VeachMutations& mutations() const { return mutations_; }
+    // Direct lighting apart: the path tracer's samples per pixel (0: off), and the fewest
+    // vertices of a path the chains hold (4 with it: three edges, else 2).
+    int directSpp() const { return int(mutations_.direct); }
+    int minChainVertices() const { return directSpp() > 0 ? 4 : 2; }
 
 private:
     PathSpace space_;
