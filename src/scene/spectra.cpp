@@ -118,13 +118,6 @@ Spectrum convert(const double s[kSamples], SpectrumKind kind) {
     return albedo ? clamp(out, 0, 1) : out;
 }
 
-// Spectral radiance of a blackbody (W / (m^2 sr m)) at lambda nm.
-double planck(double lambdaNm, double kelvin) {
-    const double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23;
-    double l = lambdaNm * 1e-9;
-    return (2 * h * c * c) / (std::pow(l, 5) * (std::exp((h * c) / (l * kb * kelvin)) - 1));
-}
-
 }  // namespace
 
 Spectrum xyzToLinearSRGB(double X, double Y, double Z) {

@@ -18,12 +18,12 @@ Overload(F...) -> Overload<F...>;
 
 }  // namespace
 
-float planck(float lambdaNm, float kelvin) {
+double planck(double lambdaNm, double kelvin) {
     if (!(kelvin > 0)) return 0;
     // CODATA 2010 constants, as pbrt-v4.
     const double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23;
-    const double l = double(lambdaNm) * 1e-9;
-    return float((2 * h * c * c) / (std::pow(l, 5) * (std::exp((h * c) / (l * kb * kelvin)) - 1)));
+    const double l = lambdaNm * 1e-9;
+    return (2 * h * c * c) / (std::pow(l, 5) * (std::exp((h * c) / (l * kb * kelvin)) - 1));
 }
 
 SpectrumSource SpectrumSource::constant(float c) { return SpectrumSource(Constant{c}); }
@@ -47,8 +47,8 @@ SpectrumSource SpectrumSource::piecewiseLinear(PiecewiseLinearTable table) {
 SpectrumSource SpectrumSource::dense(std::shared_ptr<const DenseSpectrum> s) { return SpectrumSource(Dense{std::move(s)}); }
 
 SpectrumSource SpectrumSource::blackbody(float kelvin) {
-    const float peak = planck(2.8977721e-3f / kelvin * 1e9f, kelvin);
-    return SpectrumSource(Blackbody{kelvin, peak > 0 ? 1 / peak : 0.0f});
+    const double peak = planck(2.8977721e-3 / kelvin * 1e9, kelvin);
+    return SpectrumSource(Blackbody{kelvin, peak > 0 ? float(1 / peak) : 0.0f});
 }
 
 SpectrumSource SpectrumSource::rgbAlbedo(const RGBColorSpace& space, std::array<float, 3> rgb) {
@@ -85,7 +85,7 @@ float SpectrumSource::at(float lambda) const {
                           [](const Constant& s) { return s.c; },
                           [&](const Tabulated& s) { return s.table->at(lambda); },
                           [&](const Dense& s) { return s.s->at(lambda); },
-                          [&](const Blackbody& s) { return planck(lambda, s.kelvin) * s.normalization; },
+                          [&](const Blackbody& s) { return float(planck(lambda, s.kelvin) * s.normalization); },
                           [&](const RGBAlbedo& s) { return s.poly(lambda); },
                           [&](const RGBUnbounded& s) { return s.scale * s.poly(lambda); },
                           [&](const RGBIlluminant& s) { return s.scale * s.poly(lambda) * s.illuminant->at(lambda); },
@@ -120,7 +120,7 @@ SpectralValues SpectrumSource::sample(const SampledWavelengths& w) const {
                    [&](const Constant& s) { out.fill(s.c); },
                    [&](const Tabulated& s) { each([&](float l) { return s.table->at(l); }); },
                    [&](const Dense& s) { each([&](float l) { return s.s->at(l); }); },
-                   [&](const Blackbody& s) { each([&](float l) { return planck(l, s.kelvin) * s.normalization; }); },
+                   [&](const Blackbody& s) { each([&](float l) { return float(planck(l, s.kelvin) * s.normalization); }); },
                    [&](const RGBAlbedo& s) { polynomial(s.poly, w, out); },
                    [&](const RGBUnbounded& s) {
                        polynomial(s.poly, w, out);

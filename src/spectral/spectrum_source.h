@@ -80,7 +80,7 @@ class SpectrumSource {
 };
 
 // Planck's law: spectral radiance of a blackbody at `kelvin` (W / (m^2 sr m)), lambda in nm.
-float planck(float lambdaNm, float kelvin);
+double planck(double lambdaNm, double kelvin);
 
 // Integrals over the 1 nm grid 360..830 (pbrt-v4's InnerProduct), XYZ / kCieYIntegral.
 XYZ spectrumToXYZ(const SpectrumSource& s);
