@@ -20,7 +20,7 @@ float DiffuseAreaLight::pdfLi(const LightSampleContext& ctx, Vec3, const Surface
 
 // Uniform by area, cosine-weighted about the emitting side's normal (either side with
 // probability 1/2 when two-sided).
-std::optional<LightLeSample> DiffuseAreaLight::sampleLe(Vec2 uPos, Vec2 uDir) const {
+std::optional<LightLeSample> DiffuseAreaLight::sampleLe(Vec2 uPos, Vec2 uDir, const SampledWavelengths* lambda) const {
     ShapeSample s = shape_->sampleArea(prim_, uPos);
     if (!(s.pdf > 0)) return std::nullopt;
     if (alpha_ && !alpha_->keepsPoint(s.p, s.n, s.uv)) return std::nullopt;
@@ -39,7 +39,7 @@ std::optional<LightLeSample> DiffuseAreaLight::sampleLe(Vec2 uPos, Vec2 uDir) co
     if (!(wLocal.z > 0)) return std::nullopt;
     Vec3 w = Frame::fromNormal(n).toWorld(wLocal);
     LightLeSample ls;
-    ls.L = L(s.p, s.n, s.uv, w, nullptr);
+    ls.L = L(s.p, s.n, s.uv, w, lambda);
     ls.ray = spawnRay(s.p, s.n, w, 0);  // the light subpath stamps its path's time on it
     ls.ray.o = s.p;  // the vertex is on the light; callers offset when they trace
     ls.n = s.n;

@@ -25,7 +25,7 @@ public:
 
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
     float pdfLi(const LightSampleContext& ctx, Vec3 wi, const SurfaceInteraction* hit) const override;
-    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
+    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir, const SampledWavelengths* lambda) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
     Spectrum L(Vec3 p, Vec3 n, Vec2 uv, Vec3 w, const SampledWavelengths* lambda) const override {
         if (!twoSided_ && dot(n, w) < 0) return {};

@@ -9,8 +9,8 @@ std::optional<LightLiSample> PointLight::sampleLi(const LightSampleContext& ctx,
     return pointLightLi(pos_, ctx, [&](Vec3) { return I_(ctx.lambda); });
 }
 
-std::optional<LightLeSample> PointLight::sampleLe(Vec2, Vec2 uDir) const {
-    return LightLeSample{I_.rgb(), Ray{pos_, sampleUniformSphere(uDir)}, {}, 1.0f, uniformSpherePdf(), {}};
+std::optional<LightLeSample> PointLight::sampleLe(Vec2, Vec2 uDir, const SampledWavelengths* lambda) const {
+    return LightLeSample{I_(lambda), Ray{pos_, sampleUniformSphere(uDir)}, {}, 1.0f, uniformSpherePdf(), {}};
 }
 
 // The position is a delta (density 0 for every other strategy); directions are uniform.
@@ -35,9 +35,9 @@ std::optional<LightLiSample> SpotLight::sampleLi(const LightSampleContext& ctx, 
 }
 
 // Directions uniform in the whole cone; the falloff weights the intensity.
-std::optional<LightLeSample> SpotLight::sampleLe(Vec2, Vec2 uDir) const {
+std::optional<LightLeSample> SpotLight::sampleLe(Vec2, Vec2 uDir, const SampledWavelengths* lambda) const {
     Vec3 w = frame_.toWorld(sampleUniformCone(uDir, cosEnd_));
-    Spectrum I = intensity(w);
+    Spectrum I = intensity(w, lambda);
     if (I.isBlack()) return std::nullopt;
     return LightLeSample{I, Ray{pos_, w}, {}, 1.0f, uniformConePdf(cosEnd_), {}};
 }
@@ -57,8 +57,8 @@ std::optional<LightLiSample> DistantLight::sampleLi(const LightSampleContext& ct
     return LightLiSample{L_(ctx.lambda), w_, 1.0f, pOutside, {}};
 }
 
-std::optional<LightLeSample> DistantLight::sampleLe(Vec2 uPos, Vec2) const {
-    return LightLeSample{L_.rgb(), rayFromInfinityDisk(w_, sceneCenter_, sceneRadius_, uPos), {},
+std::optional<LightLeSample> DistantLight::sampleLe(Vec2 uPos, Vec2, const SampledWavelengths* lambda) const {
+    return LightLeSample{L_(lambda), rayFromInfinityDisk(w_, sceneCenter_, sceneRadius_, uPos), {},
                          infinityDiskPdf(sceneRadius_), 1.0f, {}};
 }
 

@@ -10,7 +10,7 @@ class PointLight final : public Light {
 public:
     PointLight(Vec3 pos, LightSpectrum I) : Light(LightType::DeltaPosition), pos_(pos), I_(std::move(I)) {}
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
-    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
+    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir, const SampledWavelengths* lambda) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
     Spectrum L(Vec3, Vec3, Vec2, Vec3, const SampledWavelengths* lambda) const override { return I_(lambda); }
     Spectrum phi() const override { return I_.rgb() * (4 * kPi); }
@@ -27,7 +27,7 @@ public:
         : Light(LightType::DeltaPosition), pos_(pos), frame_(Frame::fromNormal(normalize(axis))), I_(std::move(I)),
           cosStart_(cosFalloffStart), cosEnd_(cosFalloffEnd) {}
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
-    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
+    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir, const SampledWavelengths* lambda) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
     Spectrum L(Vec3, Vec3, Vec2, Vec3 w, const SampledWavelengths* lambda) const override { return intensity(w, lambda); }
     Spectrum phi() const override;
@@ -46,7 +46,7 @@ public:
     // wLight: unit direction towards the light (light travels along -wLight).
     DistantLight(Vec3 wLight, LightSpectrum L) : Light(LightType::DeltaDirection), w_(wLight), L_(std::move(L)) {}
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
-    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
+    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir, const SampledWavelengths* lambda) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
     Spectrum phi() const override { return L_.rgb() * (kPi * sceneRadius_ * sceneRadius_); }
     void preprocess(Vec3 c, float r) override { sceneCenter_ = c; sceneRadius_ = r; }

@@ -32,7 +32,7 @@ std::optional<LightLiSample> GoniometricLight::sampleLi(const LightSampleContext
     return pointLightLi(pos_, ctx, [&](Vec3 w) { return intensity(w); });
 }
 
-std::optional<LightLeSample> GoniometricLight::sampleLe(Vec2, Vec2 uDir) const {
+std::optional<LightLeSample> GoniometricLight::sampleLe(Vec2, Vec2 uDir, const SampledWavelengths*) const {
     float pdfUV;
     Vec2 uv = distribution_.sampleContinuous(uDir, &pdfUV);
     if (!(pdfUV > 0)) return std::nullopt;

@@ -19,7 +19,7 @@ public:
     // times every scale.
     GoniometricLight(const Transform& worldFromLight, Spectrum I, std::vector<float> values, int res);
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
-    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
+    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir, const SampledWavelengths* lambda) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
     Spectrum L(Vec3, Vec3, Vec2, Vec3 w, const SampledWavelengths*) const override { return intensity(w); }
     bool supportsSpectral() const override { return false; }

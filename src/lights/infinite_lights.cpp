@@ -16,9 +16,9 @@ float UniformInfiniteLight::pdfLi(const LightSampleContext&, Vec3, const Surface
 }
 
 // Direction as in sampleLi, origin on the disk at infinity.
-std::optional<LightLeSample> UniformInfiniteLight::sampleLe(Vec2 uPos, Vec2 uDir) const {
+std::optional<LightLeSample> UniformInfiniteLight::sampleLe(Vec2 uPos, Vec2 uDir, const SampledWavelengths* lambda) const {
     Vec3 wl = sampleUniformSphere(uDir);
-    return LightLeSample{L_.rgb(), rayFromInfinityDisk(wl, sceneCenter_, sceneRadius_, uPos), {},
+    return LightLeSample{L_(lambda), rayFromInfinityDisk(wl, sceneCenter_, sceneRadius_, uPos), {},
                          infinityDiskPdf(sceneRadius_), uniformSpherePdf(), {}};
 }
 
@@ -87,8 +87,8 @@ float ImageInfiniteLight::pdfLi(const LightSampleContext&, Vec3 wi, const Surfac
     return uvPdfToSolidAngle(distribution_.pdf(uv), uv);
 }
 
-std::optional<LightLeSample> ImageInfiniteLight::sampleLe(Vec2 uPos, Vec2 uDir) const {
-    auto li = sampleLi(LightSampleContext{sceneCenter_, {}}, uDir);
+std::optional<LightLeSample> ImageInfiniteLight::sampleLe(Vec2 uPos, Vec2 uDir, const SampledWavelengths* lambda) const {
+    auto li = sampleLi(LightSampleContext{sceneCenter_, {}, lambda}, uDir);
     if (!li) return std::nullopt;
     return LightLeSample{li->L, rayFromInfinityDisk(li->wi, sceneCenter_, sceneRadius_, uPos), {},
                          infinityDiskPdf(sceneRadius_), li->pdf, {}};

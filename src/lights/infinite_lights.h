@@ -14,7 +14,7 @@ public:
     explicit UniformInfiniteLight(LightSpectrum L) : Light(LightType::Infinite), L_(std::move(L)) {}
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
     float pdfLi(const LightSampleContext& ctx, Vec3 wi, const SurfaceInteraction* hit) const override;
-    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
+    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir, const SampledWavelengths* lambda) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
     Spectrum Le(const Ray&, const SampledWavelengths* lambda) const override { return L_(lambda); }
     Spectrum phi() const override { return L_.rgb() * (4 * kPi * kPi * sceneRadius_ * sceneRadius_); }
@@ -32,7 +32,7 @@ public:
     ImageInfiniteLight(Image image, float scale, const Transform& worldFromLight, Layout layout);
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
     float pdfLi(const LightSampleContext& ctx, Vec3 wi, const SurfaceInteraction* hit) const override;
-    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
+    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir, const SampledWavelengths* lambda) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
     Spectrum Le(const Ray& r, const SampledWavelengths* lambda) const override { return lookup(normalize(r.d), lambda); }
     Spectrum phi() const override;

@@ -65,12 +65,12 @@ public:
     }
     // Infinite lights: radiance arriving along a ray that escapes the scene.
     virtual Spectrum Le(const Ray& r, const SampledWavelengths* lambda) const { (void)r; (void)lambda; return {}; }
-    // Whether sampleLi, L and Le follow LightSampleContext::lambda (spectral mode); a light
-    // that does not is refused there. sampleLe and phi are RGB in both modes (phi only
-    // chooses lights).
+    // Whether sampleLi, sampleLe, L and Le follow the path's wavelengths (spectral mode); a
+    // light that does not is refused there. phi is RGB in both modes (it only chooses lights).
     virtual bool supportsSpectral() const { return true; }
-    // Samples an emitted ray (uPos picks the origin, uDir the direction).
-    virtual std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const = 0;
+    // Samples an emitted ray (uPos picks the origin, uDir the direction); L at lambda in
+    // spectral mode (null: RGB). The ray's choice does not depend on lambda.
+    virtual std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir, const SampledWavelengths* lambda) const = 0;
     // Densities of sampleLe choosing the ray leaving p (normal n) along unit direction w.
     // Lights at infinity ignore p and n: pdfPos is the disk's, pdfDir that of -w's choice.
     virtual void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const {

@@ -65,7 +65,7 @@ std::optional<LightLiSample> ProjectionLight::sampleLi(const LightSampleContext&
 
 // A texel by the distribution, a uniform point in it, the direction through that point:
 // the density over the plane z = 1 is pdfUV / planeArea, over directions divided by cos^3.
-std::optional<LightLeSample> ProjectionLight::sampleLe(Vec2, Vec2 uDir) const {
+std::optional<LightLeSample> ProjectionLight::sampleLe(Vec2, Vec2 uDir, const SampledWavelengths*) const {
     float pdfUV;
     Vec2 uv = distribution_.sampleContinuous(uDir, &pdfUV);
     if (!(pdfUV > 0)) return std::nullopt;

@@ -21,7 +21,7 @@ public:
     // (negative values read as 0) times scale is the intensity.
     ProjectionLight(const Transform& worldFromLight, Image image, float scale, float fovDegrees);
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
-    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir) const override;
+    std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir, const SampledWavelengths* lambda) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
     Spectrum L(Vec3, Vec3, Vec2, Vec3 w, const SampledWavelengths*) const override { return intensity(w); }
     bool supportsSpectral() const override { return false; }

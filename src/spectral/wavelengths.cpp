@@ -80,6 +80,7 @@ SampledWavelengths SampledWavelengths::sampleUniform(float u, float lo, float hi
 }
 
 void SampledWavelengths::terminateSecondary() {
+    ++terminationRequests;
     if (secondaryTerminated()) return;
     for (int i = 1; i < kWavelengthSamples; ++i) pdf[i] = 0;
     pdf[0] /= kWavelengthSamples;

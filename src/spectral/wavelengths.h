@@ -36,6 +36,9 @@ struct SampledWavelengths {
     // 4, which dividing its pdf by 4 does (the film averages over the four and skips pdf 0).
     void terminateSecondary();
     bool secondaryTerminated() const;
+    // How often terminateSecondary was called, effective or not: a walk learns from it
+    // whether a surface's own BxDF is dispersive even once an earlier one terminated.
+    int terminationRequests = 0;
 };
 
 }  // namespace ps

@@ -7,21 +7,37 @@
 
 namespace ps {
 
+namespace {
+
+// Whether strategy (s, t) uses a dispersive vertex (s = 1 and t = 1 sample their own
+// endpoint, which is not a surface vertex of the subpaths).
+bool usesDispersiveVertex(const PathVertex* light, const PathVertex* camera, int s, int t) {
+    for (int i = 1; i < s; ++i)
+        if (light[i].dispersive) return true;
+    for (int i = 1; i < t; ++i)
+        if (camera[i].dispersive) return true;
+    return false;
+}
+
+}  // namespace
+
 template <typename S>
 BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex* camera, int s, int t, S& sampler,
                                                    PathStats& stats, bool weighted, const MisPrefixes* prefixes,
-                                                   const SampleContext* splatTo) const {
+                                                   const SampleContext* splatTo,
+                                                   const SampledWavelengths* lambda) const {
     Join j;  // filled in place: it holds a whole vertex
     Connection c;
+    if (splatTo) lambda = splatTo->lambda;
     if (s == 0) {
-        joinEmitter(camera, t, j);
+        joinEmitter(camera, t, lambda, j);
     } else if (t > 1 && camera[t - 1].isInfiniteLight()) {
         return c;  // an escaped camera ray is an endpoint only for s = 0
     } else if (t == 1) {
         joinLens(light[s - 1], sampler, stats, splatTo, j);
         c.pRaster = j.pRaster;
     } else if (s == 1) {
-        joinLight(camera[t - 1], sampler, stats, j);
+        joinLight(camera[t - 1], sampler, stats, lambda, j);
     } else {
         joinInner(light[s - 1], camera[t - 1], stats, j);
     }
@@ -38,9 +54,9 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
 }
 
 // The camera subpath found an emitter on its own (s = 0).
-void BDPTIntegrator::joinEmitter(const PathVertex* camera, int t, Join& j) const {
+void BDPTIntegrator::joinEmitter(const PathVertex* camera, int t, const SampledWavelengths* lambda, Join& j) const {
     const PathVertex& pt = camera[t - 1];
-    if (pt.isLight()) j.L = paths_.Le(pt, camera[t - 2]) * pt.beta;
+    if (pt.isLight()) j.L = paths_.Le(pt, camera[t - 2], lambda) * pt.beta;
 }
 
 // Connect light vertex qs to a sampled lens point, to be splatted (t = 1, thesis §10.2).
@@ -79,13 +95,14 @@ void BDPTIntegrator::joinLens(const PathVertex& qs, S& sampler, PathStats& stats
 
 // Next-event estimation (s = 1): a light point sampled as seen from camera vertex pt.
 template <typename S>
-void BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stats, Join& j) const {
+void BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stats, const SampledWavelengths* lambda,
+                               Join& j) const {
     if (!pt.connectible()) return;
     float pmf;
     const Light* lt = paths_.scene().sampleLight(sampler.get1D(), &pmf);
     Vec2 u = sampler.get2D();
     if (!lt || !(pmf > 0)) return;
-    auto ls = lt->sampleLi(LightSampleContext{pt.p, pt.ng}, u);
+    auto ls = lt->sampleLi(LightSampleContext{pt.p, pt.ng, lambda}, u);
     if (!ls || ls->L.isBlack() || !(ls->pdf > 0)) return;
     PathVertex& lv = j.sampled.emplace();
     lv.kind = VertexKind::Light;
@@ -293,18 +310,20 @@ Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
 // strategies are connected.
 template <typename S, typename Deposit>
 void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats,
-                             const SampleContext* splatTo, Deposit&& deposit, int onlyDepth) const {
+                             const SampleContext* splatTo, Deposit&& deposit, int onlyDepth,
+                             SampledWavelengths* lambda) const {
     const int cameraVertices = onlyDepth >= 0 ? onlyDepth + 2 : paths_.maxCameraVertices();
     const int lightVertices = onlyDepth >= 0 ? onlyDepth + 1 : paths_.maxLightVertices();
     PathVertex* camera = allocPath(scratch, cameraVertices);
     PathVertex* light = allocPath(scratch, lightVertices);
     // The light subpath's origin first: its sampling then overlaps the camera walk.
+    if (splatTo) lambda = splatTo->lambda;
     sampler.startStream(kLightStream);
-    const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, ray.time, stats, light);
+    const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, ray.time, stats, light, lambda);
     sampler.startStream(kCameraStream);
-    int nCamera = paths_.cameraSubpath(ray, sampler, scratch, stats, camera, cameraVertices);
+    int nCamera = paths_.cameraSubpath(ray, sampler, scratch, stats, camera, cameraVertices, lambda);
     sampler.startStream(kLightStream);
-    int nLight = paths_.continueLightSubpath(origin, sampler, scratch, stats, light, lightVertices);
+    int nLight = paths_.continueLightSubpath(origin, sampler, scratch, stats, light, lightVertices, lambda);
     sampler.startStream(kConnectionStream);
     const MisPrefixes prefixes = misPrefixes(light, nLight, camera, nCamera, scratch);
 
@@ -322,8 +341,9 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
             // Most camera vertices emit nothing: skip the call for the s = 0 strategy.
             if (s == 0 && !camera[t - 1].isLight()) continue;
             sampler.seekDimension(connectionDimension(s, t));
-            Connection c = connect(light, camera, s, t, sampler, stats, true, &prefixes, splatTo);
+            Connection c = connect(light, camera, s, t, sampler, stats, true, &prefixes, splatTo, lambda);
             if (c.L.isBlack()) continue;
+            c.dispersive = lambda && usesDispersiveVertex(light, camera, s, t);
             deposit(s, t, c);
         }
 }
@@ -342,14 +362,14 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
         Spectrum contribution = c.L * c.weight;
         if (strategies_) {
             if (t == 1) {
-                strategies_->splat(s, c.pRaster, contribution, c.L, ctx.sampleIndex);
+                strategies_->splat(s, c.pRaster, ctx.toFilm(contribution), ctx.toFilm(c.L), ctx.sampleIndex);
             } else if (int k = strategies_->slot(s, t); k >= 0) {
-                perStrategy[2 * k] = contribution;
-                perStrategy[2 * k + 1] = c.L;
+                perStrategy[2 * k] = ctx.toFilm(contribution);
+                perStrategy[2 * k + 1] = ctx.toFilm(c.L);
             }
         }
         if (c.weight == 0) return;
-        if (t == 1) ctx.film.addSplat(c.pRaster, contribution, ctx.sampleIndex);
+        if (t == 1) ctx.film.addSplat(c.pRaster, ctx.toFilm(contribution), ctx.sampleIndex);
         else L += contribution;
     });
     if (strategies_) strategies_->addCameraSample(ctx.px, ctx.py, ctx.filterWeight, perStrategy);
@@ -357,20 +377,22 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
 }
 
 void BDPTIntegrator::contributions(const Ray& ray, Vec2 pFilm, PrimarySampleSampler& sampler, ScratchBuffer& scratch,
-                                   PathStats& stats, std::vector<PathContribution>& out, int onlyDepth) const {
+                                   PathStats& stats, std::vector<PathContribution>& out, int onlyDepth,
+                                   SampledWavelengths* lambda) const {
     out.clear();
     if (onlyDepth > paths_.maxDepth()) return;
     produce(
         ray, sampler, scratch, stats, nullptr,
         [&](int s, int t, const Connection& c) {
             if (c.weight == 0) return;
-            out.push_back({t == 1 ? c.pRaster : pFilm, c.L * c.weight, s, t});
+            out.push_back({t == 1 ? c.pRaster : pFilm, c.L * c.weight, s, t, c.dispersive});
         },
-        onlyDepth);
+        onlyDepth, lambda);
 }
 
 bool BDPTIntegrator::strategyContribution(const Ray& ray, Vec2 pFilm, int s, int t, PrimarySampleSampler& sampler,
-                                          ScratchBuffer& scratch, PathStats& stats, PathContribution& out) const {
+                                          ScratchBuffer& scratch, PathStats& stats, PathContribution& out,
+                                          SampledWavelengths* lambda) const {
     if (t < 1 || s < 0 || t > paths_.maxCameraVertices() || s > paths_.maxLightVertices() || (s == 1 && t == 1))
         return false;
     PathVertex* camera = allocPath(scratch, t);
@@ -378,21 +400,22 @@ bool BDPTIntegrator::strategyContribution(const Ray& ray, Vec2 pFilm, int s, int
     // s = 1 samples its light vertex in the connection (joinLight): no light subpath.
     if (s > 1) {
         sampler.startStream(kLightStream);
-        const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, ray.time, stats, light);
-        if (paths_.continueLightSubpath(origin, sampler, scratch, stats, light, s) != s) return false;
+        const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, ray.time, stats, light, lambda);
+        if (paths_.continueLightSubpath(origin, sampler, scratch, stats, light, s, lambda) != s) return false;
     }
     sampler.startStream(kCameraStream);
-    if (paths_.cameraSubpath(ray, sampler, scratch, stats, camera, t) != t) return false;
+    if (paths_.cameraSubpath(ray, sampler, scratch, stats, camera, t, lambda) != t) return false;
     sampler.startStream(kConnectionStream);
     sampler.seekDimension(connectionDimension(s, t));
-    Connection c = connect(light, camera, s, t, sampler, stats);
+    Connection c = connect(light, camera, s, t, sampler, stats, true, nullptr, nullptr, lambda);
     if (c.L.isBlack() || c.weight == 0) return false;
-    out = {t == 1 ? c.pRaster : pFilm, c.L * c.weight, s, t};
+    out = {t == 1 ? c.pRaster : pFilm, c.L * c.weight, s, t, lambda && usesDispersiveVertex(light, camera, s, t)};
     return true;
 }
 
 template BDPTIntegrator::Connection BDPTIntegrator::connect<Sampler>(PathVertex*, PathVertex*, int, int, Sampler&,
                                                                      PathStats&, bool, const MisPrefixes*,
-                                                                     const SampleContext*) const;
+                                                                     const SampleContext*,
+                                                                     const SampledWavelengths*) const;
 
 }  // namespace ps

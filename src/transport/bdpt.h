@@ -23,6 +23,7 @@ public:
         : paths_(scene, maxDepth), heuristic_(heuristic) {}
     Spectrum Li(const Ray& ray, SampleContext& ctx) const override;
     bool splats() const override { return true; }
+    bool supportsSpectral() const override { return true; }
 
     // One strategy's contribution for the subpath prefixes (s, t), unweighted, and its MIS
     // weight. For t = 1, *pRaster receives the film position. Exposed for tests.
@@ -31,6 +32,7 @@ public:
         float weight = 0;    // MIS weight
         Vec2 pRaster;
         float recomputedWeight = 0;  // see recomputeWeights
+        bool dispersive = false;     // see PathContribution (set by produce)
     };
     // Running sums of the MIS terms along each subpath (the terms of every heuristic multiply
     // along a path): camera[m] sums, over the strategies that would sample camera vertices
@@ -47,11 +49,13 @@ public:
     // S: Sampler, PaddedSobolSampler or IndependentSampler (as for Subpaths' walks).
     // `prefixes`: misPrefixes() of these subpaths, or null to walk them per weight.
     // `splatTo`: the camera sample whose film lens connections (t = 1) will splat to, warned
-    // of the position before the visibility test (a cache hint only).
+    // of the position before the visibility test (a cache hint), and whose wavelengths the
+    // sampled light points emit at (spectral mode; null: RGB).
+    // `lambda`: the wavelengths where splatTo is null (a Markov chain's sample).
     template <typename S>
     Connection connect(PathVertex* light, PathVertex* camera, int s, int t, S& sampler, PathStats& stats,
                        bool weighted = true, const MisPrefixes* prefixes = nullptr,
-                       const SampleContext* splatTo = nullptr) const;
+                       const SampleContext* splatTo = nullptr, const SampledWavelengths* lambda = nullptr) const;
     // The reverse densities of the vertices at and next to a connection (area measure):
     // what the weight needs beyond the densities stored by the walks.
     struct EndpointDensities {
@@ -76,11 +80,16 @@ public:
         int depth = s + t - 2;
         return kDimensionsPerConnection * (depth * (depth + 3) / 2 + s);
     }
-    // One strategy's MIS-weighted contribution and where it lands on the film.
+    // One strategy's MIS-weighted contribution and where it lands on the film. `dispersive`
+    // (spectral mode): its path has a dispersive vertex, so only the first wavelength counts;
+    // otherwise all four do, even if the sample's other vertices terminated them (each
+    // strategy's value is then an estimate of its own, whatever the subpaths beyond it did,
+    // and one strategy evaluated alone gives the same).
     struct PathContribution {
         Vec2 pRaster;
         Spectrum L;
         int s = 0, t = 0;
+        bool dispersive = false;
     };
     // Every strategy's weighted contribution of the camera subpath along `ray` (generated
     // at film position pFilm) and one light subpath, without depositing them: what a Markov
@@ -88,13 +97,17 @@ public:
     // onlyDepth >= 0: the strategies of that path depth alone, from subpaths just long
     // enough for it: what strategyContribution gives for each of them (to rounding: the
     // compiler may fuse multiply-adds differently in the two code paths).
+    // `lambda`: the sample's wavelengths in spectral mode (null: RGB); the contributions are
+    // values at them.
     void contributions(const Ray& ray, Vec2 pFilm, PrimarySampleSampler& sampler, ScratchBuffer& scratch,
-                       PathStats& stats, std::vector<PathContribution>& out, int onlyDepth = -1) const;
+                       PathStats& stats, std::vector<PathContribution>& out, int onlyDepth = -1,
+                       SampledWavelengths* lambda = nullptr) const;
     // Strategy (s, t) alone (multiplexed Metropolis): subpaths of exactly s light and t
     // camera vertices and their connection, MIS-weighted. False if the subpaths end
     // earlier or the connection carries nothing.
     bool strategyContribution(const Ray& ray, Vec2 pFilm, int s, int t, PrimarySampleSampler& sampler,
-                              ScratchBuffer& scratch, PathStats& stats, PathContribution& out) const;
+                              ScratchBuffer& scratch, PathStats& stats, PathContribution& out,
+                              SampledWavelengths* lambda = nullptr) const;
     void setRoulette(bool on) { paths_.setRoulette(on); }
     // For tests: connect() also computes each weight from densities evaluated afresh at the
     // join, not those its BSDF evaluations produced, into Connection::recomputedWeight.
@@ -108,7 +121,7 @@ public:
 private:
     template <typename S, typename Deposit>
     void produce(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats, const SampleContext* splatTo,
-                 Deposit&& deposit, int onlyDepth = -1) const;
+                 Deposit&& deposit, int onlyDepth = -1, SampledWavelengths* lambda = nullptr) const;
     template <typename S>
     Spectrum estimate(const Ray& ray, S& sampler, SampleContext& ctx) const;
 
@@ -123,11 +136,11 @@ private:
         std::optional<PathVertex> sampled;
         Vec2 pRaster;
     };
-    void joinEmitter(const PathVertex* camera, int t, Join& j) const;
+    void joinEmitter(const PathVertex* camera, int t, const SampledWavelengths* lambda, Join& j) const;
     template <typename S>
     void joinLens(const PathVertex& qs, S& sampler, PathStats& stats, const SampleContext* splatTo, Join& j) const;
     template <typename S>
-    void joinLight(const PathVertex& pt, S& sampler, PathStats& stats, Join& j) const;
+    void joinLight(const PathVertex& pt, S& sampler, PathStats& stats, const SampledWavelengths* lambda, Join& j) const;
     void joinInner(const PathVertex& qs, const PathVertex& pt, PathStats& stats, Join& j) const;
 
     Subpaths paths_;

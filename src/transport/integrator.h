@@ -14,6 +14,8 @@
 
 namespace ps {
 
+class SpectralFilm;
+
 // Per-thread counters, summed at the end of a render.
 struct PathStats {
     uint64_t cameraPaths = 0;
@@ -70,6 +72,11 @@ struct SampleContext {
     // Spectral mode: the sample's wavelengths (null in RGB mode). Li returns the values at
     // them; a dispersive interface may terminate the secondary ones (their pdf becomes 0).
     SampledWavelengths* lambda = nullptr;
+    // Spectral mode: the film's sensor, through which splats go (toFilm) as Li's result does.
+    const SpectralFilm* sensor = nullptr;
+    // A splat's value as the film takes it: the rendering space's RGB. Splats are made after
+    // both subpaths exist, so the wavelengths' termination is final by then.
+    Spectrum toFilm(const Spectrum& L) const;
 };
 
 class Integrator {

@@ -12,7 +12,7 @@ void LightTracer::splatEmitter(const PathVertex& v, SampleContext& ctx) const {
     const Scene& scene = bdpt_.subpaths().scene();
     auto cs = scene.camera().sampleWi(v.p, v.time, ctx.sampler.get2D());
     if (!cs || !(v.pdfFwd > 0)) return;
-    Spectrum Le = v.light->L(v.p, v.ng, v.uv, cs->wi, nullptr);
+    Spectrum Le = v.light->L(v.p, v.ng, v.uv, cs->wi, ctx.lambda);
     if (Le.isBlack()) return;
     float cosLight = v.onSurface() ? std::fabs(dot(v.ng, cs->wi)) : 1.0f;
     Spectrum L = Le * (cosLight * cs->We / (cs->pdf * v.pdfFwd));
@@ -20,7 +20,7 @@ void LightTracer::splatEmitter(const PathVertex& v, SampleContext& ctx) const {
     lens.p = cs->pLens;
     lens.time = v.time;
     if (!bdpt_.subpaths().visible(v, lens, ctx.stats)) return;
-    ctx.film.addSplat(cs->pRaster, L, ctx.sampleIndex);
+    ctx.film.addSplat(cs->pRaster, ctx.toFilm(L), ctx.sampleIndex);
 }
 
 // The camera ray is not traced; its time (the camera sample's, uniform over the shutter) is
@@ -30,12 +30,12 @@ Spectrum LightTracer::Li(const Ray& cameraRay, SampleContext& ctx) const {
     int n = paths.maxLightVertices();
     auto* light = static_cast<PathVertex*>(ctx.scratch.allocBytes(sizeof(PathVertex) * size_t(n), alignof(PathVertex)));
     for (int i = 0; i < n; ++i) new (&light[i]) PathVertex();
-    int nLight = paths.lightSubpath(ctx.sampler, cameraRay.time, ctx.scratch, ctx.stats, light);
+    int nLight = paths.lightSubpath(ctx.sampler, cameraRay.time, ctx.scratch, ctx.stats, light, ctx.lambda);
     if (nLight > 0) splatEmitter(light[0], ctx);
     PathVertex camera[1];
     for (int s = 2; s <= nLight; ++s) {
-        auto c = bdpt_.connect(light, camera, s, 1, ctx.sampler, ctx.stats, false);
-        if (!c.L.isBlack()) ctx.film.addSplat(c.pRaster, c.L, ctx.sampleIndex);
+        auto c = bdpt_.connect(light, camera, s, 1, ctx.sampler, ctx.stats, false, nullptr, &ctx);
+        if (!c.L.isBlack()) ctx.film.addSplat(c.pRaster, ctx.toFilm(c.L), ctx.sampleIndex);
     }
     return {};
 }

@@ -13,6 +13,7 @@ public:
     LightTracer(const Scene& scene, int maxDepth) : bdpt_(scene, maxDepth, MisHeuristic::Uniform) {}
     Spectrum Li(const Ray& ray, SampleContext& ctx) const override;
     bool splats() const override { return true; }
+    bool supportsSpectral() const override { return true; }
 
 private:
     // The (s, t) = (1, 1) strategy: the light point itself seen through the lens.

@@ -22,6 +22,7 @@ struct PathVertex {
                             // or where a camera ray escaped
     bool nonSpecular = false;  // surfaces: the BxDF has a diffuse or glossy lobe
     bool flatShading = false;  // surfaces: ns == ng, so the adjoint shading factor is 1
+    bool dispersive = false;   // surfaces (spectral mode): the BxDF follows lambda[0] alone
     Spectrum beta;          // throughput of the subpath up to and including this vertex
     Vec3 p;
     Vec3 ng, ns;            // zero for points without a surface (pinhole, point lights)

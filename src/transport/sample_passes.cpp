@@ -83,7 +83,10 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                         float cameraWeight = 1;
                         Ray ray = scene_.camera().generateRay(cs, &cameraWeight);
                         SampleContext ctx{sampler, st.scratch, st.stats, film, si, px, py, fs.weight};
-                        if (spectral_) ctx.lambda = &lambda;
+                        if (spectral_) {
+                            ctx.lambda = &lambda;
+                            ctx.sensor = &*spectral_;
+                        }
                         // A ray the lens blocks is a black sample (still counted).
                         Spectrum L = cameraWeight > 0 ? integrator_.Li(ray, ctx) * cameraWeight : Spectrum(0.0f);
                         if (spectral_) L = spectral_->toRendering(L, lambda);

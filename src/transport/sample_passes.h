@@ -75,8 +75,8 @@ private:
     std::vector<Tile> tiles_;
     const float imagingRatio_;
     const bool hasLens_;
-    const bool hasMotion_;
-    std::optional<SpectralFilm> spectral_;  // spectral mode's sensor (null in RGB mode)  // the camera sample draws a time (only then: static scenes keep their streams)
+    const bool hasMotion_;  // the camera sample draws a time (only then: static scenes keep their streams)
+    std::optional<SpectralFilm> spectral_;  // spectral mode's sensor (empty in RGB mode)
     Share share_;
     std::unique_ptr<Sampler> prototypes_[2];
     tbb::enumerable_thread_specific<ThreadState> states_;

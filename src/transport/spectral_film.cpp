@@ -41,10 +41,12 @@ Spectrum SpectralFilm::toRendering(const Spectrum& L, const SampledWavelengths& 
     return {rgb[0] * (1.0f / kWavelengthSamples), rgb[1] * (1.0f / kWavelengthSamples), rgb[2] * (1.0f / kWavelengthSamples)};
 }
 
+Spectrum SampleContext::toFilm(const Spectrum& L) const { return sensor ? sensor->toRendering(L, *lambda) : L; }
+
 void requireSpectralSupport(const Scene& scene, const Integrator& integrator, const std::string& integratorName) {
     if (!integrator.supportsSpectral())
-        throw InputError("--color spectral is supported by --integrator path only for now; \"" + integratorName +
-                         "\" renders in RGB (use --color rgb)");
+        throw InputError("--color spectral is supported by --integrator path, light, bdpt, pssmlt and mmlt for now; \"" +
+                         integratorName + "\" renders in RGB (use --color rgb)");
     for (const auto& light : scene.lights())
         if (!light->supportsSpectral())
             throw InputError("--color spectral: the scene has a goniometric or projection light, which renders in RGB "

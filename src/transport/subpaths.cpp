@@ -20,7 +20,7 @@ PathVertex& resetVertex(PathVertex& v) { return *new (&v) PathVertex(); }
 
 template <typename S>
 int Subpaths::cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats,
-                            PathVertex* path, int maxVertices) const {
+                            PathVertex* path, int maxVertices, SampledWavelengths* lambda) const {
     PathVertex& cam = path[0];
     resetVertex(cam);
     cam.kind = VertexKind::Camera;
@@ -33,17 +33,19 @@ int Subpaths::cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, 
     if (!(pdfDir > 0)) return 1;
     int n = maxVertices > 0 ? std::min(maxVertices, maxCameraVertices()) : maxCameraVertices();
     return 1 + randomWalk(ray, cam.beta, pdfDir, sampler, scratch, stats, path + 1, n - 1, TransportMode::Radiance,
-                          kCameraStartDimensions);
+                          kCameraStartDimensions, lambda);
 }
 
 template <typename S>
-int Subpaths::lightSubpath(S& sampler, float time, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const {
-    LightOrigin origin = lightOrigin(sampler, time, stats, path);
-    return continueLightSubpath(origin, sampler, scratch, stats, path);
+int Subpaths::lightSubpath(S& sampler, float time, ScratchBuffer& scratch, PathStats& stats, PathVertex* path,
+                           SampledWavelengths* lambda) const {
+    LightOrigin origin = lightOrigin(sampler, time, stats, path, lambda);
+    return continueLightSubpath(origin, sampler, scratch, stats, path, 0, lambda);
 }
 
 template <typename S>
-Subpaths::LightOrigin Subpaths::lightOrigin(S& sampler, float time, PathStats& stats, PathVertex* path) const {
+Subpaths::LightOrigin Subpaths::lightOrigin(S& sampler, float time, PathStats& stats, PathVertex* path,
+                                            const SampledWavelengths* lambda) const {
     LightOrigin o;
     ++stats.lightPaths;
     float uLight = sampler.get1D();
@@ -52,7 +54,7 @@ Subpaths::LightOrigin Subpaths::lightOrigin(S& sampler, float time, PathStats& s
     float pmf;
     const Light* light = scene_.sampleLight(uLight, &pmf);
     if (!light || !(pmf > 0)) return o;
-    auto les = light->sampleLe(uPos, uDir);
+    auto les = light->sampleLe(uPos, uDir, lambda);
     if (!les || !(les->pdfPos > 0) || !(les->pdfDir > 0) || les->L.isBlack()) return o;
 
     PathVertex& v = path[0];
@@ -83,12 +85,12 @@ Subpaths::LightOrigin Subpaths::lightOrigin(S& sampler, float time, PathStats& s
 
 template <typename S>
 int Subpaths::continueLightSubpath(const LightOrigin& o, S& sampler, ScratchBuffer& scratch, PathStats& stats,
-                                   PathVertex* path, int maxVertices) const {
+                                   PathVertex* path, int maxVertices, SampledWavelengths* lambda) const {
     if (!o.valid) return 0;
     PathVertex& v = path[0];
     int limit = maxVertices > 0 ? std::min(maxVertices, maxLightVertices()) : maxLightVertices();
     int n = randomWalk(o.ray, o.beta, o.pdfDir, sampler, scratch, stats, path + 1, limit - 1,
-                       TransportMode::Importance, kLightStartDimensions);
+                       TransportMode::Importance, kLightStartDimensions, lambda);
     // From a disk at infinity the second vertex's density is the disk's area density
     // projected onto its surface, and the first is the directional density (thesis §10.2).
     if (v.infinite) {
@@ -104,7 +106,7 @@ int Subpaths::continueLightSubpath(const LightOrigin& o, S& sampler, ScratchBuff
 template <typename S>
 int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, ScratchBuffer& scratch,
                          PathStats& stats, PathVertex* path, int maxVertices, TransportMode mode,
-                         int firstDimension) const {
+                         int firstDimension, SampledWavelengths* lambda) const {
     if (maxVertices <= 0) return 0;
     int bounces = 0, passThroughs = 0;
     Spectrum scatter(1.0f);  // the walk's own throughput, for Russian roulette
@@ -141,7 +143,8 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
             }
             break;
         }
-        const BxDF* bxdf = surfaceBxDF(si, scratch);
+        const int terminationRequests = lambda ? lambda->terminationRequests : 0;
+        const BxDF* bxdf = surfaceBxDF(si, scratch, lambda);
         if (!bxdf) {
             // `interface`: not a vertex; the ray continues and the density stays per solid angle.
             if (++passThroughs > 1024) break;  // a degenerate stack of coincident interfaces
@@ -161,6 +164,7 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
         v.bxdf = bxdf;
         v.nonSpecular = (bxdf->flags() & (kDiffuse | kGlossy)) != 0;
         v.flatShading = si.ns == si.ng;
+        v.dispersive = lambda && lambda->terminationRequests != terminationRequests;
         v.light = si.areaLight;
         v.beta = beta;
         float toThisArea;
@@ -218,11 +222,14 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
 }
 
 #define PS_SUBPATH_WALKS(S)                                                                                  \
-    template int Subpaths::cameraSubpath<S>(const Ray&, S&, ScratchBuffer&, PathStats&, PathVertex*, int) const; \
-    template int Subpaths::lightSubpath<S>(S&, float, ScratchBuffer&, PathStats&, PathVertex*) const;          \
-    template Subpaths::LightOrigin Subpaths::lightOrigin<S>(S&, float, PathStats&, PathVertex*) const;          \
+    template int Subpaths::cameraSubpath<S>(const Ray&, S&, ScratchBuffer&, PathStats&, PathVertex*, int,      \
+                                            SampledWavelengths*) const;                                        \
+    template int Subpaths::lightSubpath<S>(S&, float, ScratchBuffer&, PathStats&, PathVertex*,                 \
+                                           SampledWavelengths*) const;                                         \
+    template Subpaths::LightOrigin Subpaths::lightOrigin<S>(S&, float, PathStats&, PathVertex*,                 \
+                                                            const SampledWavelengths*) const;                  \
     template int Subpaths::continueLightSubpath<S>(const LightOrigin&, S&, ScratchBuffer&, PathStats&,          \
-                                                   PathVertex*, int) const;
+                                                   PathVertex*, int, SampledWavelengths*) const;
 PS_SUBPATH_WALKS(Sampler)
 PS_SUBPATH_WALKS(PaddedSobolSampler)
 PS_SUBPATH_WALKS(IndependentSampler)
@@ -290,15 +297,15 @@ float Subpaths::pdfLight(const PathVertex& v, const PathVertex& to) const {
     return next;
 }
 
-Spectrum Subpaths::Le(const PathVertex& v, const PathVertex& to) const {
+Spectrum Subpaths::Le(const PathVertex& v, const PathVertex& to, const SampledWavelengths* lambda) const {
     if (!v.isLight()) return {};
     Vec3 w = directionTo(v, to);
     if (v.isInfiniteLight()) {
         Spectrum L;
-        for (const Light* light : scene_.infiniteLights()) L += light->Le(Ray{v.p, -w}, nullptr);
+        for (const Light* light : scene_.infiniteLights()) L += light->Le(Ray{v.p, -w}, lambda);
         return L;
     }
-    return v.light->L(v.p, v.ng, v.uv, w, nullptr);
+    return v.light->L(v.p, v.ng, v.uv, w, lambda);
 }
 
 bool Subpaths::visible(const PathVertex& a, const PathVertex& b, PathStats& stats) const {

@@ -37,13 +37,17 @@ public:
     // (S: Sampler, PaddedSobolSampler or IndependentSampler) so that hot loops call them
     // without virtual dispatch.
     // maxVertices (> 0) stops the walk earlier than maxCameraVertices().
+    // `lambda`, in spectral mode (null: RGB), the path's wavelengths: both subpaths of a
+    // sample share them, every scene spectrum is evaluated at them, and a dispersive
+    // surface on either walk terminates the secondary ones for the whole sample.
     template <typename S>
     int cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path,
-                      int maxVertices = 0) const;
+                      int maxVertices = 0, SampledWavelengths* lambda = nullptr) const;
     // Vertex 0 on a light chosen by power, then the walk; returns the number of vertices.
     // `time`: the scene time of the whole path (the camera sample's, for BDPT).
     template <typename S>
-    int lightSubpath(S& sampler, float time, ScratchBuffer& scratch, PathStats& stats, PathVertex* path) const;
+    int lightSubpath(S& sampler, float time, ScratchBuffer& scratch, PathStats& stats, PathVertex* path,
+                     SampledWavelengths* lambda = nullptr) const;
     // lightSubpath in two steps: the emitted ray (vertex 0 written to path[0]), then the walk.
     // BDPT samples the origin before tracing its camera subpath, so that the emission
     // sampling's latency overlaps that walk (only the order of sample dimensions changes).
@@ -55,10 +59,11 @@ public:
         float pdfPos = 0, pdfDir = 0;  // sampleLe's densities
     };
     template <typename S>
-    LightOrigin lightOrigin(S& sampler, float time, PathStats& stats, PathVertex* path) const;
+    LightOrigin lightOrigin(S& sampler, float time, PathStats& stats, PathVertex* path,
+                            const SampledWavelengths* lambda = nullptr) const;
     template <typename S>
     int continueLightSubpath(const LightOrigin& origin, S& sampler, ScratchBuffer& scratch, PathStats& stats,
-                             PathVertex* path, int maxVertices = 0) const;
+                             PathVertex* path, int maxVertices = 0, SampledWavelengths* lambda = nullptr) const;
 
     // The BSDF at surface vertex v for light between v.wo and the direction to `next`,
     // including the adjoint shading-normal factor under importance transport.
@@ -79,8 +84,8 @@ public:
     // Both of the above from one emission query (a connection to a sampled light needs
     // both); either pointer may be null.
     void emissionDensities(const PathVertex& v, const PathVertex& to, float* origin, float* next) const;
-    // Radiance emitted at light vertex v towards `to`.
-    Spectrum Le(const PathVertex& v, const PathVertex& to) const;
+    // Radiance emitted at light vertex v towards `to` (at lambda in spectral mode).
+    Spectrum Le(const PathVertex& v, const PathVertex& to, const SampledWavelengths* lambda = nullptr) const;
     // Mutual visibility of two points, at a's time (a path's vertices share one time).
     bool visible(const PathVertex& a, const PathVertex& b, PathStats& stats) const;
     // Density of choosing direction wToLight from all infinite lights together.
@@ -91,7 +96,8 @@ public:
 private:
     template <typename S>
     int randomWalk(Ray ray, Spectrum beta, float pdfDir, S& sampler, ScratchBuffer& scratch, PathStats& stats,
-                   PathVertex* path, int maxVertices, TransportMode mode, int firstDimension) const;
+                   PathVertex* path, int maxVertices, TransportMode mode, int firstDimension,
+                   SampledWavelengths* lambda) const;
 
     const Scene& scene_;
     int maxDepth_;

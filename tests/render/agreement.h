@@ -30,6 +30,9 @@ struct AgreementCase {
     int renders = 16;
     std::map<std::string, int> sppOf = {};  // per-integrator spp where one needs more than `spp`
     double detectableBias = 0.01;           // see kDetectableBias
+    // --color spectral; the image's R, G and B means are then compared too, each within 4
+    // sigma (a wrong spectrum can keep the luminance and move the colour).
+    bool spectral = false;
 };
 
 // The smallest uniform relative difference the pooled test must be able to detect (by
@@ -41,7 +44,8 @@ inline void expectAgreement(const AgreementCase& c) {
     std::vector<BlockMeans> results;
     for (const std::string& integ : c.integrators) {
         auto own = c.sppOf.find(integ);
-        results.push_back(blockMeans(c.scene, integ, own == c.sppOf.end() ? c.spp : own->second, c.renders, kAgreementBlocks));
+        results.push_back(blockMeans(c.scene, integ, own == c.sppOf.end() ? c.spp : own->second, c.renders, kAgreementBlocks,
+                                     100, c.spectral));
     }
     const BlockMeans& a = results[0];
     ASSERT_GT(a.imageMean, 0.01) << c.name << ": the scene must be lit";
@@ -56,6 +60,13 @@ inline void expectAgreement(const AgreementCase& c) {
         EXPECT_LT(4 * seImage, c.detectableBias * a.imageMean)
             << c.name << ": " << nb << " too noisy to detect a " << 100 * c.detectableBias << "% bias";
         EXPECT_LT(std::fabs(zImage), 4.0) << c.name << ": " << na << " vs " << nb << " image means differ";
+        for (int ch = 0; c.spectral && ch < 3; ++ch) {
+            double se = std::hypot(a.channelStdErr[ch], b.channelStdErr[ch]);
+            double z = (b.channelMean[ch] - a.channelMean[ch]) / std::max(se, 1e-12);
+            std::printf("  %s: channel %d: %.5f +- %.5f vs %.5f +- %.5f (%.2f sigma)\n", c.name, ch, a.channelMean[ch],
+                        a.channelStdErr[ch], b.channelMean[ch], b.channelStdErr[ch], z);
+            EXPECT_LT(std::fabs(z), 4.0) << c.name << ": " << na << " vs " << nb << " channel " << ch << " differs";
+        }
 
         int failures = 0;
         double worst = 0;

@@ -279,7 +279,7 @@ TEST(Alpha, CutOutEmitterSamplesPresentPointsOnly) {
         Vec2 u(hashToUnit(key, 2), hashToUnit(key2, 2));
         Vec2 uDir(hashToUnit(key3, 2), 0.5f);
         const Light& light = *scene->lights()[size_t(i % 2)];
-        if (auto s = light.sampleLe(u, uDir)) {
+        if (auto s = light.sampleLe(u, uDir, nullptr)) {
             ++le;
             leEmitting += !light.L(s->ray.o, s->n, Vec2(), s->ray.d, nullptr).isBlack();
         }

@@ -122,7 +122,7 @@ EmissionStats drawEmission(const Light& light, const std::vector<Binning>& bins,
     Rng rng(seed);
     st.power = meanAndError(n, [&] {
         Vec2 uPos(rng.uniform(), rng.uniform()), uDir(rng.uniform(), rng.uniform());
-        std::optional<LightLeSample> s = light.sampleLe(uPos, uDir);
+        std::optional<LightLeSample> s = light.sampleLe(uPos, uDir, nullptr);
         if (!s || !(s->pdfPos > 0) || !(s->pdfDir > 0)) {
             ++st.failed;
             return 0.0;
@@ -360,7 +360,7 @@ TEST(EmissionSampling, TriangleLightPower) {
     const Light& l = lastLight(*scene);
     const Vec3 a(0, 3, 0), e1 = Vec3(2, 3, 0.5f) - a, e2 = Vec3(0.5f, 3.2f, 1.5f) - a;
     Vec3 n = normalize(cross(e1, e2));
-    LightLeSample first = *l.sampleLe({0.3f, 0.3f}, {0.3f, 0.3f});
+    LightLeSample first = *l.sampleLe({0.3f, 0.3f}, {0.3f, 0.3f}, nullptr);
     n = dot(n, first.n) < 0 ? -n : n;
     const int m = 8;
     const double area = 0.5 * length(cross(e1, e2));

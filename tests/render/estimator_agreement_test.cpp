@@ -152,3 +152,77 @@ TEST(EstimatorAgreement, SmoothNormalsAndRefractiveSlab) {
     )";
     expectAgreement(AgreementCase{"smooth normals, slab", scene, {"path", "light", "bdpt"}, 1024, 16, {{"light", 1536}, {"bdpt", 768}}});
 }
+
+// Spectral mode (--color spectral): the same agreements with every spectrum evaluated at
+// each path's wavelengths, light tracing's and BDPT's splats converted through the sensor
+// at the splat, and the image's R, G, B compared as well as its luminance.
+
+// Saturated walls, a gold sphere (measured named spectra) and a blackbody ceiling light.
+TEST(SpectralAgreement, SaturatedBoxUnderBlackbody) {
+    const std::string light = R"(
+        AttributeBegin
+          AreaLightSource "diffuse" "blackbody L" [ 3200 ] "float scale" [ 6 ]
+          Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
+        AttributeEnd)";
+    AgreementCase c{"spectral box", box(R"(
+        Material "conductor" "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k" "float roughness" [ 0.3 ]
+        Shape "sphere" "float radius" [ 0.25 ]
+    )", "5", light), {"path", "light", "bdpt"}, 16};
+    c.spectral = true;
+    expectAgreement(c);
+}
+
+// Dispersion: the caustic of a flint-glass sphere (glass-F11), each refraction keeping only
+// the first wavelength; light tracing and BDPT meet the dispersive vertex on the light
+// subpath, the path tracer on the camera path.
+TEST(SpectralAgreement, DispersiveGlassCaustic) {
+    std::string scene = R"(
+        LookAt 0 0.25 2  0 0 0  0 1 0
+        Camera "perspective" "float fov" [ 20 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 6 ]
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 8 8 8 ]
+          Shape "bilinearmesh" "point3 P" [ -0.4 3 -0.4   0.4 3 -0.4   -0.4 3 0.4   0.4 3 0.4 ]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [ 0.8 0.8 0.8 ]
+        Shape "bilinearmesh" "point3 P" [ -3 0 3   3 0 3   -3 0 -3   3 0 -3 ]
+        AttributeBegin
+          Material "dielectric" "spectrum eta" "glass-F11"
+          Translate 0 1.1 0
+          Shape "sphere" "float radius" [ 0.5 ]
+        AttributeEnd
+    )";
+    // Each refraction keeps one wavelength, so colours vary more per sample than in RGB.
+    AgreementCase c{"spectral dispersive caustic", scene, {"bdpt", "light", "path"}, 384, 16,
+                    {{"light", 1024}, {"path", 1024}}, 0.015};
+    c.spectral = true;
+    expectAgreement(c);
+}
+
+// Lights whose emitted rays light tracing samples from their spectra (sampleLe): a coloured
+// environment, a blackbody distant light and a spot light, seen from above.
+TEST(SpectralAgreement, EnvironmentDistantAndSpotLights) {
+    const std::string scene = R"(
+        LookAt 0 3 0.01  0 0 0  0 1 0
+        Camera "perspective" "float fov" [ 40 ]
+        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 4 ]
+        WorldBegin
+        LightSource "infinite" "rgb L" [ 0.2 0.3 0.6 ]
+        LightSource "distant" "blackbody L" [ 2500 ] "float scale" [ 1.5 ] "point3 from" [ 1 2 0.5 ] "point3 to" [ 0 0 0 ]
+        LightSource "spot" "rgb I" [ 3 0.5 2 ] "point3 from" [ -0.5 1.5 0 ] "point3 to" [ 0 0 0 ]
+            "float coneangle" [ 30 ] "float conedeltaangle" [ 10 ]
+        Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]
+        Shape "bilinearmesh" "point3 P" [ -1.5 0 1.5   1.5 0 1.5   -1.5 0 -1.5   1.5 0 -1.5 ]
+        Material "diffuse" "rgb reflectance" [ 0.1 0.7 0.2 ]
+        Translate 0 0.4 0
+        Shape "sphere" "float radius" [ 0.4 ]
+    )";
+    AgreementCase c{"spectral lights", scene, {"path", "light", "bdpt"}, 16, 16, {{"path", 48}, {"light", 224}, {"bdpt", 40}}};
+    c.spectral = true;
+    expectAgreement(c);
+}

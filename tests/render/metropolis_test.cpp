@@ -208,6 +208,31 @@ TEST_P(Metropolis, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
                                   {{GetParam(), mutations(32, 4)}}, 0.02});
 }
 
+// Spectral mode: the wavelengths are a primary sample of the chain (moved by its mutations,
+// restored by rejections), the target the luminance of the sensor's RGB. The glass caustic
+// through a dispersive flint sphere on a coloured floor (under a larger light than the RGB
+// case's, so that the caustic is less peaked), against spectral BDPT: block, image and
+// per-channel means (agreement.h), sigma across renders. A strategy that misses the glass
+// keeps all four wavelengths even where the sample's other subpath terminated them, as mmlt's
+// single-strategy replay of a bootstrap sample needs.
+TEST_P(Metropolis, AgreesWithBDPTSpectrallyOnADispersiveCaustic) {
+    std::string scene = glassCaustic();
+    auto replace = [&](const std::string& from, const std::string& to) {
+        const size_t at = scene.find(from);
+        ASSERT_NE(at, std::string::npos) << from;
+        scene.replace(at, from.size(), to);
+    };
+    replace(R"("float eta" [ 1.5 ])", R"("spectrum eta" "glass-F11")");
+    replace(R"("rgb reflectance" [ 0.8 0.8 0.8 ])", R"("rgb reflectance" [ 0.8 0.6 0.4 ])");
+    replace(R"("rgb L" [ 27 27 27 ])", R"("rgb L" [ 6.75 6.75 6.75 ])");
+    replace(R"([ -0.15 2.5 -0.15   0.15 2.5 -0.15   -0.15 2.5 0.15   0.15 2.5 0.15 ])",
+            R"([ -0.3 2.5 -0.3   0.3 2.5 -0.3   -0.3 2.5 0.3   0.3 2.5 0.3 ])");
+    AgreementCase c{"spectral dispersive caustic", scene, {"bdpt", GetParam()}, 128, 16, {{GetParam(), mutations(80)}},
+                    0.025};
+    c.spectral = true;
+    expectAgreement(c);
+}
+
 namespace {
 
 // Per path depth, the mean luminance of BDPT's image of that depth (the MIS-weighted

@@ -15,8 +15,13 @@
 //   coated-diffuse floor as RGB: our path tracer shows the same offset where it can render).
 // - A grey scene (grey reflectances, white light, glass of constant index) renders the same
 //   in RGB and spectrally: it is compared with no allowance at all.
-// - Spectral mode (--color spectral) renders as pbrt-v4 does: its cases have no allowance
-//   and a luminance ratio of 1.
+// - Spectral mode (--color spectral) renders as pbrt-v4 does: the Cornell box and the grey box
+//   with no allowance and a luminance ratio of 1; veach-mis with a small allowance for its
+//   reference's fireflies (largest difference beyond 4 sigma R 0.0040, G 0.0022, B 0, where RGB
+//   mode needs 0.019 for red); veach-bidir with its RGB case's allowance for its reference's
+//   noise; caustic-glass with its RGB case's allowance and ratio 0.9815: spectral mode keeps
+//   the 1.8% offset, so it is not the colours but the rough coated-diffuse floor (README,
+//   "Rough coatings").
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -194,7 +199,10 @@ INSTANTIATE_TEST_SUITE_P(Shared, PbrtReference,
                                            Reference{"caustic-glass/caustic-glass-v4-210x300.pbrt", "caustic-glass-bdpt-1024spp.pfm", 16, 8, {0.035, 0.035, 0.035}, 0.9810},
                                            Reference{"grey-box.pbrt", "grey-box-path-16384spp.pfm", 256, 8, {0, 0, 0}, 1.0, true},
                                            Reference{"cornell-box/scene-v4-256.pbrt", "cornell-box-path-4096spp.pfm", 4, 32, {0, 0, 0}, 1.0, false, true},
-                                           Reference{"grey-box.pbrt", "grey-box-path-16384spp.pfm", 256, 8, {0, 0, 0}, 1.0, true, true}),
+                                           Reference{"grey-box.pbrt", "grey-box-path-16384spp.pfm", 256, 8, {0, 0, 0}, 1.0, true, true},
+                                           Reference{"veach-mis/scene-v4-320x180.pbrt", "veach-mis-path-4096spp.pfm", 8, 32, {0.006, 0.003, 0.003}, 1.0, false, true},
+                                           Reference{"veach-bidir/scene-v4-256.pbrt", "veach-bidir-bdpt-512spp.pfm", 16, 8, {0.03, 0.03, 0.03}, 1.0, false, true},
+                                           Reference{"caustic-glass/caustic-glass-v4-210x300.pbrt", "caustic-glass-bdpt-1024spp.pfm", 16, 8, {0.035, 0.035, 0.035}, 0.9815, false, true}),
                          [](const ::testing::TestParamInfo<Reference>& i) {
                              std::string s = std::string(i.param.image) + (i.param.spectral ? "_spectral" : "");
                              for (char& ch : s)

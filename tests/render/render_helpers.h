@@ -16,8 +16,9 @@
 namespace ps::test {
 
 // Renders with `options`, taking the sampler from the scene; progress off. An integrator
-// "mlt:WEIGHTS" is mlt with --mlt-mutations WEIGHTS.
-inline RenderResult renderWith(const std::string& text, RenderOptions opts, const std::string& integrator = "") {
+// "mlt:WEIGHTS" is mlt with --mlt-mutations WEIGHTS. `spectral`: --color spectral.
+inline RenderResult renderWith(const std::string& text, RenderOptions opts, const std::string& integrator = "",
+                               bool spectral = false) {
     setWarningsQuiet(true);
     SceneDescription desc = parseSceneString(text, ".", "<test>");
     auto scene = buildScene(desc);
@@ -26,6 +27,7 @@ inline RenderResult renderWith(const std::string& text, RenderOptions opts, cons
         scene->settings().integrator = "mlt";
         scene->settings().mltMutations = integrator.substr(4);
     }
+    scene->settings().spectral = spectral;
     auto integ = createIntegrator(scene->settings().integrator, *scene);
     opts.sampler = scene->settings().sampler;
     opts.progress = false;
@@ -33,12 +35,12 @@ inline RenderResult renderWith(const std::string& text, RenderOptions opts, cons
 }
 
 inline RenderResult renderString(const std::string& text, int spp, uint64_t seed = 7, int threads = 0,
-                                 const std::string& integrator = "") {
+                                 const std::string& integrator = "", bool spectral = false) {
     RenderOptions opts;
     opts.spp = spp;
     opts.seed = seed;
     opts.threads = threads;
-    return renderWith(text, opts, integrator);
+    return renderWith(text, opts, integrator, spectral);
 }
 
 // Pixels of two images of one size that differ in any bit, and pixels of the first that are
@@ -109,18 +111,23 @@ namespace ps::test {
 struct BlockMeans {
     std::vector<double> mean, stdErr;
     double imageMean = 0, imageStdErr = 0;
+    double channelMean[3] = {0, 0, 0}, channelStdErr[3] = {0, 0, 0};  // the image's R, G, B
 };
 
 inline BlockMeans blockMeans(const std::string& scene, const std::string& integrator, int spp, int renders,
-                             int blocksPerSide, uint64_t seed0 = 100) {
+                             int blocksPerSide, uint64_t seed0 = 100, bool spectral = false) {
     std::vector<double> s, s2;
-    double is = 0, is2 = 0;
+    double is = 0, is2 = 0, cs[3] = {0, 0, 0}, cs2[3] = {0, 0, 0};
     for (int k = 0; k < renders; ++k) {
-        RenderResult r = renderString(scene, spp, seed0 + uint64_t(k), 0, integrator);
+        RenderResult r = renderString(scene, spp, seed0 + uint64_t(k), 0, integrator, spectral);
         RegionStats whole = wholeImage(r.image);
         double iy = 0.2126 * whole.mean[0] + 0.7152 * whole.mean[1] + 0.0722 * whole.mean[2];
         is += iy;
         is2 += iy * iy;
+        for (int c = 0; c < 3; ++c) {
+            cs[c] += whole.mean[c];
+            cs2[c] += whole.mean[c] * whole.mean[c];
+        }
         int bw = r.image.width / blocksPerSide, bh = r.image.height / blocksPerSide;
         s.resize(size_t(blocksPerSide) * blocksPerSide, 0.0);
         s2.resize(s.size(), 0.0);
@@ -139,8 +146,12 @@ inline BlockMeans blockMeans(const std::string& scene, const std::string& integr
         b.mean.push_back(m);
         b.stdErr.push_back(std::sqrt(var / renders));
     }
-    b.imageMean = is / renders;
-    b.imageStdErr = std::sqrt(std::max(0.0, (is2 / renders - b.imageMean * b.imageMean) / (renders - 1)));
+    auto meanAndError = [&](double sum, double sum2, double& mean, double& stdErr) {
+        mean = sum / renders;
+        stdErr = std::sqrt(std::max(0.0, (sum2 / renders - mean * mean) / (renders - 1)));
+    };
+    meanAndError(is, is2, b.imageMean, b.imageStdErr);
+    for (int c = 0; c < 3; ++c) meanAndError(cs[c], cs2[c], b.channelMean[c], b.channelStdErr[c]);
     return b;
 }
 

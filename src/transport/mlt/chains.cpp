@@ -31,6 +31,7 @@ MetropolisIntegrator::MetropolisIntegrator(const Scene& scene, int maxDepth, con
     const Camera::Params& c = scene.camera().params();
     margin_ = scene.filter().radius();
     filmSize_ = Vec2(float(c.xRes) + 2 * margin_.x, float(c.yRes) + 2 * margin_.y);
+    if (scene.settings().spectral) sensor_.emplace(scene.settings());
 }
 
 Spectrum MetropolisIntegrator::Li(const Ray&, SampleContext&) const {
@@ -50,6 +51,14 @@ CameraSample MetropolisIntegrator::filmSample(PrimarySampleSampler& sampler) con
         cs.time = sampler.get1D();
     }
     return cs;
+}
+
+SampledWavelengths* MetropolisIntegrator::wavelengths(PrimarySampleSampler& sampler, ChainEvaluator& ev) const {
+    if (!sensor_) return nullptr;
+    sampler.startStream(BDPTIntegrator::kCameraStream);
+    sampler.seekDimension(bdpt_.subpaths().timeDimension() + 1);
+    ev.lambda = ev.lambdaAfterWalks = SpectralFilm::sampleWavelengths(sampler.get1D());
+    return &ev.lambdaAfterWalks;
 }
 
 namespace {

@@ -19,12 +19,14 @@
 //    gives the error estimate (independent chains, unlike the correlated samples of one).
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <vector>
 #include "mc/primary_sample_sampler.h"
 #include "transport/bdpt.h"
 #include "transport/integrator.h"
 #include "transport/mlt/strategy_choice.h"
 #include "transport/renderer.h"
+#include "transport/spectral_film.h"
 
 namespace ps {
 
@@ -67,6 +69,9 @@ struct ChainEvaluator {
     PathStats stats;
     ChainState sample;  // a bootstrap sample's own state
     std::vector<BDPTIntegrator::PathContribution> contributions;
+    // Spectral mode: the wavelengths of the sample under evaluation, as drawn and as its
+    // walks left them (a dispersive vertex terminates the secondary ones).
+    SampledWavelengths lambda, lambdaAfterWalks;
 };
 
 class MetropolisIntegrator : public Integrator {
@@ -75,6 +80,7 @@ public:
     // Not a per-ray estimator: render() runs renderMetropolis instead.
     Spectrum Li(const Ray& ray, SampleContext& ctx) const final;
     bool splats() const final { return true; }
+    bool supportsSpectral() const final { return true; }
     virtual const char* name() const = 0;
     // The sample the sampler holds (its iteration started): splats and target value. A
     // target that chooses among strategies chooses with the probabilities of `choice`.
@@ -124,11 +130,23 @@ protected:
     // which the film normalises splats, Film::image), and the lens position: the first
     // four values of the camera stream.
     CameraSample filmSample(PrimarySampleSampler& sampler) const;
+    // Spectral mode: the sample's wavelengths, from a camera-stream value past the path's
+    // time (a primary sample like any other: mutations move it, rejections restore it),
+    // held in ev; the walks' copy (ev.lambdaAfterWalks), or null in RGB mode. Call after
+    // filmSample.
+    SampledWavelengths* wavelengths(PrimarySampleSampler& sampler, ChainEvaluator& ev) const;
+    // A contribution at the sample's wavelengths as the chain takes it: the rendering space's
+    // RGB, whose luminance is the target (as in RGB mode) and which is what is splatted.
+    // Only a strategy through a dispersive vertex loses the secondary wavelengths.
+    Spectrum toRendering(const BDPTIntegrator::PathContribution& c, const ChainEvaluator& ev) const {
+        return sensor_ ? sensor_->toRendering(c.L, c.dispersive ? ev.lambdaAfterWalks : ev.lambda) : c.L;
+    }
 
     const Scene& scene_;
     BDPTIntegrator bdpt_;
     MetropolisParams params_;
     Vec2 margin_, filmSize_;
+    std::optional<SpectralFilm> sensor_;  // spectral mode's sensor (empty in RGB mode)
 };
 
 // The end of every Markov-chain render: the image from the film's splats scaled by

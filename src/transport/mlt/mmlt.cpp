@@ -32,10 +32,12 @@ void MMLTIntegrator::bootstrapSample(PrimarySampleSampler& sampler, int depth, d
                                      std::vector<BootstrapState>& out) const {
     out.clear();
     CameraSample cs = filmSample(sampler);
+    SampledWavelengths* lambda = wavelengths(sampler, ev);
     Ray ray = scene_.camera().generateRay(cs);
-    bdpt_.contributions(ray, cs.pFilm, sampler, ev.scratch, ev.stats, ev.contributions, depth);
+    bdpt_.contributions(ray, cs.pFilm, sampler, ev.scratch, ev.stats, ev.contributions, depth, lambda);
     ev.scratch.reset();
     for (BDPTIntegrator::PathContribution& c : ev.contributions) {
+        c.L = toRendering(c, ev);
         const int k = firstOfDepth_[size_t(depth)] + c.s;
         const double weight = scale * c.L.luminance();
         c.L /= choice.pmf(k);  // as evaluate scales it
@@ -73,10 +75,11 @@ void MMLTIntegrator::evaluate(PrimarySampleSampler& sampler, const StrategyChoic
     out.strategy = k;
 
     CameraSample cs = filmSample(sampler);
+    SampledWavelengths* lambda = wavelengths(sampler, ev);
     Ray ray = scene_.camera().generateRay(cs);
     BDPTIntegrator::PathContribution c;
-    if (pmf > 0 && bdpt_.strategyContribution(ray, cs.pFilm, s, t, sampler, ev.scratch, ev.stats, c)) {
-        c.L /= pmf;
+    if (pmf > 0 && bdpt_.strategyContribution(ray, cs.pFilm, s, t, sampler, ev.scratch, ev.stats, c, lambda)) {
+        c.L = toRendering(c, ev) / pmf;
         double f = c.L.luminance();
         if (std::isfinite(f) && f > 0) {
             out.f = f;

@@ -270,7 +270,7 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
         float pmf;
         const Light* light = scene_.sampleLight(uLight, &pmf);
         if (!light || !(pmf > 0)) return false;
-        auto les = light->sampleLe(uPos, uDir);
+        auto les = light->sampleLe(uPos, uDir, nullptr);
         if (!les || !(les->pdfPos > 0) || !(les->pdfDir > 0)) return false;
         MltVertex v;
         v.kind = MltVertex::Kind::Light;
