@@ -4,6 +4,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <exception>
 #include <iostream>
 #include <thread>
 
@@ -44,16 +45,27 @@ int main(int argc, char** argv) {
     render.attach(app);
     ps::McCommand mc;
     mc.attach(app);
+    // The command line is every process's: an error in it (or --help) is met by all, and rank
+    // 0 alone prints it (distributed::failedEverywhere: if only some met it, the job aborts).
+    std::exception_ptr parseError;
+    std::string parseMessage;
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        waitForRootsReport();
-        int code = app.exit(e);
-        return ps::distributed::finish(code == 0 ? ps::kExitOk : ps::kExitBadInput);
+        parseError = std::current_exception();
+        parseMessage = e.what();
+    }
+    if (ps::distributed::failedEverywhere(bool(parseError), parseMessage, ps::kExitBadInput)) {
+        try {
+            std::rethrow_exception(parseError);
+        } catch (const CLI::ParseError& e) {
+            const int code = ps::distributed::isRoot() ? app.exit(e) : e.get_exit_code();
+            return ps::distributed::finish(code == 0 ? ps::kExitOk : ps::kExitBadInput, true);
+        }
     }
     try {
         if (mc.parsed() && ps::distributed::size() > 1)
-            throw ps::InputError("mc runs in one process: start it without mpirun");
+            throw ps::distributed::JobInputError("mc runs in one process: start it without mpirun");
         return ps::distributed::finish(mc.parsed() ? mc.run() : render.run());
     } catch (const ps::distributed::JobInputError& e) {
         // Raised by every process at once: one report, and no process aborts the others.
