@@ -16,17 +16,14 @@
 
 namespace {
 
-// Says what went wrong. In a job of several processes a failure ends the job (finish), and an
-// input error is usually the same on every process: rank 0 reports at once; another rank
-// first waits a moment, in which rank 0's report of the same error ends the job, so only a
-// failure of its own is reported (with its rank).
-void waitForRootsReport() {
-    if (ps::distributed::rank() != 0) std::this_thread::sleep_for(std::chrono::seconds(2));
-}
-
+// Says what went wrong, for a failure met where the processes do not agree on it first (input
+// errors before the render do: distributed::failedEverywhere). In a job of several processes
+// it ends the job (finish). Rank 0 reports at once; another rank first waits a moment, in
+// which rank 0's report of the same error ends the job, so only a failure of its own is
+// reported (with its rank).
 void report(const char* prefix, const char* what) {
     const int rank = ps::distributed::rank();
-    waitForRootsReport();
+    if (rank != 0) std::this_thread::sleep_for(std::chrono::seconds(2));
     std::string where = rank != 0 ? "rank " + std::to_string(rank) + ": " : "";
     std::fprintf(stderr, "%s%s%s\n", where.c_str(), prefix, ps::printableMessage(what).c_str());
 }
