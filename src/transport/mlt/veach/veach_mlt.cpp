@@ -250,10 +250,6 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     if (integrator.space().maxVertices() > BidirectionalMutation::kMaxVertices)
         throw InputError("integrator \"mlt\" supports maxdepth up to " +
                          std::to_string(BidirectionalMutation::kMaxVertices - 2));
-    for (const auto& light : scene.lights())
-        if (light->atInfinity() || light->type() == LightType::DeltaDirection)
-            throw InputError("integrator \"mlt\" does not support infinite or distant lights yet; "
-                             "render the scene with mmlt, bdpt or path");
     if (std::isfinite(scene.settings().maxComponentValue))
         warning("mlt: Film \"maxcomponentvalue\" is not applied to Metropolis renders (a chain's splats are not "
                 "camera samples); the image is not clamped");
