@@ -53,12 +53,12 @@ const char* kMirror = R"(
         AttributeEnd
 )";
 
-// A glass sphere over the floor: a distant light's caustic under it.
+// A glass sphere over the floor: a distant light's caustic under it, seen directly.
 const char* kGlass = R"(
         AttributeBegin
           Material "dielectric" "float eta" [ 1.5 ]
-          Translate -0.3 0.95 0.5
-          Shape "sphere" "float radius" [ 0.25 ]
+          Translate 0.2 0.6 0.7
+          Shape "sphere" "float radius" [ 0.2 ]
         AttributeEnd
 )";
 

@@ -307,8 +307,9 @@ TEST(VeachTransition, BidirectionalMutationProposesADirectionAtInfinityWithItsDe
     for (int k = 0; k < n; ++k) {
         double txy = 0, tyx = 0;
         if (!bd.propose(s.x, rng, arena, stats, y, &txy, &tyx)) continue;
-        if (y.size() != 4 || !atInfinity(y[0]) || !same(y[1].p, s.x[1].p) || !same(y[2].p, s.x[2].p) ||
-            !same(y[3].p, s.x[3].p))
+        // (Replacing the pinhole alone gives x again: its direction must have moved.)
+        if (y.size() != 4 || !atInfinity(y[0]) || same(y[0].ng, s.x[0].ng) || !same(y[1].p, s.x[1].p) ||
+            !same(y[2].p, s.x[2].p) || !same(y[3].p, s.x[3].p))
             continue;
         observed[size_t(directionBin(-y[0].ng))] += 1;
     }
@@ -344,7 +345,7 @@ TEST(VeachTransition, BidirectionalMutationProposesAVertexLitFromInfinityWithIts
                                     "\"rgb L\" [ 3 3 3 ]"),
                 Vec3(0, -1, 0));
     const BidirectionalMutation& bd = s.integrator->bidirectional();
-    const int n = 3000000;
+    const int n = 6000000;
     std::vector<double> observed(kBins * kBins, 0);
     ScratchBuffer arena;
     PathStats stats;
