@@ -250,10 +250,6 @@ void requireVeachMLTSupport(const Scene& scene, const VeachMLTIntegrator& integr
     if (integrator.space().maxVertices() > BidirectionalMutation::kMaxVertices)
         throw InputError("integrator \"mlt\" supports maxdepth up to " +
                          std::to_string(BidirectionalMutation::kMaxVertices - 2));
-    for (const auto& light : scene.lights())
-        if (light->atInfinity() || light->type() == LightType::DeltaDirection)
-            throw InputError("integrator \"mlt\" does not support infinite or distant lights yet; "
-                             "render the scene with mmlt, bdpt or path");
 }
 
 RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integrator, const RenderOptions& options) {
