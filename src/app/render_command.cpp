@@ -257,7 +257,7 @@ void RenderCommand::load(Job& job) {
     if (!maxMemory_.empty()) setMemoryLimit(*parseByteSize(maxMemory_));  // validated by the option
     SceneDescription desc = parseSceneFile(scene_);
     std::unique_ptr<Scene>& scene = job.scene;
-    scene = buildScene(desc);
+    scene = buildScene(desc, color_ == "spectral");
     RenderSettings& settings = scene->settings();
     if (spp_ > 0) settings.spp = spp_;
     if (seed_ >= 0) settings.seed = uint64_t(seed_);
@@ -576,7 +576,7 @@ int RenderCommand::run() {
                     r.seconds, r.meanSpp, r.targetSpp, double(r.stats.cameraPaths) / secs, double(rays),
                     double(r.stats.rays), double(r.stats.shadowRays), double(rays) / secs,
                     (unsigned long long)r.stats.guarded, r.rejectedSamples);
-        std::printf("estimated error: mean relative variance %.3g, efficiency 1/(V T) %.3g\n", r.error.meanRelativeVariance,
+        std::printf("noise estimate: mean relative variance %.3g, efficiency 1/(V T) %.3g\n", r.error.meanRelativeVariance,
                     r.efficiency);
         if (r.distributed.ranks > 1)
             std::printf("%d processes (MPI) | rank 0's collectives: %.3g MB in %.3f s\n", r.distributed.ranks,
