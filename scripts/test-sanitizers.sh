@@ -20,7 +20,7 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # renders, EstimatorAgreement.DiffuseBox, the other LightAgreement and Metropolis cases,
 # Cli.BdptStrategyImagesAndIntegratorChecks).
 skip='PbrtReference|EstimatorAgreement\.(SmoothNormals|GlassSphere)|LightAgreement\.(EmitterInsideGlass|CameraInsideGlass|DiffuseUnderGlass)'
-skip+='|Metropolis\.(AgreesWith|ClosedFurnace|PointLight|EachDepth)|VeachMLT\.(AgreesWith|ClosedFurnace|PointLight|Regenerating|DirectLighting)|VeachMutation\.|MovingCamera\.(PrimarySample|VeachMLT)|BdptStrategies\.|ErrorEstimate\.'
+skip+='|Metropolis\.(AgreesWith|ClosedFurnace|PointLight|EachDepth)|VeachMLT\.(AgreesWith|ClosedFurnace|PointLight|Regenerating|DirectLighting)|VeachMutation\.|VeachMLTInfinityMutation\.|MovingCamera\.(PrimarySample|VeachMLT)|BdptStrategies\.|ErrorEstimate\.'
 exclude=()
 [ "${PS_SANITIZE_ALL:-0}" = 1 ] || exclude=(-E "$skip")
 cd build-asan

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <exception>
 #include <iostream>
 #include <thread>
 
@@ -15,17 +16,14 @@
 
 namespace {
 
-// Says what went wrong. In a job of several processes a failure ends the job (finish), and an
-// input error is usually the same on every process: rank 0 reports at once; another rank
-// first waits a moment, in which rank 0's report of the same error ends the job, so only a
-// failure of its own is reported (with its rank).
-void waitForRootsReport() {
-    if (ps::distributed::rank() != 0) std::this_thread::sleep_for(std::chrono::seconds(2));
-}
-
+// Says what went wrong, for a failure met where the processes do not agree on it first (input
+// errors before the render do: distributed::failedEverywhere). In a job of several processes
+// it ends the job (finish). Rank 0 reports at once; another rank first waits a moment, in
+// which rank 0's report of the same error ends the job, so only a failure of its own is
+// reported (with its rank).
 void report(const char* prefix, const char* what) {
     const int rank = ps::distributed::rank();
-    waitForRootsReport();
+    if (rank != 0) std::this_thread::sleep_for(std::chrono::seconds(2));
     std::string where = rank != 0 ? "rank " + std::to_string(rank) + ": " : "";
     std::fprintf(stderr, "%s%s%s\n", where.c_str(), prefix, ps::printableMessage(what).c_str());
 }
@@ -44,16 +42,27 @@ int main(int argc, char** argv) {
     render.attach(app);
     ps::McCommand mc;
     mc.attach(app);
+    // The command line is every process's: an error in it (or --help) is met by all, and rank
+    // 0 alone prints it (distributed::failedEverywhere: if only some met it, the job aborts).
+    std::exception_ptr parseError;
+    std::string parseMessage;
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        waitForRootsReport();
-        int code = app.exit(e);
-        return ps::distributed::finish(code == 0 ? ps::kExitOk : ps::kExitBadInput);
+        parseError = std::current_exception();
+        parseMessage = e.what();
+    }
+    if (ps::distributed::failedEverywhere(bool(parseError), parseMessage, ps::kExitBadInput)) {
+        try {
+            std::rethrow_exception(parseError);
+        } catch (const CLI::ParseError& e) {
+            const int code = ps::distributed::isRoot() ? app.exit(e) : e.get_exit_code();
+            return ps::distributed::finish(code == 0 ? ps::kExitOk : ps::kExitBadInput, true);
+        }
     }
     try {
         if (mc.parsed() && ps::distributed::size() > 1)
-            throw ps::InputError("mc runs in one process: start it without mpirun");
+            throw ps::distributed::JobInputError("mc runs in one process: start it without mpirun");
         return ps::distributed::finish(mc.parsed() ? mc.run() : render.run());
     } catch (const ps::distributed::JobInputError& e) {
         // Raised by every process at once: one report, and no process aborts the others.

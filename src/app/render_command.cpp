@@ -132,6 +132,17 @@ void gatherWarnings() {
 
 }  // namespace
 
+// What the scene file and the options make, alike on every process.
+struct RenderCommand::Job {
+    std::unique_ptr<Scene> scene;
+    std::vector<std::string> outputs;
+    bool writeVariance = false;
+    std::unique_ptr<Integrator> integrator;
+    RenderOptions opts;  // all but the checkpoints'
+    BDPTIntegrator* bdpt = nullptr;  // the integrator, when it records strategy images
+    nlohmann::json checkpointSettings;  // what must match to resume
+};
+
 void RenderCommand::attach(CLI::App& app) {
     cmd_ = app.add_subcommand("render", "Render a pbrt-v4 scene file");
     cmd_->add_option("scene", scene_, "pbrt-v4 scene file")->required()->check(CLI::ExistingFile);
@@ -242,10 +253,11 @@ void RenderCommand::attach(CLI::App& app) {
     cmd_->add_flag("--quiet", quiet_, "No progress bar or statistics on the terminal");
 }
 
-int RenderCommand::run() {
+void RenderCommand::load(Job& job) {
     if (!maxMemory_.empty()) setMemoryLimit(*parseByteSize(maxMemory_));  // validated by the option
     SceneDescription desc = parseSceneFile(scene_);
-    std::unique_ptr<Scene> scene = buildScene(desc);
+    std::unique_ptr<Scene>& scene = job.scene;
+    scene = buildScene(desc, color_ == "spectral");
     RenderSettings& settings = scene->settings();
     if (spp_ > 0) settings.spp = spp_;
     if (seed_ >= 0) settings.seed = uint64_t(seed_);
@@ -298,27 +310,20 @@ int RenderCommand::run() {
         if (b.width() <= 0 || b.height() <= 0) throw InputError("--crop: the crop window is empty");
         scene->setPixelBounds(b);
     }
-    std::vector<std::string> outputs = outputs_;
-    if (outputs.empty()) outputs.push_back(std::filesystem::path(settings.outputFile).filename().string());
-    // Rank 0 writes every output (the others need not see its file system).
-    const bool root = distributed::isRoot();
-    if (root)
-        for (const std::string& o : outputs) checkWritable(o);
-    const bool writeVariance = std::find(aovs_.begin(), aovs_.end(), "variance") != aovs_.end();
-    std::unique_ptr<Integrator> integrator = createIntegrator(settings.integrator, *scene, mis_);
+    job.outputs = outputs_;
+    if (job.outputs.empty()) job.outputs.push_back(std::filesystem::path(settings.outputFile).filename().string());
+    job.writeVariance = std::find(aovs_.begin(), aovs_.end(), "variance") != aovs_.end();
+    std::unique_ptr<Integrator>& integrator = job.integrator;
+    integrator = createIntegrator(settings.integrator, *scene, mis_);
     const AdaptiveMode adaptive = parseAdaptiveMode(adaptive_);
     if (adaptive != AdaptiveMode::None && integrator->splats())
         throw InputError("--adaptive " + adaptive_ + " needs --integrator path: light tracing, BDPT and Metropolis "
                          "splat paths anywhere on the film, so a pixel's samples do not make its value");
-    BDPTIntegrator* bdpt = nullptr;
+    BDPTIntegrator*& bdpt = job.bdpt;
     if (!strategiesDir_.empty()) {
         bdpt = dynamic_cast<BDPTIntegrator*>(integrator.get());
         if (!bdpt) throw InputError("--bdpt-strategies needs --integrator bdpt (the scene asks for \"" +
                                     settings.integrator + "\")");
-        std::error_code ec;
-        std::filesystem::create_directories(strategiesDir_, ec);
-        if (ec) throw InputError("--bdpt-strategies: cannot create \"" + strategiesDir_ + "\": " + ec.message());
-        checkWritable((std::filesystem::path(strategiesDir_) / "s0_t2.exr").string());
         bdpt->recordStrategies(std::min(settings.maxDepth, 5));  // checks their memory (use --crop if too much)
     }
 
@@ -332,7 +337,8 @@ int RenderCommand::run() {
                          "the Metropolis integrators (pssmlt, mmlt, mlt) do");
     const PixelBounds& bounds = scene->pixelBounds();
     const bool checkpointing = !checkpoint_.empty() || !resume_.empty();
-    nlohmann::json checkpointSettings = {
+    nlohmann::json& checkpointSettings = job.checkpointSettings;
+    checkpointSettings = {
         {"scene_file_hash", checkpointing ? fileHash(scene_) : ""},
         {"input_files", checkpointing ? inputFileHashes(scene_) : nlohmann::json::object()},
         {"integrator", settings.integrator},
@@ -354,33 +360,7 @@ int RenderCommand::run() {
         checkpointSettings["strategy_pilot"] = settings.mltStrategyPilot;
         checkpointSettings["mlt_mutations"] = settings.mltMutations;
     }
-    CheckpointState resumed;
-    if (!resume_.empty()) {
-        // Rank 0 reads it (the others need not see its file system) and says where it stands.
-        distributed::Purpose purpose("checkpoint");
-        std::vector<int64_t> where{0, 1, 0};
-        if (root) {
-            resumed = readCheckpoint(resume_, checkpointSettings);
-            where = {resumed.samplesPerPixel, resumed.passSize, int64_t(resumed.partial.size())};
-        }
-        distributed::broadcastFromRoot(where);
-        resumed.samplesPerPixel = int(where[0]);
-        resumed.passSize = int(where[1]);
-        resumed.partial.resize(size_t(where[2]));
-        distributed::broadcastFromRoot(resumed.partial);
-    }
-    if (!checkpoint_.empty() && root) {
-        const std::string probe = checkpoint_ + ".tmp";
-        std::FILE* f = std::fopen(probe.c_str(), "wb");
-        if (!f) throw InputError("--checkpoint \"" + checkpoint_ + "\": cannot write \"" + probe + "\"");
-        std::fclose(f);
-        std::filesystem::remove(probe);
-    }
-
-    std::signal(SIGINT, onSignal);
-    std::signal(SIGTERM, onSignal);
-
-    RenderOptions opts;
+    RenderOptions& opts = job.opts;
     opts.spp = settings.spp;
     opts.timeLimit = time_;
     opts.threads = threads_;
@@ -392,8 +372,80 @@ int RenderCommand::run() {
     // Only what will be shown or written: a quiet render without --stats or --aov variance
     // leaves the film's luminance moments out (bench/README.md, scene loading).
     opts.errorEstimate = !quiet_ || !statsFile_.empty();
-    opts.varianceImage = writeVariance;
+    opts.varianceImage = job.writeVariance;
     opts.pixelSamples = false;
+    checkRenderable(*scene, *integrator, opts);
+}
+
+void RenderCommand::checkRootsFiles(const Job& job, CheckpointState& resumed) {
+    for (const std::string& o : job.outputs) checkWritable(o);
+    if (job.bdpt) {
+        std::error_code ec;
+        std::filesystem::create_directories(strategiesDir_, ec);
+        if (ec) throw InputError("--bdpt-strategies: cannot create \"" + strategiesDir_ + "\": " + ec.message());
+        checkWritable((std::filesystem::path(strategiesDir_) / "s0_t2.exr").string());
+    }
+    if (!resume_.empty()) resumed = readCheckpoint(resume_, job.checkpointSettings);
+    if (!checkpoint_.empty()) {
+        const std::string probe = checkpoint_ + ".tmp";
+        std::FILE* f = std::fopen(probe.c_str(), "wb");
+        if (!f) throw InputError("--checkpoint \"" + checkpoint_ + "\": cannot write \"" + probe + "\"");
+        std::fclose(f);
+        std::filesystem::remove(probe);
+    }
+}
+
+int RenderCommand::run() {
+    // Input errors are met by every process alike (the same files and options): all stop
+    // together at this point, rank 0 reporting (distributed::failedEverywhere).
+    Job job;
+    std::string error;
+    bool failed = false;
+    try {
+        load(job);
+    } catch (const InputError& e) {
+        failed = true;
+        error = e.what();
+    }
+    if (distributed::failedEverywhere(failed, error, kExitBadInput)) throw distributed::JobInputError(error);
+    Scene* scene = job.scene.get();
+    RenderSettings& settings = scene->settings();
+    const std::vector<std::string>& outputs = job.outputs;
+    const bool writeVariance = job.writeVariance;
+    Integrator* integrator = job.integrator.get();
+    BDPTIntegrator* bdpt = job.bdpt;
+    const nlohmann::json& checkpointSettings = job.checkpointSettings;
+    const bool root = distributed::isRoot();
+    CheckpointState resumed;
+    {
+        // Rank 0 alone checks what it alone writes and reads (the others need not see its file
+        // system): its refusal is the job's, raised by every process.
+        std::string refusal;
+        if (root) {
+            try {
+                checkRootsFiles(job, resumed);
+            } catch (const InputError& e) {
+                refusal = e.what();
+            }
+        }
+        distributed::refuseTogether(!refusal.empty(), refusal);
+    }
+    if (!resume_.empty()) {
+        // Rank 0 says where the checkpoint it read stands.
+        distributed::Purpose purpose("checkpoint");
+        std::vector<int64_t> where{0, 1, 0};
+        if (root) where = {resumed.samplesPerPixel, resumed.passSize, int64_t(resumed.partial.size())};
+        distributed::broadcastFromRoot(where);
+        resumed.samplesPerPixel = int(where[0]);
+        resumed.passSize = int(where[1]);
+        resumed.partial.resize(size_t(where[2]));
+        distributed::broadcastFromRoot(resumed.partial);
+    }
+
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+
+    RenderOptions& opts = job.opts;
     if (!resume_.empty()) opts.resume = &resumed;
     if (!checkpoint_.empty()) {
         opts.checkpointEvery = checkpointEvery_ >= 0 ? checkpointEvery_ : 60;
@@ -524,7 +576,7 @@ int RenderCommand::run() {
                     r.seconds, r.meanSpp, r.targetSpp, double(r.stats.cameraPaths) / secs, double(rays),
                     double(r.stats.rays), double(r.stats.shadowRays), double(rays) / secs,
                     (unsigned long long)r.stats.guarded, r.rejectedSamples);
-        std::printf("estimated error: mean relative variance %.3g, efficiency 1/(V T) %.3g\n", r.error.meanRelativeVariance,
+        std::printf("noise estimate: mean relative variance %.3g, efficiency 1/(V T) %.3g\n", r.error.meanRelativeVariance,
                     r.efficiency);
         if (r.distributed.ranks > 1)
             std::printf("%d processes (MPI) | rank 0's collectives: %.3g MB in %.3f s\n", r.distributed.ranks,

@@ -75,8 +75,8 @@ Roughness roughness(const ParamSet& ps, const TextureRegistry& reg, const std::s
 
 // A dielectric's index: `float` (the first value), or a spectrum. pbrt-v4 then follows one
 // wavelength (dispersion): so does spectral mode; in RGB we keep the green channel's value
-// and say so once.
-IndexOfRefraction etaParam(const ParamSet& ps, const std::string& name) {
+// and say so once (in spectral mode there is nothing to say).
+IndexOfRefraction etaParam(const ParamSet& ps, const std::string& name, bool spectralMode) {
     const Param* p = ps.find(name);
     IndexOfRefraction eta;
     if (p && p->type == ParamType::Float) {
@@ -87,7 +87,7 @@ IndexOfRefraction etaParam(const ParamSet& ps, const std::string& name) {
         static std::atomic<bool> warned{false};
         if (ps.spectrallyVarying(name)) {
             eta.dispersive = ps.getSpectrumSource(name, SpectrumKind::Unbounded);
-            if (!warned.exchange(true))
+            if (!spectralMode && !warned.exchange(true))
                 warning(p->loc, "spectrally varying \"" + name + "\": dispersion is modelled in spectral mode only "
                                 "(--color spectral); RGB mode uses the green channel's value " + std::to_string(s->g) +
                                 " (warned once)");
@@ -321,7 +321,8 @@ std::shared_ptr<SpectrumTexture> createSpectrumTexture(const TextureEntity& e, c
 }
 
 std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet& ps, const TextureRegistry& reg,
-                                         const std::map<std::string, std::shared_ptr<Material>>& named, const std::string& base) {
+                                         const std::map<std::string, std::shared_ptr<Material>>& named, const std::string& base,
+                                         bool spectralMode) {
     const SpectrumKind A = SpectrumKind::Albedo;
     std::shared_ptr<Material> m;
     if (type == "diffuse") {
@@ -331,10 +332,10 @@ std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet
         conductorParams(ps, reg, "", "conductor", eta, k, refl);
         m = std::make_shared<ConductorMaterial>(eta, k, refl, roughness(ps, reg));
     } else if (type == "dielectric") {
-        IndexOfRefraction eta = etaParam(ps, "eta");
+        IndexOfRefraction eta = etaParam(ps, "eta", spectralMode);
         m = std::make_shared<DielectricMaterial>(eta, roughness(ps, reg));
     } else if (type == "thindielectric") {
-        m = std::make_shared<ThinDielectricMaterial>(etaParam(ps, "eta"));
+        m = std::make_shared<ThinDielectricMaterial>(etaParam(ps, "eta", spectralMode));
     } else if (type == "diffusetransmission") {
         m = std::make_shared<DiffuseTransmissionMaterial>(spectrumParam(ps, "reflectance", Spectrum(0.25f), A, reg),
                                                           spectrumParam(ps, "transmittance", Spectrum(0.25f), A, reg),
@@ -343,13 +344,13 @@ std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet
         CoatedDiffuseParams p;
         p.reflectance = spectrumParam(ps, "reflectance", Spectrum(0.5f), A, reg);
         p.roughness = roughness(ps, reg);
-        p.eta = etaParam(ps, "eta");
+        p.eta = etaParam(ps, "eta", spectralMode);
         p.layer = layerParams(ps, reg);
         m = std::make_shared<CoatedDiffuseMaterial>(p);
     } else if (type == "coatedconductor") {
         CoatedConductorParams p;
         p.interfaceRoughness = roughness(ps, reg, "interface.");
-        p.interfaceEta = etaParam(ps, "interface.eta");
+        p.interfaceEta = etaParam(ps, "interface.eta", spectralMode);
         conductorParams(ps, reg, "conductor.", "coatedconductor", p.conductorEta, p.conductorK, p.reflectance);
         p.conductorRoughness = roughness(ps, reg, "conductor.");
         p.layer = layerParams(ps, reg);
@@ -372,6 +373,13 @@ std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet
         m = std::make_shared<MeasuredMaterial>(readNamedBy(ps.loc, [&] { return MeasuredBRDF::load(path); }));
     } else if (type == "hair") {
         m = std::make_shared<HairMaterial>(hairParams(ps, reg));
+    } else if (type == "subsurface") {
+        // Subsurface scattering needs participating media. pbrt-v4 chooses the medium's albedo
+        // so that the surface's multiple-scattering diffuse reflectance is "reflectance" (when
+        // given): a diffuse surface of that reflectance is the nearest stand-in.
+        warning(ps.loc, "material \"subsurface\" needs participating media (subsurface scattering), which are not "
+                        "supported; rendered as diffuse with its \"reflectance\" (0.5 when not given)");
+        return std::make_shared<DiffuseMaterial>(spectrumParam(ps, "reflectance", Spectrum(0.5f), A, reg));
     } else if (type == "interface" || type == "" || type == "none") {
         m = std::make_shared<InterfaceMaterial>();
     } else {

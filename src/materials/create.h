@@ -23,10 +23,11 @@ std::shared_ptr<SpectrumTexture> createSpectrumTexture(const TextureEntity& e, c
 // undefined texture throws InputError at the parameter.
 std::shared_ptr<FloatTexture> floatTextureParam(const ParamSet& params, const std::string& name, float def,
                                                 const TextureRegistry& reg);
-// `named` holds the named materials created so far (mix refers to them).
+// `named` holds the named materials created so far (mix refers to them). `spectralMode`
+// (`--color spectral`) only silences what RGB mode alone lacks (dispersion).
 std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet& params,
                                          const TextureRegistry& reg,
                                          const std::map<std::string, std::shared_ptr<Material>>& named,
-                                         const std::string& baseDirectory);
+                                         const std::string& baseDirectory, bool spectralMode = false);
 
 }  // namespace ps

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -303,6 +304,21 @@ void broadcastBytes(std::vector<char>& bytes) {
 #endif
 }
 
+#if PATHSPACE_HAVE_MPI
+namespace {
+// Rank `from`'s message on every process.
+std::string messageFrom(int from, const std::string& message) {
+    int64_t n = int64_t(message.size());
+    Timed t(double(sizeof n));
+    check(MPI_Bcast(&n, 1, MPI_INT64_T, from, MPI_COMM_WORLD), "broadcast");
+    t.add(double(n));
+    std::string text = gRank == from ? message : std::string(size_t(n), '\0');
+    check(MPI_Bcast(text.data(), int(n), MPI_CHAR, from, MPI_COMM_WORLD), "broadcast");
+    return text;
+}
+}  // namespace
+#endif
+
 std::string firstMessage(bool local, const std::string& message) {
 #if PATHSPACE_HAVE_MPI
     if (gSize > 1) {
@@ -311,17 +327,42 @@ std::string firstMessage(bool local, const std::string& message) {
             Timed t(sizeof mine);
             check(MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD), "error decision");
         }
-        if (first == gSize) return "";
-        int64_t n = int64_t(message.size());
-        Timed t(double(sizeof n));
-        check(MPI_Bcast(&n, 1, MPI_INT64_T, first, MPI_COMM_WORLD), "broadcast");
-        t.add(double(n));
-        std::string text = gRank == first ? message : std::string(size_t(n), '\0');
-        check(MPI_Bcast(text.data(), int(n), MPI_CHAR, first, MPI_COMM_WORLD), "broadcast");
-        return text;
+        return first == gSize ? "" : messageFrom(first, message);
     }
 #endif
     return local ? message : "";
+}
+
+bool failedEverywhere(bool local, const std::string& message, int code) {
+#if PATHSPACE_HAVE_MPI
+    if (gSize > 1) {
+        Purpose purpose("error decisions");
+        // One minimum over both: the lowest failing rank (gSize if none), and 1 only if every
+        // process failed.
+        int mine[2] = {local ? gRank : gSize, local ? 1 : 0}, all[2] = {gSize, 0};
+        {
+            Timed t(sizeof mine);
+            check(MPI_Allreduce(mine, all, 2, MPI_INT, MPI_MIN, MPI_COMM_WORLD), "input check");
+        }
+        if (all[0] == gSize) return false;
+        if (all[1] == 1) return true;
+        const int first = all[0];
+        const std::string text = messageFrom(first, message);
+        if (gRank == 0) {
+            const std::string where = first != 0 ? "rank " + std::to_string(first) + ": " : "";
+            std::fprintf(stderr, "%s%s\n", where.c_str(), printableMessage(text).c_str());
+            std::fflush(stderr);
+            MPI_Abort(MPI_COMM_WORLD, code);
+        }
+        // Rank 0 never joins: this waits for its abort, which ends this process.
+        MPI_Barrier(MPI_COMM_WORLD);
+        std::_Exit(code);
+    }
+#else
+    (void)message;
+    (void)code;
+#endif
+    return local;
 }
 
 void refuseTogether(bool local, const std::string& message) {

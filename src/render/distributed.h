@@ -71,6 +71,17 @@ public:
 // JobInputError with the lowest such rank's `message`.
 void refuseTogether(bool local, const std::string& message);
 
+// Every process calls it at a point all reach before the render (after the command line, after
+// loading the scene), `local` saying whether this process failed there with `message` (an
+// input error). Returns false if none failed, true if every process did (the same files and
+// options give every process the same error: each then ends as after a JobInputError, rank 0
+// reporting its own message). If only some failed, the processes read different inputs (a
+// file readable on one machine only): that is no refusal of the job's settings but a fault of
+// a machine, which the job cannot go on without, so rank 0 reports the lowest failing rank's
+// message (with its rank) and aborts the job with `code` (mpirun adds its note of the abort),
+// the others waiting for it: it does not return.
+bool failedEverywhere(bool local, const std::string& message, int code);
+
 // What every collective above moved and how long it took, over the whole run (this process):
 // in all and by purpose (the label in force when it ran, see Purpose).
 struct Traffic {

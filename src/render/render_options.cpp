@@ -124,8 +124,23 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
 
     // Film.
     const ParamSet& film = desc.film.params;
-    if (desc.film.type != "rgb")
-        warning(desc.film.loc, "Film \"" + desc.film.type + "\" is not supported; using \"rgb\"");
+    // pbrt-v4's other films write the rgb film's image plus more layers: "gbuffer" geometric
+    // ones (position, normals, albedo, variance), "spectral" per-wavelength buckets. Rendered
+    // as "rgb" with one warning saying what is missing; their own parameters are read so that
+    // they do not warn again as unused.
+    if (desc.film.type == "gbuffer") {
+        film.getString("coordinatesystem", "camera");
+        warning(desc.film.loc, "Film \"gbuffer\" is rendered as \"rgb\": only the RGB image is written, without "
+                               "the geometric layers (position, normals, albedo, variance)");
+    } else if (desc.film.type == "spectral") {
+        film.getInt("nbuckets", 16);
+        film.getFloat("lambdamin", 360);
+        film.getFloat("lambdamax", 830);
+        warning(desc.film.loc, "Film \"spectral\" is rendered as \"rgb\": only the RGB image is written, without "
+                               "the per-wavelength layers");
+    } else if (desc.film.type != "rgb") {
+        warning(desc.film.loc, "Film \"" + desc.film.type + "\" is not a film type of pbrt-v4; using \"rgb\"");
+    }
     int xRes = film.getInt("xresolution", 1280), yRes = film.getInt("yresolution", 720);
     // Only a guard for the arithmetic (pixel counts fit 40 bits); what a film may cost is the
     // memory limit's to say, once the render knows its integrator and threads.
@@ -145,7 +160,7 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
     const float diagonalMm = film.getFloat("diagonal", 35);  // only the realistic camera uses it
     s.whiteBalance = film.getFloat("whitebalance", 0);
     if (s.whiteBalance < 0) throw InputError(film.find("whitebalance")->loc, "Film: \"whitebalance\" must not be negative");
-    if (s.whiteBalance != 0)
+    if (s.whiteBalance != 0 && !s.spectral)
         warning(desc.film.loc, "Film: \"whitebalance\" is applied in spectral mode only (--color spectral)");
     if (film.getString("sensor", "cie1931") != "cie1931")
         warning(desc.film.loc, "Film: only the \"cie1931\" sensor is supported; using it");
@@ -154,7 +169,7 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
         const Param* p = film.find("maxcomponentvalue");
         throw InputError(p ? p->loc : desc.film.loc, "Film: \"maxcomponentvalue\" must be positive");
     }
-    film.reportUnused("Film \"rgb\"");
+    film.reportUnused("Film \"" + desc.film.type + "\"");
 
     applyCamera(desc, scene, xRes, yRes, diagonalMm);
     scene.setFilter(createFilter(desc.filter));

@@ -70,7 +70,7 @@ void SceneBuilder::createMaterials() {
                 for (const std::string& n : m->params.getStrings("materials"))
                     if (!named_.count(n)) ready = false;
             if (ready)
-                named_[m->name] = createMaterial(m->type, m->params, textures_, named_, base);
+                named_[m->name] = createMaterial(m->type, m->params, textures_, named_, base, scene_.settings().spectral);
             else
                 next.push_back(m);
         }
@@ -81,7 +81,7 @@ void SceneBuilder::createMaterials() {
         pending = std::move(next);
     }
     for (const MaterialEntity& m : desc_.materials)
-        scene_.materials_.push_back(createMaterial(m.type, m.params, textures_, named_, base));
+        scene_.materials_.push_back(createMaterial(m.type, m.params, textures_, named_, base, scene_.settings().spectral));
     // The scene owns every material; shapes keep raw pointers.
     for (const auto& [name, m] : named_) scene_.materials_.push_back(m);
 }
@@ -307,8 +307,9 @@ void SceneBuilder::build() {
     scene_.lightDistribution_ = AliasTable(power);
 }
 
-std::unique_ptr<Scene> buildScene(const SceneDescription& desc) {
+std::unique_ptr<Scene> buildScene(const SceneDescription& desc, bool spectral) {
     auto scene = std::make_unique<Scene>();
+    scene->settings().spectral = spectral;
     SceneBuilder(desc, *scene).build();
     return scene;
 }

@@ -10,8 +10,10 @@ namespace ps {
 struct TextureRegistry;
 
 // Throws InputError for problems in the scene (missing files, bad values); warns for
-// unsupported features and falls back to the nearest supported behaviour.
-std::unique_ptr<Scene> buildScene(const SceneDescription& desc);
+// unsupported features and falls back to the nearest supported behaviour. `spectral` is the
+// colour mode (`--color spectral`), known while building so that warnings about what RGB
+// mode lacks are given only in RGB mode.
+std::unique_ptr<Scene> buildScene(const SceneDescription& desc, bool spectral = false);
 
 // Individual steps, exposed for the builder's own files and for tests.
 // `textures` resolves a "texture alpha".

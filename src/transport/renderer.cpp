@@ -105,17 +105,23 @@ void filmResults(const Film& film, double lightPaths, const RenderSettings& sett
     result.efficiency = efficiency(result.error.meanRelativeVariance, result.seconds);
 }
 
-RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options) {
+void checkRenderable(const Scene& scene, const Integrator& integrator, const RenderOptions& options) {
     if (options.adaptive != AdaptiveMode::None && integrator.splats())
         throw InputError("adaptive sampling needs an integrator whose pixels come from their own samples "
                          "(path); light tracing, BDPT and Metropolis splat onto the whole film");
-    auto* veach = dynamic_cast<const VeachMLTIntegrator*>(&integrator);
-    auto* mlt = dynamic_cast<const MetropolisIntegrator*>(&integrator);
     if ((options.resume || options.checkpoint) && options.adaptive != AdaptiveMode::None)
         throw InputError("adaptive sampling (--adaptive) does not yet write or resume checkpoints: path, light and "
                          "bdpt with uniform sampling and the Metropolis integrators do");
     if (scene.settings().spectral) requireSpectralSupport(scene, integrator, scene.settings().integrator);
     requireFilmMemory(scene, integrator, options);
+    if (auto* veach = dynamic_cast<const VeachMLTIntegrator*>(&integrator)) requireVeachMLTSupport(scene, *veach);
+    if (auto* mlt = dynamic_cast<const MetropolisIntegrator*>(&integrator)) requireMetropolisSupport(scene, *mlt);
+}
+
+RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options) {
+    checkRenderable(scene, integrator, options);
+    auto* veach = dynamic_cast<const VeachMLTIntegrator*>(&integrator);
+    auto* mlt = dynamic_cast<const MetropolisIntegrator*>(&integrator);
     // Markov chains have their own driver: a chain is not a per-camera-ray estimate.
     if (mlt) return renderMetropolis(scene, *mlt, options);
     if (veach) return renderVeachMLT(scene, *veach, options);

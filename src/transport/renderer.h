@@ -122,8 +122,12 @@ struct RenderResult {
 void filmResults(const Film& film, double lightPaths, const RenderSettings& settings, const RenderOptions& options,
                  RenderResult& result);
 
-// Throws InputError before anything is allocated if the film would exceed the memory limit
-// (util/memory_limit.h), naming the scene's Film directive.
+// Throws InputError if the integrator cannot render the scene with these options, or if the
+// film would exceed the memory limit (util/memory_limit.h, naming the scene's Film
+// directive): every process alike, before anything is allocated. render() starts with it.
+void checkRenderable(const Scene& scene, const Integrator& integrator, const RenderOptions& options);
+
+// Throws InputError as checkRenderable.
 // Over several processes (render/distributed.h) every process calls it; each takes its share
 // of the samples (Metropolis: of the chains), and rank 0's result holds the whole render, the
 // same image as one process's; the others' results hold only their statistics.

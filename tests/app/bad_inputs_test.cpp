@@ -29,6 +29,14 @@ const std::string kPlyHeader =
     "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
     "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
 
+// kHeader with another Film line: `film` is its type and parameters.
+std::string filmScene(const std::string& film) {
+    std::string s = kHeader;
+    size_t at = s.find("Film \"rgb\""), end = s.find('\n', at);
+    return s.substr(0, at) + "Film " + film + " \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ]" +
+           s.substr(end) + "Shape \"sphere\"";
+}
+
 struct Case {
     std::string name;
     std::string scene;                                      // written as <name>.pbrt
@@ -81,6 +89,22 @@ std::vector<Case> cases() {
          kHeader + "Material \"dielectric\" \"rgb eta\" [ 1.5 1.5 1.5 ]\nShape \"sphere\"\n"
                    "Material \"dielectric\" \"spectrum eta\" [ 300 1.33 900 1.33 ]\nShape \"sphere\"",
          {}, 0, {}, "", {"dispersion", "warning"}},
+        // Spectral mode disperses, so it has nothing to warn about.
+        {"no_dispersion_warning_in_spectral_mode",
+         kHeader + "Material \"dielectric\" \"rgb eta\" [ 1.4 1.5 1.6 ]\nShape \"sphere\"", {}, 0, {}, "--color spectral",
+         {"dispersion", "warning"}},
+        {"whitebalance_warning_in_rgb_mode", filmScene("\"rgb\" \"float whitebalance\" [ 5000 ]"), {}, 0,
+         {":3:1:", "whitebalance", "spectral mode only"}},
+        {"no_whitebalance_warning_in_spectral_mode", filmScene("\"rgb\" \"float whitebalance\" [ 5000 ]"), {}, 0, {},
+         "--color spectral", {"whitebalance", "warning"}},
+        // pbrt-v4's gbuffer and spectral films: one warning each saying what is not written,
+        // their own parameters read (not reported as unused).
+        {"gbuffer_film", filmScene("\"gbuffer\" \"string coordinatesystem\" \"world\""), {}, 0,
+         {":3:1:", "Film \"gbuffer\" is rendered as \"rgb\"", "geometric layers"}, "", {"unused", "coordinatesystem"}},
+        {"spectral_film",
+         filmScene("\"spectral\" \"integer nbuckets\" [ 8 ] \"float lambdamin\" [ 400 ] \"float lambdamax\" [ 700 ]"), {}, 0,
+         {":3:1:", "Film \"spectral\" is rendered as \"rgb\"", "per-wavelength layers"}, "", {"unused", "nbuckets"}},
+        {"unknown_film", filmScene("\"negative\""), {}, 0, {":3:1:", "\"negative\" is not a film type"}},
         {"degenerate_lookat",
          "LookAt 0 0 0  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\nShape \"sphere\"\n", {}, 2, {":1:1:", "LookAt"}},
         {"unknown_parameter", kHeader + "Shape \"sphere\" \"float radiuss\" [ 1 ]", {}, 0, {":7:", "radiuss"}},

@@ -47,6 +47,21 @@ protected:
     }
 };
 
+// `mpirun -n 1 pathspace ARGS0 : -n 1 pathspace ARGS1`: rank 0 and rank 1 started with
+// different arguments (Open MPI's several-programs form), so that one process alone meets
+// what the other does not, as processes on different machines may.
+Result runTwoDifferentProcesses(const std::string& args0, const std::string& args1) {
+    std::string cmd;
+    for (const std::string& a : mpirunArgs(1)) cmd += a + " ";
+    return runCommand(cmd + args0 + " : -n 1 " + PATHSPACE_BINARY + " " + args1);
+}
+
+int occurrences(const std::string& text, const std::string& what) {
+    int n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+}
+
 }  // namespace
 
 // The path tracer (Sobol sampler, the default) over 1, 2 and 4 processes with 1 or 2 threads
@@ -383,11 +398,6 @@ AttributeBegin
   Shape "bilinearmesh" "point3 P" [ -0.2 1 -0.2   0.2 1 -0.2   -0.2 1 0.2   0.2 1 0.2 ]
 AttributeEnd
 )";
-    auto occurrences = [](const std::string& text, const std::string& what) {
-        int n = 0;
-        for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-        return n;
-    };
     const std::string warned = write("warned.pbrt", base + "Shape \"sphere\" \"float radius\" [ 0.2 ]\n");
     const Result w = runMpi(2, "render --quiet " + warned + " --spp 4 -o " + path("w.pfm") + " --stats " + path("w.json"));
     ASSERT_EQ(w.status, 0) << w.out;
@@ -408,10 +418,65 @@ AttributeEnd
     EXPECT_FALSE(fs::exists(path("c.pfm")));
 }
 
+// An input error met before the render (a syntax error in the scene, a missing Include, a
+// bad option on the command line) is every process's: rank 0 reports it once and every
+// process ends with status 2, none aborting the job (mpirun prints no MPI_ABORT note, nor
+// the error its help system logs when an abort cuts it short). Met by one process only (a
+// file that process alone reads), it still aborts the job, rank 0 naming the failing rank.
+TEST_F(Mpi, InputErrorBeforeTheRenderIsEveryProcesss) {
+    PS_SKIP_WITHOUT_MPI();
+    const std::string syntax =
+        write("syntax.pbrt", "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
+                             "Shape \"sphere\" \"float radius\" [ 1 ] ]\n");
+    const std::string include = write("include.pbrt", "WorldBegin\nInclude \"nothere.pbrt\"\n");
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"render --quiet " + syntax + " -o " + path("a.pfm"), "syntax.pbrt:4:37: error: expected a directive"},
+        {"render --quiet " + include + " -o " + path("a.pfm"), "include.pbrt:2:1: error: Include: cannot read the file"},
+        {"render --quiet " + scene() + " --spp 0 -o " + path("a.pfm"), "--spp: expected a positive number"},
+        {"render --quiet " + scene() + " --mlt-direct 1 -o " + path("a.pfm"), "--mlt-direct renders direct lighting"},
+        {"render --quiet " + scene() + " -o " + path("a.txt"), "unsupported extension"},
+    };
+    for (const auto& [args, message] : cases) {
+        const Result r = runMpi(2, args);
+        EXPECT_EQ(r.status, 2) << args << "\n" << r.out;
+        EXPECT_EQ(occurrences(r.out, message), 1) << args << "\n" << r.out;
+        EXPECT_EQ(occurrences(r.out, "rank 1"), 0) << r.out;
+        EXPECT_EQ(occurrences(r.out, "MPI_ABORT"), 0) << args << "\n" << r.out;
+        EXPECT_EQ(occurrences(r.out, "ORTE_ERROR_LOG"), 0) << args << "\n" << r.out;
+    }
+    EXPECT_FALSE(fs::exists(path("a.pfm")));
+
+    const std::string good = "render --quiet " + scene() + " -o " + path("b.pfm");
+    const Result r = runTwoDifferentProcesses(good, "render --quiet " + include + " -o " + path("b.pfm"));
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_EQ(occurrences(r.out, "rank 1: "), 1) << r.out;
+    EXPECT_EQ(occurrences(r.out, "include.pbrt:2:1: error: Include: cannot read the file"), 1) << r.out;
+    EXPECT_FALSE(fs::exists(path("b.pfm")));
+}
+
+// A warning that only rank 1 meets (its scene file, otherwise the same, has a parameter that
+// no directive uses) reaches rank 0 after the render, which prints it once and counts it.
+TEST_F(Mpi, WarningMetOnlyOffRankZeroIsPrintedOnce) {
+    PS_SKIP_WITHOUT_MPI();
+    std::string text = kSkyScene;
+    const std::string plain = write("plain.pbrt", text);
+    const size_t film = text.find("Film \"rgb\"");
+    ASSERT_NE(film, std::string::npos);
+    text.insert(film + 10, " \"float bogus\" [ 1 ]");
+    const std::string bogus = write("bogus.pbrt", text);
+    const std::string options = " --spp 4 -o " + path("w.pfm") + " --stats " + path("w.json");
+    const Result r = runTwoDifferentProcesses("render --quiet " + plain + options, "render --quiet " + bogus + options);
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(occurrences(r.out, "unused parameter \"float bogus\""), 1) << r.out;
+    EXPECT_EQ(occurrences(r.out, "bogus.pbrt:"), 1) << r.out;
+    EXPECT_EQ(stats("w.json")["warnings"], 1);
+}
+
 // reduction_bytes counts every collective of the render, by purpose, and each purpose what
 // the code sends: for the path tracer on 2 processes, the film's reduction (each pixel's
 // 128-bit sums and its count, the film's other count, the statistics gathered with them),
-// a stop decision after each of the 4 passes and one after the render, the warnings' size;
+// a stop decision after each of the 4 passes and one after the render, the warnings' size,
+// the decisions whether any process met an input error before the render;
 // for pssmlt, the same splat film, every chain's counts and at least the bootstrap's weights
 // and a film per checkpoint. The purposes add up to the total.
 TEST_F(Mpi, ReductionBytesCountEveryTransfer) {
@@ -435,7 +500,10 @@ TEST_F(Mpi, ReductionBytesCountEveryTransfer) {
     EXPECT_EQ(p["film"], pixels * kPixelBytes + 8 + kStatistics);
     EXPECT_EQ(p["stop decisions"], 4 * 4 + 4);
     EXPECT_EQ(p["warnings"], 8);
-    EXPECT_EQ(p.size(), 3u);
+    // Whether any process met an input error: after the command line and the scene (two ints
+    // each), and in rank 0's checks of its outputs (one).
+    EXPECT_EQ(p["error decisions"], 2 * 8 + 4);
+    EXPECT_EQ(p.size(), 4u);
 
     const std::string furnace = write("furnace.pbrt", kFurnace);
     const Result r = runMpi(2, "render --quiet " + furnace + " --integrator pssmlt --spp 64 --bootstrap 3000 --chains 13 "

@@ -110,3 +110,23 @@ TEST(PbrtShapesReference, HairOnSurfaces) {
 TEST(PbrtShapesReference, HairOnCurves) {
     expectPbrtReference("hair-curves.pbrt", "hair-curves-4096spp.exr", 4096, 64, 0.015);
 }
+
+// The image-driven lights: goniometric (its equal-area map, frame and intensity), projection
+// (the slide's orientation, fov and scale) and an area light's emission image (looked up at
+// (u, 1 - v)), each asymmetric so that a flip in any axis shows.
+TEST(PbrtShapesReference, ImageLights) {
+    expectPbrtReference("lights.pbrt", "lights-4096spp.exr", 4096, 64);
+}
+
+// Texture mappings (planar, spherical, cylindrical, uv), procedural textures (checkerboard,
+// dots, wrinkled noise, directionmix), a checkerboard alpha cut-out and its shadow, and a
+// sphere moving during the shutter (ActiveTransform), texture filtering off in pbrt-v4.
+TEST(PbrtShapesReference, TexturesAlphaAndMotion) {
+    expectPbrtReference("textures-alpha-motion.pbrt", "textures-alpha-motion-4096spp.exr", 4096, 128);
+}
+
+// Camera "spherical", equal-area mapping: the octahedral square's folds and orientation
+// (film centre up, corners down), every pixel an equal solid angle.
+TEST(PbrtShapesReference, SphericalCamera) {
+    expectPbrtReference("spherical-camera.pbrt", "spherical-camera-4096spp.exr", 4096, 64);
+}

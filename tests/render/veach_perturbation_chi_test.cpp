@@ -74,18 +74,24 @@ struct Rect {
     }
 };
 
-// The scene: rectangles, a point light and the pinhole at the origin looking along +z.
+// The scene: rectangles, a point light (or a distant light whose light travels along
+// `distant`) and the pinhole at the origin looking along +z.
 struct Model {
     std::vector<Rect> rects;
     D3 light;
+    std::optional<D3> distant;
 
     std::string text() const {
         std::ostringstream s;
         s << "LookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\" \"float fov\" [ " << kFov
           << " ]\nFilm \"rgb\" \"integer xresolution\" [ " << kRes << " ] \"integer yresolution\" [ " << kRes
           << " ]\nPixelFilter \"box\"\nWorldBegin\n";
-        s << "LightSource \"point\" \"rgb I\" [ 1 1 1 ] \"point3 from\" [ " << light.x << " " << light.y << " " << light.z
-          << " ]\n";
+        if (distant)
+            s << "LightSource \"distant\" \"rgb L\" [ 1 1 1 ] \"point3 from\" [ 0 0 0 ] \"point3 to\" [ " << distant->x << " "
+              << distant->y << " " << distant->z << " ]\n";
+        else
+            s << "LightSource \"point\" \"rgb I\" [ 1 1 1 ] \"point3 from\" [ " << light.x << " " << light.y << " "
+              << light.z << " ]\n";
         for (const Rect& r : rects) {
             s << (r.mirror ? "Material \"conductor\" \"rgb reflectance\" [ 0.9 0.9 0.9 ] \"float roughness\" [ 0 ]\n"
                            : "Material \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n");
@@ -389,6 +395,59 @@ TEST(VeachPerturbationChiSquare, CausticFromAMirror) {
         },
         [&](Rng& rng) -> std::optional<D3> {
             auto c = m.chain(m.light, offsets.direction(rng, w0), 1);
+            if (!c || !m.visible(c->back(), {})) return {};
+            return c->back();
+        },
+        [&](const MltPath& y) { return tx / t(y); }, 2);
+}
+
+// Caustic perturbation from a distant light, L S D E (path_space.h: x0 a direction): the
+// direction stays and the ray's point on the disk at infinity moves by the documented offset
+// (length in [1e-4, 0.1] times the scene's radius, density proportional to 1 / length), the
+// parallel ray reflects in a mirror floor to a new point of a wall, joined to the lens. T's
+// Jacobian in the pseudo-measure: disk area to the wall's by finite differences of the model,
+// times the mirror's factor with A at infinity, the limit |cos at M| / |MB|^2 of the one above.
+TEST(VeachPerturbationChiSquare, CausticFromADistantLightInAMirror) {
+    Model model;
+    model.rects = {{{-3, -3, 3}, {6, 0, 0}, {0, 6, 0}, false}, {{-2, -1, 0.5}, {4, 0, 0}, {0, 0, 2}, true}};
+    const D3 d = unit({0, -1, 1});
+    model.distant = d;
+    Perturbed s(model);
+    Ray ray;
+    const MltVertex lens = s.lens(&ray);
+    const MltVertex light = s.light();
+    ASSERT_TRUE(atInfinity(light));
+    ASSERT_NEAR(light.ng.z, d.z, 1e-6);
+    // The parallel ray that meets the mirror at (0, -1, 2) and the wall at (0, 0, 3).
+    const D3 o0 = D3{0, -1, 2} - 10.0 * d;
+    ray = Ray{Vec3(float(o0.x), float(o0.y), float(o0.z)), light.ng};
+    const MltVertex mirror = s.trace(ray, true);
+    Ray next;
+    ASSERT_TRUE(s.space().followSpecular(mirror, ray, true, TransportMode::Importance, next));
+    const MltVertex wall = s.trace(next, false);
+    s.x = {light, mirror, wall, lens};
+    s.finish();
+    const Perturbations& p = s.integrator->perturbations();
+    ASSERT_TRUE(p.causticApplies(s.x));
+    const Model& m = s.model;
+    const D3 t1 = unit(cross(d, {1, 0, 0})), s1 = cross(d, t1);
+    auto t = [&](const MltPath& z) {
+        const D3 mp = of(z[1].p), w = of(z[2].p), o = mp - 10.0 * d;
+        const double area = jacobian([&](double a, double b) { return m.chain(o + a * t1 + b * s1, d, 1)->back(); }, 1e-4);
+        const double db = norm(w - mp);
+        return area * std::fabs(dot(m.rects[1].normal(), d)) / (db * db);
+    };
+    const double tx = t(s.x);
+    const double R = s.scene->boundsRadius();
+    const Window window{&m.rects[0], of(wall.p), 0.3};
+    check(
+        "caustic perturbation, distant light, mirror onto a wall", window, 1000000,
+        [&](Rng& rng, ScratchBuffer& a, PathStats& st, MltPath& y, double* ratio) {
+            return p.caustic(s.x, rng, a, st, y, ratio);
+        },
+        [&](Rng& rng) -> std::optional<D3> {
+            const double r = R * 1e-4 * std::pow(0.1 / 1e-4, rng.uniformDouble()), phi = 2 * kPi * rng.uniformDouble();
+            auto c = m.chain(o0 + r * std::cos(phi) * t1 + r * std::sin(phi) * s1, d, 1);
             if (!c || !m.visible(c->back(), {})) return {};
             return c->back();
         },

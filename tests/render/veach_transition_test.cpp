@@ -18,6 +18,7 @@
 #include "../materials/stats.h"
 #include "mc/estimator.h"
 #include "render_helpers.h"
+#include "temp_images.h"
 #include "transport/mlt/veach/veach_mlt.h"
 
 using namespace ps;
@@ -51,7 +52,9 @@ struct PathSetup {
     ScratchBuffer arena;
     MltPath x;  // light, floor, wall, lens
 
-    explicit PathSetup(const std::string& text = kScene) {
+    // With `travel` non-zero, x0 is the scene's light at infinity instead, its light
+    // travelling along `travel` (a distant light's own direction whatever `travel` says).
+    explicit PathSetup(const std::string& text = kScene, Vec3 travel = Vec3()) {
         setWarningsQuiet(true);
         scene = buildScene(parseSceneString(text, ".", "<test>"));
         integrator = std::make_unique<VeachMLTIntegrator>(*scene, 5, MetropolisParams{});
@@ -67,6 +70,18 @@ struct PathSetup {
         EXPECT_TRUE(space.trace(spawnRay(wall.p, wall.ng, normalize(Vec3(0.2f, 0, 0.8f) - wall.p), 0), arena, stats, floor));
         EXPECT_NEAR(floor.p.y, 0.0f, 1e-3f);
         x = {light[0], floor, wall, lens};
+        if (travel.x != 0 || travel.y != 0 || travel.z != 0) {
+            MltVertex& x0 = x[0];
+            x0 = MltVertex();
+            x0.kind = MltVertex::Kind::Light;
+            for (const auto& l : scene->lights())
+                if (l->atInfinity()) x0.light = l.get();
+            EXPECT_TRUE(x0.light != nullptr);
+            x0.delta = x0.light->isDelta();
+            if (x0.delta) travel = x0.light->sampleLe(Vec2(0.5f, 0.5f), Vec2(0.5f, 0.5f))->ray.d;
+            x0.ng = x0.ns = normalize(travel);
+            EXPECT_TRUE(atInfinity(x0));
+        }
         Vec2 raster;
         EXPECT_GT(space.contribution(x, &raster).luminance(), 0.0f);
     }
@@ -248,4 +263,105 @@ TEST(VeachTransition, BidirectionalMutationProposesWithItsDensityThroughACoating
     std::vector<double> e, v;
     expectedCounts(s, 1, Surface::Floor, n, [&](const MltPath& z) { return bd.transition(s.x, z, 1, 1, 1); }, e, v);
     expectFit("bidirectional, floor vertex through a coating", observed, e, v);
+}
+
+namespace {
+
+// The transition tests' scene with a light at infinity added: an image infinite light (a
+// dim map with two bright spots, +z of the map turned to +y) or a distant light.
+std::string withLightAtInfinity(const std::string& light) {
+    std::string text = kScene;
+    text.replace(text.find("WorldBegin") + 10, 0, "\n" + light + "\n");
+    return text;
+}
+
+// Equal-area bins over the sphere of directions: z = cos theta by rows, phi by columns.
+int directionBin(Vec3 w) {
+    const float phi = std::atan2(w.y, w.x) + float(kPi);
+    return std::min(kBins - 1, int((w.z + 1) / 2 * kBins)) * kBins + std::min(kBins - 1, int(phi / (2 * kPi) * kBins));
+}
+
+}  // namespace
+
+// The bidirectional mutation replacing a light vertex at infinity (a direction, in the
+// solid-angle measure: path_space.h) and nothing else: the new direction comes from the
+// camera side (the floor's cosine lobe, a ray that escapes) or from the light side (the
+// image light's own distribution, joined to the floor by a shadow ray along it); T sums
+// both. Histogrammed over the sphere against T integrated over each bin.
+TEST(VeachTransition, BidirectionalMutationProposesADirectionAtInfinityWithItsDensity) {
+    TempImages tmp("veach-transition-sky");
+    Image map(8, 8);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) map.set(x, y, Spectrum((x == 3 && y == 4) || (x == 1 && y == 2) ? 60.0f : 0.3f));
+    const std::string light = "AttributeBegin\nRotate -90 1 0 0\nLightSource \"infinite\" \"string filename\" [ \"" +
+                              tmp.write("sky.pfm", map) + "\" ]\nAttributeEnd";
+    PathSetup s(withLightAtInfinity(light), Vec3(0.3f, -1, 0.2f));
+    const BidirectionalMutation& bd = s.integrator->bidirectional();
+    const PathSpace& space = s.integrator->space();
+    const int n = 1500000;
+    std::vector<double> observed(kBins * kBins, 0);
+    ScratchBuffer arena;
+    PathStats stats;
+    Rng rng(21);
+    MltPath y;
+    for (int k = 0; k < n; ++k) {
+        double txy = 0, tyx = 0;
+        if (!bd.propose(s.x, rng, arena, stats, y, &txy, &tyx)) continue;
+        // (Replacing the pinhole alone gives x again: its direction must have moved.)
+        if (y.size() != 4 || !atInfinity(y[0]) || same(y[0].ng, s.x[0].ng) || !same(y[1].p, s.x[1].p) ||
+            !same(y[2].p, s.x[2].p) || !same(y[3].p, s.x[3].p))
+            continue;
+        observed[size_t(directionBin(-y[0].ng))] += 1;
+    }
+    // T over each bin: uniform directions within it (solid angle 4 pi / kBins^2 each).
+    std::vector<double> e(kBins * kBins, 0), v(kBins * kBins, 0);
+    Rng urng(17);
+    const double binSolidAngle = 4 * kPi / (kBins * kBins);
+    for (int bz = 0; bz < kBins; ++bz)
+        for (int bp = 0; bp < kBins; ++bp) {
+            RunningStats t;
+            for (int k = 0; k < 256; ++k) {
+                const float z = -1 + 2 * (bz + urng.uniform()) / kBins;
+                const float phi = float(2 * kPi) * (bp + urng.uniform()) / kBins - float(kPi);
+                const float r = std::sqrt(std::max(0.0f, 1 - z * z));
+                const Vec3 toLight(r * std::cos(phi), r * std::sin(phi), z);
+                MltPath z2 = s.x;
+                z2[0].ng = z2[0].ns = -toLight;
+                const bool joins = space.visible(z2[0], z2[1], stats);
+                t.add(joins ? bd.transition(s.x, z2, 0, 1, 1) * binSolidAngle * n : 0.0);
+            }
+            e[size_t(bz * kBins + bp)] = t.mean();
+            v[size_t(bz * kBins + bp)] = t.standardError() * t.standardError();
+        }
+    expectFit("bidirectional, direction at infinity", observed, e, v);
+}
+
+// The bidirectional mutation replacing the floor vertex after a distant light (a delta
+// direction): from the camera side (scattered at the wall, joined along the light's
+// direction), or, when x0 is replaced too, from the disk at infinity (its area density
+// times |cos| at the floor); T sums both ways.
+TEST(VeachTransition, BidirectionalMutationProposesAVertexLitFromInfinityWithItsDensity) {
+    PathSetup s(withLightAtInfinity("LightSource \"distant\" \"point3 from\" [ 0.4 1 -0.3 ] \"point3 to\" [ 0 0 0 ] "
+                                    "\"rgb L\" [ 3 3 3 ]"),
+                Vec3(0, -1, 0));
+    const BidirectionalMutation& bd = s.integrator->bidirectional();
+    const int n = 6000000;
+    std::vector<double> observed(kBins * kBins, 0);
+    ScratchBuffer arena;
+    PathStats stats;
+    Rng rng(23);
+    MltPath y;
+    for (int k = 0; k < n; ++k) {
+        double txy = 0, tyx = 0;
+        if (!bd.propose(s.x, rng, arena, stats, y, &txy, &tyx)) continue;
+        if (y.size() != 4 || y[0].light != s.x[0].light || same(y[1].p, s.x[1].p) || !same(y[2].p, s.x[2].p) ||
+            !same(y[3].p, s.x[3].p))
+            continue;
+        const int b = binOf(Surface::Floor, y[1].p);
+        if (b >= 0) observed[size_t(b)] += 1;
+    }
+    std::vector<double> e, v;
+    expectedCounts(s, 1, Surface::Floor, n,
+                   [&](const MltPath& z) { return bd.transition(s.x, z, 0, 2, 2) + bd.transition(s.x, z, 1, 1, 1); }, e, v);
+    expectFit("bidirectional, floor vertex lit from infinity", observed, e, v);
 }

@@ -208,10 +208,15 @@ void MetropolisIntegrator::bootstrapSample(PrimarySampleSampler& sampler, int, d
     if (ev.sample.f > 0) out.push_back({ev.sample.strategy, scale * ev.sample.f, ev.sample.f});
 }
 
+void requireMetropolisSupport(const Scene& scene, const MetropolisIntegrator& integrator) {
+    if (!scene.camera().hasImportance())
+        throw InputError(std::string("integrator \"") + integrator.name() +
+                         "\" splats every path onto the film and needs a perspective camera");
+}
+
 RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& integrator, const RenderOptions& options) {
     const std::string name = integrator.name();
-    if (!scene.camera().hasImportance())
-        throw InputError("integrator \"" + name + "\" splats every path onto the film and needs a perspective camera");
+    requireMetropolisSupport(scene, integrator);
     if (std::isfinite(scene.settings().maxComponentValue))
         warning(name + ": Film \"maxcomponentvalue\" is not applied to Metropolis renders (a chain's splats are "
                        "not camera samples); the image is not clamped");

@@ -35,7 +35,8 @@ bool LensSubpathMutation::propose(const MltPath& x, Rng& rng, ScratchBuffer& are
     while (true) {
         if (m + int(camera.size()) >= space_.maxVertices()) return false;
         MltVertex v;
-        if (!space_.trace(ray, arena, stats, v)) return false;
+        // A subpath that ends at the light (m = 0) may end at infinity.
+        if (!space_.trace(ray, arena, stats, v, m == 0)) return false;
         camera.push_back(v);
         if (m == 0 ? v.light != nullptr : !v.delta) break;  // the subpath's end
         if (!v.isSpecularSurface() || !space_.scatter(camera, TransportMode::Radiance, rng, ray)) return false;

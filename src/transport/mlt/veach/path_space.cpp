@@ -10,7 +10,7 @@ namespace ps {
 
 namespace {
 
-Vec3 unitTo(const MltVertex& from, const MltVertex& to) { return normalize(to.p - from.p); }
+Vec3 unitTo(const MltVertex& from, const MltVertex& to) { return directionTo(from, to); }
 
 // The ray leaving the lens vertex towards `to`, at the path's time (where the camera is then).
 Ray fromLens(const MltVertex& lens, const MltVertex& to) {
@@ -23,8 +23,12 @@ Vec3 mirror(Vec3 w) { return reflect(w, Vec3(0, 0, 1)); }
 // The normal a ray leaving v is offset along (the lens and points have none).
 Vec3 offsetNormal(const MltVertex& v) { return v.kind == MltVertex::Kind::Lens ? Vec3() : v.ng; }
 
-// The area density at `to` of a direction density pdfDir at `from`.
+// The area density at `to` of a direction density pdfDir at `from`. A vertex at infinity
+// keeps its solid-angle density; from one, pdfDir is a density per unit area of the disk at
+// infinity facing its direction, which projects onto `to` with |cos| (path_space.h).
 double toArea(double pdfDir, const MltVertex& from, const MltVertex& to) {
+    if (atInfinity(to)) return pdfDir;
+    if (atInfinity(from)) return pdfDir * cosAt(to, from.ng);
     Vec3 d = to.p - from.p;
     double d2 = double(lengthSquared(d));
     if (!(d2 > 0)) return 0;
@@ -84,13 +88,15 @@ Spectrum PathSpace::contribution(const MltPath& x, Vec2* pRaster) const {
     // other integrator renders (a camera ray never hits it; BDPT has no such strategy).
     if (k == 1 && x[0].delta) return {};
     auto geometry = [](const MltVertex& a, const MltVertex& b) {
+        // An edge to infinity: the cosine at its finite end alone (solid-angle measure).
+        if (atInfinity(a)) return cosAt(b, a.ng);
         Vec3 d = b.p - a.p;
         float d2 = lengthSquared(d);
         if (!(d2 > 0)) return 0.0f;
         Vec3 w = d / std::sqrt(d2);
         return cosAt(a, w) * cosAt(b, w) / d2;
     };
-    Spectrum f = x[0].light->L(x[0].p, x[0].ng, x[0].uv, unitTo(x[0], x[1]), nullptr) * geometry(x[0], x[1]);
+    Spectrum f = emitted(x[0], x[1]) * geometry(x[0], x[1]);
     for (int i = 1; i < k && !f.isBlack(); ++i) {
         const MltVertex& v = x[size_t(i)];
         if (v.kind != MltVertex::Kind::Surface || !v.bxdf) return {};
@@ -114,6 +120,7 @@ double PathSpace::lightDensity(const MltPath& x, int i, Lobes lobes) const {
     const MltVertex& v = x[size_t(i)];
     if (i == 0) {
         if (!v.light || k < 1) return 0;
+        if (atInfinity(v)) return infinityDensity(v);
         float pdfPos, pdfDir;
         v.light->pdfLe(v.p, v.ng, unitTo(v, x[1]), &pdfPos, &pdfDir);
         // A point light's position is a delta of unit weight (the light reports no density
@@ -127,6 +134,8 @@ double PathSpace::lightDensity(const MltPath& x, int i, Lobes lobes) const {
     if (i == 1) {
         float pdfPos;
         u.light->pdfLe(u.p, u.ng, w, &pdfPos, &pdfDir);
+        // From infinity: the disk's area density, projected onto v by toArea.
+        if (atInfinity(u)) pdfDir = pdfPos;
     } else {
         if (u.kind != MltVertex::Kind::Surface || !u.bxdf) return 0;
         bsdf(u, unitTo(u, x[size_t(i - 2)]), w, TransportMode::Importance, nullptr, &pdfDir);
@@ -162,7 +171,8 @@ double PathSpace::cameraDensity(const MltPath& x, int i, Lobes lobes) const {
 
 bool PathSpace::connectible(const MltPath& x, int i) const {
     const int k = int(x.size()) - 1;
-    if (i == 0) return x[0].light != nullptr;  // distant lights are refused by the integrator
+    // At infinity: the join is a shadow ray along the direction (a distant light's too).
+    if (i == 0) return x[0].light != nullptr;
     if (i == k) return x[size_t(k)].kind == MltVertex::Kind::Lens;
     return x[size_t(i)].isNonSpecularSurface();
 }
@@ -182,6 +192,10 @@ bool PathSpace::canContinue(int size, TransportMode mode) const {
 
 bool PathSpace::visible(const MltVertex& a, const MltVertex& b, PathStats& stats) const {
     ++stats.shadowRays;
+    if (atInfinity(a) || atInfinity(b)) {
+        const MltVertex& from = atInfinity(a) ? b : a;
+        return !scene_.occluded(spawnRay(from.p, offsetNormal(from), directionTo(from, atInfinity(a) ? a : b), from.time));
+    }
     return !scene_.occluded(spawnRayTo(a.p, offsetNormal(a), b.p, a.time));
 }
 
@@ -189,7 +203,7 @@ double PathSpace::areaFactor(const MltPath& x, int from, int to) { return toArea
 
 bool PathSpace::reflects(const MltPath& x, int i) {
     const MltVertex& v = x[size_t(i)];
-    return dot(x[size_t(i - 1)].p - v.p, v.ng) * dot(x[size_t(i + 1)].p - v.p, v.ng) > 0;
+    return dot(directionTo(v, x[size_t(i - 1)]), v.ng) * dot(directionTo(v, x[size_t(i + 1)]), v.ng) > 0;
 }
 
 bool PathSpace::followSpecular(const MltVertex& v, const Ray& ray, bool reflect, TransportMode mode, Ray& next) const {
@@ -216,11 +230,21 @@ void PathSpace::rebind(MltVertex& v, ScratchBuffer& arena) {
     v.bxdf = surfaceBxDF(si, arena);
 }
 
-bool PathSpace::trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex& out) const {
+bool PathSpace::trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex& out, bool escape) const {
     for (int passThroughs = 0; passThroughs <= 1024; ++passThroughs) {
         SurfaceInteraction si;
         ++stats.rays;
-        if (!scene_.intersect(ray, si)) return false;
+        if (!scene_.intersect(ray, si)) {
+            if (!escape || scene_.infiniteLights().empty()) return false;
+            // The vertex at infinity of every infinite light (path_space.h): any of them names it.
+            out = MltVertex();
+            out.kind = MltVertex::Kind::Light;
+            out.light = scene_.infiniteLights()[0];
+            out.p = ray.o;
+            out.ng = out.ns = -ray.d;
+            out.time = ray.time;
+            return true;
+        }
         out = MltVertex();
         out.si = si;
         const BxDF* bxdf = surfaceBxDF(si, arena);
@@ -275,13 +299,19 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
         MltVertex v;
         v.kind = MltVertex::Kind::Light;
         v.light = light;
-        v.delta = light->type() == LightType::DeltaPosition;
+        v.delta = light->isDelta();
         v.p = les->ray.o;
         v.ng = v.ns = les->n;
         v.uv = les->uv;
         v.time = time;
-        side.push_back(v);
         ray = spawnRay(v.p, v.ng, les->ray.d, time);
+        if (light->atInfinity()) {
+            // A direction (path_space.h); the ray starts on the disk at infinity.
+            v.ng = v.ns = les->ray.d;
+            ray = les->ray;
+            ray.time = time;
+        }
+        side.push_back(v);
         --count;
     } else if (mode == TransportMode::Radiance && side.size() <= 1) {
         // A film point uniform over the film widened by the filter radius (where the
@@ -301,7 +331,8 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
     }
     while (count > 0) {
         MltVertex next;
-        if (!trace(ray, arena, stats, next)) return false;
+        // A camera walk may end at infinity (scatter cannot continue from there).
+        if (!trace(ray, arena, stats, next, mode == TransportMode::Radiance)) return false;
         side.push_back(next);
         if (--count > 0 && !scatter(side, mode, rng, ray)) return false;
     }
@@ -341,6 +372,29 @@ bool PathSpace::scatter(std::vector<MltVertex>& side, TransportMode mode, Rng& r
     if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) return false;
     ray = spawnRay(v.p, v.ng, v.frame.toWorld(bs->wi), v.time);
     return true;
+}
+
+double PathSpace::infinityDensity(const MltVertex& v) const {
+    if (v.delta) return double(scene_.lightPmf(v.light));
+    double pdf = 0;
+    for (const Light* light : scene_.infiniteLights()) {
+        float pdfPos, pdfDir;
+        light->pdfLe(Vec3(), Vec3(), v.ng, &pdfPos, &pdfDir);
+        pdf += double(scene_.lightPmf(light)) * pdfDir;
+    }
+    return pdf;
+}
+
+Spectrum PathSpace::emitted(const MltVertex& x0, const MltVertex& x1) const {
+    if (!atInfinity(x0)) return x0.light->L(x0.p, x0.ng, x0.uv, unitTo(x0, x1), nullptr);
+    if (x0.delta) {
+        // A distant light: its radiance along its own direction (a delta of unit weight).
+        auto li = x0.light->sampleLi(LightSampleContext{x1.p, x1.ng}, Vec2(0.5f, 0.5f));
+        return li && dot(li->wi, x0.ng) < -0.9999f ? li->L : Spectrum();
+    }
+    Spectrum L;
+    for (const Light* light : scene_.infiniteLights()) L += light->Le(Ray{x1.p, -x0.ng}, nullptr);
+    return L;
 }
 
 }  // namespace ps

@@ -13,7 +13,23 @@
 //    "density" for the discrete probability of choosing that lobe (both times one delta);
 //  - the pinhole's position and a point light's are deltas of unit weight;
 //  - the lens has the viewing direction as its normal, so the geometry term of the last
-//    edge carries the lens cosine that the importance We expects.
+//    edge carries the lens cosine that the importance We expects;
+//  - a light vertex at infinity (an infinite or a distant light: atInfinity) is a direction,
+//    not a point. The thesis' path space (ch. 8) takes each vertex in the area measure of
+//    the scene's surfaces; a vertex at infinity takes the solid-angle measure of the sphere
+//    of directions instead (as BDPT's vertices do, README "Metropolis"), so that:
+//      the geometry term of its edge is |cos| at the other vertex alone (no distance);
+//      its density from the light side is the lights' direction density (summed over the
+//      infinite lights: the vertex stands for all of them, whose radiance f sums, as an
+//      escaped camera ray of BDPT does), or for a distant light a delta of unit weight;
+//      the next vertex's density from the light side is the area density of the disk at
+//      infinity that the emitted rays start from, times |cos| there (the disk faces the
+//      direction);
+//      its density from the camera side is the solid-angle density of the direction
+//      scattered at its neighbour, met by a ray that escapes the scene (zero for a distant
+//      light's delta direction);
+//    and a join to it is a shadow ray along its direction. Its `ng` holds the direction
+//    the light travels (into the scene), so cosAt(x0, edge) is 1.
 #pragma once
 #include <atomic>
 #include <vector>
@@ -31,7 +47,7 @@ namespace ps {
 struct MltVertex {
     enum class Kind : uint8_t { Light, Surface, Lens };
     Kind kind = Kind::Surface;
-    bool delta = false;  // surfaces: specular lobes only (or a mixed surface's mirror role); lights: a delta position
+    bool delta = false;  // surfaces: specular lobes only (or a mixed surface's mirror role); lights: a delta position or direction
     // A layered surface (BxDF::stochastic): sampled by PathSpace's own mixture of known
     // density, its coating's mirror reflection (probability R(wo), the Fresnel reflectance)
     // or a cosine lobe on wo's side. `delta` is then this path's choice at the vertex: the
@@ -80,7 +96,7 @@ public:
     // established when they are made), with the film position it lands at; zero where any
     // factor is.
     Spectrum contribution(const MltPath& x, Vec2* pRaster) const;
-    // Area density (solid angle for nothing here: no vertex is at infinity) of vertex i when
+    // Area density (solid angle for a light vertex at infinity) of vertex i when
     // generated from the light side, given vertices i - 1 and i - 2, and from the camera side,
     // given i + 1 and i + 2. Vertex 0 from the light side: the light's choice and position;
     // the last from the camera side: the lens position.
@@ -91,7 +107,9 @@ public:
     double lightDensity(const MltPath& x, int i, Lobes lobes = Lobes::Sampled) const;
     double cameraDensity(const MltPath& x, int i, Lobes lobes = Lobes::Sampled) const;
     // The factor |cos at x[to]| / d^2 that turns a unit direction density at x[from] into an
-    // area density at x[to].
+    // area density at x[to]; 1 for x[to] at infinity (its measure is solid angle); for x[from]
+    // at infinity, |cos at x[to]|, turning a unit area density on the disk at infinity that
+    // faces the direction into an area density at x[to].
     static double areaFactor(const MltPath& x, int from, int to);
     // Whether a connection (a deterministic edge) can end at vertex i of x: the light
     // endpoint, the lens, or a surface with a non-specular lobe.
@@ -137,10 +155,20 @@ public:
     // Traces the ray to the next vertex (passing through interfaces): false if it escapes, or
     // if it meets a layered surface whose mirror part lies under a smooth coating (then
     // sawUnsupportedSurface() turns true: the renderer refuses the scene).
-    bool trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex& out) const;
+    // With `escape`, a ray that leaves the scene ends on the infinite lights, if the scene
+    // has any: `out` is then a light vertex at infinity (a camera-side walk's end).
+    bool trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex& out, bool escape = false) const;
     // Continues a retraced specular chain at specular vertex v, reached along `ray`, by the
     // lobe that reflects or transmits as asked: the next ray, or false if v has no such lobe.
     bool followSpecular(const MltVertex& v, const Ray& ray, bool reflect, TransportMode mode, Ray& next) const;
+
+    // The direction density, per solid angle, with which a light walk starts at infinity
+    // vertex v: the infinite lights' own summed (each chosen with its probability), or a
+    // distant light's choice (its direction a delta of unit weight).
+    double infinityDensity(const MltVertex& v) const;
+    // The radiance x0 sends towards x1 (an area light's, a point light's intensity, the sum
+    // of the infinite lights' along the direction, a distant light's).
+    Spectrum emitted(const MltVertex& x0, const MltVertex& x1) const;
 
 private:
     // The BSDF at surface vertex v for light arriving from direction wi and leaving along wo
@@ -154,6 +182,19 @@ private:
     Vec2 margin_, filmSize_;
     mutable std::atomic<bool> unsupportedSurface_{false};
 };
+
+// Whether v is a light vertex at infinity (an infinite or a distant light; see the top).
+inline bool atInfinity(const MltVertex& v) {
+    return v.kind == MltVertex::Kind::Light && v.light && v.light->atInfinity();
+}
+
+// The unit direction from vertex `from` towards vertex `to`, either of which may lie at
+// infinity (its `ng` is the direction its light travels).
+inline Vec3 directionTo(const MltVertex& from, const MltVertex& to) {
+    if (atInfinity(to)) return -to.ng;
+    if (atInfinity(from)) return from.ng;
+    return normalize(to.p - from.p);
+}
 
 // |cos| at v of the direction w (1 for a point without a normal).
 inline float cosAt(const MltVertex& v, Vec3 w) {

@@ -1,6 +1,7 @@
 #include "transport/mlt/veach/perturbations.h"
 
 #include <cmath>
+#include <limits>
 
 namespace ps {
 
@@ -81,7 +82,7 @@ bool Perturbations::lens(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer
     for (MltVertex& v : y) PathSpace::rebind(v, arena);
     for (int i = k - 1; i >= end; --i) {
         MltVertex v;
-        if (!space_.trace(ray, arena, stats, v)) return false;
+        if (!space_.trace(ray, arena, stats, v, i == 0)) return false;  // x0 may lie at infinity
         const MltVertex& old = x[size_t(i)];
         if (i > 0 && old.isSpecularSurface() && !v.takeSpecularRole()) return false;
         y[size_t(i)] = v;
@@ -91,7 +92,7 @@ bool Perturbations::lens(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer
             if (!space_.followSpecular(v, ray, PathSpace::reflects(x, i), TransportMode::Radiance, ray)) return false;
         } else {
             if (!v.isNonSpecularSurface()) return false;
-            if (i > end) ray = spawnRay(v.p, v.ng, perturbDirection(normalize(x[size_t(i - 1)].p - old.p), rng), v.time);
+            if (i > end) ray = spawnRay(v.p, v.ng, perturbDirection(directionTo(old, x[size_t(i - 1)]), rng), v.time);
         }
     }
     if (end > 0 && !space_.visible(y[size_t(end - 1)], y[size_t(end)], stats)) return false;
@@ -119,7 +120,25 @@ bool Perturbations::caustic(const MltPath& x, Rng& rng, ScratchBuffer& arena, Pa
     y = x;
     for (MltVertex& v : y) PathSpace::rebind(v, arena);
     const MltVertex& from = y[size_t(m)];
-    Ray ray = spawnRay(from.p, from.ng, perturbDirection(normalize(x[size_t(m + 1)].p - from.p), rng), from.time);
+    Ray ray;
+    if (atInfinity(from)) {
+        // x0 is a direction, which stays; its ray, a point of the disk at infinity facing
+        // it, moves by an offset of length in [theta1, theta2] times the scene's radius
+        // (density proportional to 1 / length, uniform azimuth): symmetric, and of unit
+        // density in the disk's area, which areaFactor(z, 0, 1) turns into x1's.
+        const Scene& scene = space_.scene();
+        const double R = scene.boundsRadius();
+        const double r = R * sizes_.theta1 * std::pow(sizes_.theta2 / sizes_.theta1, rng.uniformDouble());
+        const double phi = 2 * kPi * rng.uniformDouble();
+        const Frame f = Frame::fromNormal(from.ng);
+        const Vec3 x1 = x[1].p;
+        // Back along the direction past the scene's bounding sphere, then sideways.
+        const float back = float(2 * R) + length(x1 - scene.boundsCenter());
+        const Vec3 o = x1 - from.ng * back + f.s * float(r * std::cos(phi)) + f.t * float(r * std::sin(phi));
+        ray = Ray{o, from.ng, std::numeric_limits<float>::infinity(), from.time};
+    } else {
+        ray = spawnRay(from.p, from.ng, perturbDirection(directionTo(from, x[size_t(m + 1)]), rng), from.time);
+    }
     for (int i = m + 1; i <= k - 1; ++i) {
         MltVertex v;
         if (!space_.trace(ray, arena, stats, v)) return false;

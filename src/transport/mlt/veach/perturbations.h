@@ -12,7 +12,9 @@
 //    until a D vertex that connects (caustics seen through glass);
 //  - caustic perturbation: paths ending (D|L) S+ D E: the direction leaving the (D|L)
 //    vertex is perturbed likewise, the specular chain retraced to a new D vertex, which
-//    connects to the lens.
+//    connects to the lens. From a light at infinity (a direction, path_space.h) the
+//    direction stays and the ray's point on the disk at infinity moves instead, by an offset
+//    of length in [theta1, theta2] times the scene's radius;
 // Each offset's density is symmetric (the same from y back to x), so T(y -> x) / T(x -> y)
 // is the ratio of the Jacobians from the offsets to the area measure of the moved vertices:
 // the retraced vertices' densities with the path's own lobes forced (their choice is not
@@ -25,7 +27,7 @@ namespace ps {
 struct PerturbationSizes {
     double r1 = 0.1;               // pixels
     double imageFraction = 0.05;   // r2: a disc of this fraction of the image's area
-    double theta1 = 1e-4, theta2 = 0.1;  // radians
+    double theta1 = 1e-4, theta2 = 0.1;  // radians (and, times the scene's radius, disk offsets)
 };
 
 class Perturbations {

@@ -244,16 +244,16 @@ void loadChain(const PathCodec& codec, ByteReader in, Chain& ch) {
 
 }  // namespace
 
-RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integrator, const RenderOptions& options) {
+void requireVeachMLTSupport(const Scene& scene, const VeachMLTIntegrator& integrator) {
     if (!scene.camera().hasImportance())
         throw InputError("integrator \"mlt\" splats every path onto the film and needs a perspective camera");
     if (integrator.space().maxVertices() > BidirectionalMutation::kMaxVertices)
         throw InputError("integrator \"mlt\" supports maxdepth up to " +
                          std::to_string(BidirectionalMutation::kMaxVertices - 2));
-    for (const auto& light : scene.lights())
-        if (light->atInfinity() || light->type() == LightType::DeltaDirection)
-            throw InputError("integrator \"mlt\" does not support infinite or distant lights yet; "
-                             "render the scene with mmlt, bdpt or path");
+}
+
+RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integrator, const RenderOptions& options) {
+    requireVeachMLTSupport(scene, integrator);
     if (std::isfinite(scene.settings().maxComponentValue))
         warning("mlt: Film \"maxcomponentvalue\" is not applied to Metropolis renders (a chain's splats are not "
                 "camera samples); the image is not clamped");

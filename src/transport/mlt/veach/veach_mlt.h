@@ -57,6 +57,8 @@ private:
 
 // The Markov-chain driver: options.spp mutations per film pixel (crop region); threads,
 // seed, time limit, cancellation and progress as for render().
+// Throws InputError for what mlt does not render (before any work: every process alike).
+void requireVeachMLTSupport(const Scene& scene, const VeachMLTIntegrator& integrator);
 RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integrator, const RenderOptions& options);
 
 }  // namespace ps
