@@ -21,7 +21,7 @@ inline RenderResult renderWith(const std::string& text, RenderOptions opts, cons
                                bool spectral = false) {
     setWarningsQuiet(true);
     SceneDescription desc = parseSceneString(text, ".", "<test>");
-    auto scene = buildScene(desc);
+    auto scene = buildScene(desc, spectral);
     if (!integrator.empty()) scene->settings().integrator = integrator;
     if (integrator.rfind("mlt:", 0) == 0) {
         scene->settings().integrator = "mlt";
