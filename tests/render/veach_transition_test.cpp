@@ -78,7 +78,7 @@ struct PathSetup {
                 if (l->atInfinity()) x0.light = l.get();
             EXPECT_TRUE(x0.light != nullptr);
             x0.delta = x0.light->isDelta();
-            if (x0.delta) travel = x0.light->sampleLe(Vec2(0.5f, 0.5f), Vec2(0.5f, 0.5f))->ray.d;
+            if (x0.delta) travel = x0.light->sampleLe(Vec2(0.5f, 0.5f), Vec2(0.5f, 0.5f), nullptr)->ray.d;
             x0.ng = x0.ns = normalize(travel);
             EXPECT_TRUE(atInfinity(x0));
         }
