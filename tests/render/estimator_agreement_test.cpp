@@ -39,18 +39,10 @@ std::string box(const std::string& contents, const std::string& integratorDepth 
     )" + contents;
 }
 
-}  // namespace
-
-TEST(EstimatorAgreement, DiffuseBox) {
-    expectAgreement(AgreementCase{"diffuse box", box(R"(
-        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ]
-        Shape "sphere" "float radius" [ 0.2 ]
-    )"), {"path", "light", "bdpt"}, 16});
-}
-
-// The sphere itself is out of view (above the frame); its caustic on the floor is in it.
-TEST(EstimatorAgreement, GlassSphereCaustic) {
-    std::string scene = R"(
+// A glass sphere (index `eta`, a parameter list) under an area light, out of view above the
+// frame; its caustic on the floor is in it.
+std::string glassSphereCaustic(const std::string& eta) {
+    return R"(
         LookAt 0 0.25 2  0 0 0  0 1 0
         Camera "perspective" "float fov" [ 20 ]
         Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
@@ -64,11 +56,25 @@ TEST(EstimatorAgreement, GlassSphereCaustic) {
         Material "diffuse" "rgb reflectance" [ 0.8 0.8 0.8 ]
         Shape "bilinearmesh" "point3 P" [ -3 0 3   3 0 3   -3 0 -3   3 0 -3 ]
         AttributeBegin
-          Material "dielectric" "float eta" [ 1.5 ]
+          Material "dielectric" )" + eta + R"(
           Translate 0 1.1 0
           Shape "sphere" "float radius" [ 0.5 ]
         AttributeEnd
     )";
+}
+
+}  // namespace
+
+TEST(EstimatorAgreement, DiffuseBox) {
+    expectAgreement(AgreementCase{"diffuse box", box(R"(
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ]
+        Shape "sphere" "float radius" [ 0.2 ]
+    )"), {"path", "light", "bdpt"}, 16});
+}
+
+// The sphere itself is out of view (above the frame); its caustic on the floor is in it.
+TEST(EstimatorAgreement, GlassSphereCaustic) {
+    const std::string scene = glassSphereCaustic(R"("float eta" [ 1.5 ])");
     expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", "light", "path"}, 384, 16, {{"light", 768}, {"path", 832}}});
 }
 
@@ -176,25 +182,7 @@ TEST(SpectralAgreement, SaturatedBoxUnderBlackbody) {
 // the first wavelength; light tracing and BDPT meet the dispersive vertex on the light
 // subpath, the path tracer on the camera path.
 TEST(SpectralAgreement, DispersiveGlassCaustic) {
-    std::string scene = R"(
-        LookAt 0 0.25 2  0 0 0  0 1 0
-        Camera "perspective" "float fov" [ 20 ]
-        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
-        PixelFilter "box"
-        Integrator "path" "integer maxdepth" [ 6 ]
-        WorldBegin
-        AttributeBegin
-          AreaLightSource "diffuse" "rgb L" [ 8 8 8 ]
-          Shape "bilinearmesh" "point3 P" [ -0.4 3 -0.4   0.4 3 -0.4   -0.4 3 0.4   0.4 3 0.4 ]
-        AttributeEnd
-        Material "diffuse" "rgb reflectance" [ 0.8 0.8 0.8 ]
-        Shape "bilinearmesh" "point3 P" [ -3 0 3   3 0 3   -3 0 -3   3 0 -3 ]
-        AttributeBegin
-          Material "dielectric" "spectrum eta" "glass-F11"
-          Translate 0 1.1 0
-          Shape "sphere" "float radius" [ 0.5 ]
-        AttributeEnd
-    )";
+    const std::string scene = glassSphereCaustic(R"("spectrum eta" "glass-F11")");
     // Each refraction keeps one wavelength, so colours vary more per sample than in RGB.
     AgreementCase c{"spectral dispersive caustic", scene, {"bdpt", "light", "path"}, 384, 16,
                     {{"light", 1024}, {"path", 1024}}, 0.015};

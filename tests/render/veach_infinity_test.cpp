@@ -14,6 +14,7 @@
 
 #include "agreement.h"
 #include "mlt_scenes.h"
+#include "mutation_cases.h"
 #include "render_helpers.h"
 #include "temp_images.h"
 
@@ -99,53 +100,23 @@ TEST(VeachMLTInfinity, AgreesWithBDPTUnderADistantLightThroughGlass) {
     expectAgreement(AgreementCase{"distant light, glass", distantLightThroughGlass(), {"bdpt", "mlt"}, 64, 16, {{"mlt", 128}}, 0.02});
 }
 
-namespace {
-
-struct InfinityMutationCase {
-    const char* name;
-    std::string weights;
-    std::string (*scene)();
-    int bdptSpp, mltSpp;
-    const char* applies;  // the mutation that must have been proposed and accepted
-};
-
-void PrintTo(const InfinityMutationCase& c, std::ostream* os) { *os << c.name; }
-
-}  // namespace
-
-class VeachMLTInfinityMutation : public ::testing::TestWithParam<InfinityMutationCase> {};
+class VeachMLTInfinityMutation : public ::testing::TestWithParam<MutationCase> {};
 
 // Each perturbation alone beside the bidirectional mutation, on chains that end at the light
 // at infinity: the image against BDPT's, and the perturbation proposed and accepted, but not
 // always.
-TEST_P(VeachMLTInfinityMutation, WithTheBidirectionalOneAgreesWithBDPT) {
-    const InfinityMutationCase& c = GetParam();
-    const std::string integrator = "mlt:" + c.weights;
-    expectAgreement(AgreementCase{c.name, c.scene(), {"bdpt", integrator}, c.bdptSpp, 16, {{integrator, c.mltSpp}}, 0.02});
-    const RenderResult r = renderString(c.scene(), c.mltSpp, 1, 0, integrator);
-    bool found = false;
-    for (const MetropolisStats::Kind& k : r.metropolis.kinds) {
-        const double rate = MetropolisStats::rate(k.accepted, k.proposed);
-        std::printf("  %s: %s: %lld proposed, acceptance %.3f\n", c.name, k.name.c_str(), k.proposed, rate);
-        if (k.name == c.applies) found = k.proposed > 0;
-        if (k.proposed > 0) {
-            EXPECT_GT(rate, 0.0) << k.name;
-            EXPECT_LT(rate, 1.0) << k.name;
-        }
-    }
-    EXPECT_TRUE(found) << c.applies;
-}
+TEST_P(VeachMLTInfinityMutation, WithTheBidirectionalOneAgreesWithBDPT) { expectMutationAgreesAndApplies(GetParam()); }
 
 INSTANTIATE_TEST_SUITE_P(
     Mutations, VeachMLTInfinityMutation,
     ::testing::Values(
-        InfinityMutationCase{"lens perturbation, sky in a mirror", "lens-subpath=0,lens=1,multi-chain=0,caustic=0",
+        MutationCase{"lens perturbation, sky in a mirror", "lens-subpath=0,lens=1,multi-chain=0,caustic=0",
                              constantSkyWithMirror, 16, 64, "lens perturbation"},
-        InfinityMutationCase{"lens subpath, sky in a mirror", "lens-subpath=1,lens=0,multi-chain=0,caustic=0",
+        MutationCase{"lens subpath, sky in a mirror", "lens-subpath=1,lens=0,multi-chain=0,caustic=0",
                              constantSkyWithMirror, 16, 64, "lens subpath"},
-        InfinityMutationCase{"caustic perturbation, distant light through glass", "lens-subpath=0,lens=0,multi-chain=0,caustic=1",
+        MutationCase{"caustic perturbation, distant light through glass", "lens-subpath=0,lens=0,multi-chain=0,caustic=1",
                              distantLightThroughGlass, 64, 128, "caustic perturbation"}),
-    [](const ::testing::TestParamInfo<InfinityMutationCase>& i) {
+    [](const ::testing::TestParamInfo<MutationCase>& i) {
         std::string n;
         for (const char* p = i.param.name; *p; ++p) n += std::isalnum(static_cast<unsigned char>(*p)) ? *p : '_';
         return n;

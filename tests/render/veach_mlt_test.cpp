@@ -14,6 +14,7 @@
 #include "agreement.h"
 #include "mc/estimator.h"
 #include "mlt_scenes.h"
+#include "mutation_cases.h"
 #include "render_helpers.h"
 #include "transport/mlt/veach/veach_mlt.h"
 
@@ -254,39 +255,9 @@ TEST(VeachMLT, AgreesWithBDPTOnALightSeenGrazingInACoating) {
 // Each mutation makes a correct image: the bidirectional mutation (for ergodicity) with each
 // other one alone, on the scene whose paths that mutation moves: block and image means
 // against BDPT. The other tests run every mutation together.
-struct MutationCase {
-    const char* name;
-    std::string weights;
-    std::string (*scene)();
-    int bdptSpp, mltSpp;
-    const char* applies;  // the mutation that must have been proposed and accepted
-    double detectableBias = 0.02;
-};
-
-void PrintTo(const MutationCase& c, std::ostream* os) { *os << c.name; }
-
 class VeachMutation : public ::testing::TestWithParam<MutationCase> {};
 
-TEST_P(VeachMutation, WithTheBidirectionalOneAgreesWithBDPT) {
-    const MutationCase& c = GetParam();
-    const std::string integrator = "mlt:" + c.weights;
-    expectAgreement(AgreementCase{c.name, c.scene(), {"bdpt", integrator}, c.bdptSpp, 16, {{integrator, c.mltSpp}},
-                                  c.detectableBias});
-    // The mutation under test did its part, and every mutation that applied was accepted, but
-    // not always.
-    RenderResult r = renderString(c.scene(), c.mltSpp, 1, 0, integrator);
-    bool found = false;
-    for (const MetropolisStats::Kind& k : r.metropolis.kinds) {
-        const double rate = MetropolisStats::rate(k.accepted, k.proposed);
-        std::printf("  %s: %s: %lld proposed, acceptance %.3f\n", c.name, k.name.c_str(), k.proposed, rate);
-        if (k.name == c.applies) found = k.proposed > 0;
-        if (k.proposed > 0) {
-            EXPECT_GT(rate, 0.0) << k.name;
-            EXPECT_LT(rate, 1.0) << k.name;
-        }
-    }
-    EXPECT_TRUE(found) << c.applies;
-}
+TEST_P(VeachMutation, WithTheBidirectionalOneAgreesWithBDPT) { expectMutationAgreesAndApplies(GetParam()); }
 
 std::string diffuseBox() { return box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"); }
 
