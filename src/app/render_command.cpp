@@ -238,7 +238,7 @@ void RenderCommand::attach(CLI::App& app) {
         ->check(probabilityCheck());
     cmd_->add_option("--mlt-mutations", mltMutations_,
                      "mlt only: the mutations' weights, KEY=VALUE,... with keys bidirectional, lens-subpath, lens, "
-                     "multi-chain, caustic (default 1 each; a mutation is chosen among those that apply to the path in "
+                     "multi-chain, caustic, wavelengths (spectral mode) (default 1 each; a mutation is chosen among those that apply to the path in "
                      "proportion to its weight; 0 switches one off; bidirectional must stay > 0)");
     cmd_->add_option("--color", color_,
                      "rgb (default): paths carry linear RGB; spectral: each camera sample follows four wavelengths and "

@@ -56,6 +56,7 @@ SampledWavelengths SampledWavelengths::sampleVisible(float u) {
     // the inverse CDF maps u to t = tanh(b (lambda - c)), so lambda = c + atanh(t) / b with
     // atanh(t) = log((1 + t) / (1 - t)) / 2, and the density A / cosh^2 is A (1 - t^2).
     SampledWavelengths w;
+    w.u = u;
     for (int i = 0; i < kWavelengthSamples; ++i) {
         float up = u + float(i) / kWavelengthSamples;
         up = up > 1 ? up - 1 : up;

@@ -23,6 +23,7 @@ float sampleVisibleWavelength(float u);
 struct SampledWavelengths {
     SpectralValues lambda{};  // nm
     SpectralValues pdf{};     // density of each lambda[i] (per nm); 0 once terminated
+    float u = 0;              // sampleVisible's number, from which the four were made
 
     // lambda[i] = inverse CDF of (u + i/4) mod 1: one stratum of the density's quantiles
     // each, every one marginally distributed by the density.

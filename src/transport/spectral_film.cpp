@@ -45,8 +45,7 @@ Spectrum SampleContext::toFilm(const Spectrum& L) const { return sensor ? sensor
 
 void requireSpectralSupport(const Scene& scene, const Integrator& integrator, const std::string& integratorName) {
     if (!integrator.supportsSpectral())
-        throw InputError("--color spectral is supported by --integrator path, light, bdpt, pssmlt and mmlt for now; \"" +
-                         integratorName + "\" renders in RGB (use --color rgb)");
+        throw InputError("--color spectral: integrator \"" + integratorName + "\" renders in RGB only (use --color rgb)");
     for (const auto& light : scene.lights())
         if (!light->supportsSpectral())
             throw InputError("--color spectral: the scene has a goniometric or projection light, which renders in RGB "

@@ -31,7 +31,8 @@ struct AgreementCase {
     std::map<std::string, int> sppOf = {};  // per-integrator spp where one needs more than `spp`
     double detectableBias = 0.01;           // see kDetectableBias
     // --color spectral; the image's R, G and B means are then compared too, each within 4
-    // sigma (a wrong spectrum can keep the luminance and move the colour).
+    // sigma, and each block's, within 4 sigma + 1% of the channel's image mean (a wrong
+    // spectrum can keep the luminance and move the colour, or spread it wrongly: dispersion).
     bool spectral = false;
 };
 
@@ -70,6 +71,18 @@ inline void expectAgreement(const AgreementCase& c) {
 
         int failures = 0;
         double worst = 0;
+        for (int ch = 0; c.spectral && ch < 3; ++ch)
+            for (size_t i = 0; i < a.mean.size(); ++i) {
+                const double ma = a.blockChannelMean[ch][i], mb = b.blockChannelMean[ch][i];
+                const double se = std::hypot(a.blockChannelStdErr[ch][i], b.blockChannelStdErr[ch][i]);
+                worst = std::max(worst, std::fabs(ma - mb) / std::max(se, 1e-12));
+                if (std::fabs(ma - mb) > 4 * se + 0.01 * a.channelMean[ch]) {
+                    ++failures;
+                    ADD_FAILURE() << c.name << ": " << na << " vs " << nb << " block " << i << " channel " << ch << ": "
+                                  << ma << " +- " << a.blockChannelStdErr[ch][i] << " vs " << mb << " +- "
+                                  << b.blockChannelStdErr[ch][i];
+                }
+            }
         for (size_t i = 0; i < a.mean.size(); ++i) {
             double se = std::hypot(a.stdErr[i], b.stdErr[i]);
             double z = std::fabs(a.mean[i] - b.mean[i]) / std::max(se, 1e-12);

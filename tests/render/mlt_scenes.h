@@ -74,6 +74,22 @@ inline std::string glassCaustic() {
     )";
 }
 
+// The caustic in colour and dispersed (spectral mode): a flint-glass sphere (glass-F11, or
+// another spectrally varying `eta` parameter), an orange floor, a wider and dimmer light.
+inline std::string dispersiveGlassCaustic(const std::string& eta = R"("spectrum eta" "glass-F11")") {
+    std::string scene = glassCaustic();
+    auto replace = [&](const std::string& from, const std::string& to) {
+        const size_t at = scene.find(from);
+        if (at != std::string::npos) scene.replace(at, from.size(), to);
+    };
+    replace(R"("float eta" [ 1.5 ])", eta);
+    replace(R"("rgb reflectance" [ 0.8 0.8 0.8 ])", R"("rgb reflectance" [ 0.8 0.6 0.4 ])");
+    replace(R"("rgb L" [ 27 27 27 ])", R"("rgb L" [ 6.75 6.75 6.75 ])");
+    replace(R"([ -0.15 2.5 -0.15   0.15 2.5 -0.15   -0.15 2.5 0.15   0.15 2.5 0.15 ])",
+            R"([ -0.3 2.5 -0.3   0.3 2.5 -0.3   -0.3 2.5 0.3   0.3 2.5 0.3 ])");
+    return scene;
+}
+
 // An area light seen only in a smooth mirror, and a point light over the floor.
 inline std::string lightSeenInAMirror() {
     return std::string(R"(

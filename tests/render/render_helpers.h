@@ -112,11 +112,12 @@ struct BlockMeans {
     std::vector<double> mean, stdErr;
     double imageMean = 0, imageStdErr = 0;
     double channelMean[3] = {0, 0, 0}, channelStdErr[3] = {0, 0, 0};  // the image's R, G, B
+    std::vector<double> blockChannelMean[3], blockChannelStdErr[3];     // each block's R, G, B
 };
 
 inline BlockMeans blockMeans(const std::string& scene, const std::string& integrator, int spp, int renders,
                              int blocksPerSide, uint64_t seed0 = 100, bool spectral = false) {
-    std::vector<double> s, s2;
+    std::vector<double> s, s2, bc[3], bc2[3];
     double is = 0, is2 = 0, cs[3] = {0, 0, 0}, cs2[3] = {0, 0, 0};
     for (int k = 0; k < renders; ++k) {
         RenderResult r = renderString(scene, spp, seed0 + uint64_t(k), 0, integrator, spectral);
@@ -131,12 +132,20 @@ inline BlockMeans blockMeans(const std::string& scene, const std::string& integr
         int bw = r.image.width / blocksPerSide, bh = r.image.height / blocksPerSide;
         s.resize(size_t(blocksPerSide) * blocksPerSide, 0.0);
         s2.resize(s.size(), 0.0);
+        for (int c = 0; c < 3; ++c) {
+            bc[c].resize(s.size(), 0.0);
+            bc2[c].resize(s.size(), 0.0);
+        }
         for (int by = 0; by < blocksPerSide; ++by)
             for (int bx = 0; bx < blocksPerSide; ++bx) {
                 RegionStats rs = regionStats(r.image, bx * bw, bx * bw + bw, by * bh, by * bh + bh);
                 double y = 0.2126 * rs.mean[0] + 0.7152 * rs.mean[1] + 0.0722 * rs.mean[2];
                 s[size_t(by) * blocksPerSide + bx] += y;
                 s2[size_t(by) * blocksPerSide + bx] += y * y;
+                for (int c = 0; c < 3; ++c) {
+                    bc[c][size_t(by) * blocksPerSide + bx] += rs.mean[c];
+                    bc2[c][size_t(by) * blocksPerSide + bx] += rs.mean[c] * rs.mean[c];
+                }
             }
     }
     BlockMeans b;
@@ -151,6 +160,12 @@ inline BlockMeans blockMeans(const std::string& scene, const std::string& integr
         stdErr = std::sqrt(std::max(0.0, (sum2 / renders - mean * mean) / (renders - 1)));
     };
     meanAndError(is, is2, b.imageMean, b.imageStdErr);
+    for (int c = 0; c < 3; ++c) {
+        b.blockChannelMean[c].resize(s.size());
+        b.blockChannelStdErr[c].resize(s.size());
+        for (size_t i = 0; i < s.size(); ++i)
+            meanAndError(bc[c][i], bc2[c][i], b.blockChannelMean[c][i], b.blockChannelStdErr[c][i]);
+    }
     for (int c = 0; c < 3; ++c) meanAndError(cs[c], cs2[c], b.channelMean[c], b.channelStdErr[c]);
     return b;
 }

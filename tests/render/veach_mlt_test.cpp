@@ -90,6 +90,33 @@ TEST(VeachMLT, AgreesWithBDPTOnASaturatedBoxPerChannel) {
     }
 }
 
+// Spectral mode: the wavelengths are part of the state (path_space.h MltVertex::lambda), kept
+// by the mutations of vertices and moved by their own mutation; each channel against BDPT's.
+// Saturated walls under a blackbody light, so that a wrong density of the wavelengths, or
+// BxDFs left at the old ones, move the colour.
+TEST(VeachMLT, AgreesWithBDPTSpectrallyOnASaturatedBox) {
+    std::string scene = box("1 1 12", "0.8 0.05 0.05", "0.05 0.05 0.8");
+    const std::string from = R"("rgb L" [ 1 1 12 ])";
+    const size_t at = scene.find(from);
+    ASSERT_NE(at, std::string::npos);
+    scene.replace(at, from.size(), R"("blackbody L" [ 2700 ] "float scale" [ 6 ])");
+    AgreementCase c{"spectral saturated box", scene, {"bdpt", "mlt"}, 16, 16, {{"mlt", 96}}, 0.02};
+    c.spectral = true;
+    expectAgreement(c);
+}
+
+// Dispersion: every refraction in the flint glass keeps the first wavelength alone, which
+// the path's contribution applies. The wavelength mutation leaves such paths to the others,
+// and the perturbations move their wavelengths: without that, a chain's caustic kept its
+// colour until the whole path was replaced, and blue's sigma across renders was 5x larger.
+TEST(VeachMLT, AgreesWithBDPTSpectrallyOnADispersiveCaustic) {
+    // Dispersion ten times flint glass' spreads the caustic's colours over the blocks.
+    AgreementCase c{"spectral dispersive caustic", dispersiveGlassCaustic(R"("spectrum eta" [ 360 1.75  830 1.35 ])"),
+                    {"bdpt", "mlt"}, 128, 16, {{"mlt", 256}}, 0.025};
+    c.spectral = true;
+    expectAgreement(c);
+}
+
 // Specular vertices: a caustic through a glass sphere (L S S D E), whose specular vertices
 // only walks generate and no join may end at.
 TEST(VeachMLT, AgreesWithBDPTOnAGlassCaustic) {

@@ -218,18 +218,18 @@ struct Perturbed {
         PathStats stats;
         Rng rng(1);
         std::vector<MltVertex> l;
-        EXPECT_TRUE(space().walk(l, 1, TransportMode::Importance, 0.0f, rng, arena, stats));
+        EXPECT_TRUE(space().walk(l, 1, TransportMode::Importance, 0.0f, {}, rng, arena, stats));
         return l.at(0);
     }
     MltVertex lens(Ray* ray) {
         MltVertex v;
-        *ray = space().cameraRay(Vec2(kRes / 2.0f, kRes / 2.0f), Vec2(0.5f, 0.5f), 0.0f, &v);
+        *ray = space().cameraRay(Vec2(kRes / 2.0f, kRes / 2.0f), Vec2(0.5f, 0.5f), 0.0f, {}, &v);
         return v;
     }
     MltVertex trace(const Ray& ray, bool specular) {
         PathStats stats;
         MltVertex v;
-        EXPECT_TRUE(space().trace(ray, arena, stats, v));
+        EXPECT_TRUE(space().trace(ray, {}, arena, stats, v));
         if (specular) {
             EXPECT_TRUE(v.takeSpecularRole());
         }

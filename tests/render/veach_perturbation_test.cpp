@@ -49,18 +49,18 @@ PathSetup makePath(const std::string& world, int cameraVertices) {
     PathStats stats;
     // The camera side through the film's centre pixel, then the point light.
     std::vector<MltVertex> camera(1);
-    Ray ray = space.cameraRay(Vec2(kRes / 2, kRes / 2), Vec2(0.5f, 0.5f), 0.0f, &camera[0]);
+    Ray ray = space.cameraRay(Vec2(kRes / 2, kRes / 2), Vec2(0.5f, 0.5f), 0.0f, {}, &camera[0]);
     Rng rng(7);
     while (int(camera.size()) < cameraVertices) {
         MltVertex v;
-        EXPECT_TRUE(space.trace(ray, arena, stats, v));
+        EXPECT_TRUE(space.trace(ray, {}, arena, stats, v));
         camera.push_back(v);
         if (int(camera.size()) < cameraVertices) {
             EXPECT_TRUE(space.scatter(camera, TransportMode::Radiance, rng, ray));
         }
     }
     std::vector<MltVertex> light;
-    EXPECT_TRUE(space.walk(light, 1, TransportMode::Importance, 0.0f, rng, arena, stats));
+    EXPECT_TRUE(space.walk(light, 1, TransportMode::Importance, 0.0f, {}, rng, arena, stats));
     s.x = light;
     s.x.insert(s.x.end(), camera.rbegin(), camera.rend());
     EXPECT_GT(space.contribution(s.x, &s.rasterX).luminance(), 0.0f);

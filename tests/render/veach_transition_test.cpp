@@ -62,12 +62,12 @@ struct PathSetup {
         PathStats stats;
         Rng rng(3);
         std::vector<MltVertex> light;
-        EXPECT_TRUE(space.walk(light, 1, TransportMode::Importance, 0.0f, rng, arena, stats));
+        EXPECT_TRUE(space.walk(light, 1, TransportMode::Importance, 0.0f, {}, rng, arena, stats));
         MltVertex lens, wall, floor;
-        Ray ray = space.cameraRay(Vec2(16.5f, 9.5f), Vec2(0.5f, 0.5f), 0.0f, &lens);
-        EXPECT_TRUE(space.trace(ray, arena, stats, wall));
+        Ray ray = space.cameraRay(Vec2(16.5f, 9.5f), Vec2(0.5f, 0.5f), 0.0f, {}, &lens);
+        EXPECT_TRUE(space.trace(ray, {}, arena, stats, wall));
         EXPECT_NEAR(wall.p.z, 2.0f, 1e-3f) << "the pixel must see the wall";
-        EXPECT_TRUE(space.trace(spawnRay(wall.p, wall.ng, normalize(Vec3(0.2f, 0, 0.8f) - wall.p), 0), arena, stats, floor));
+        EXPECT_TRUE(space.trace(spawnRay(wall.p, wall.ng, normalize(Vec3(0.2f, 0, 0.8f) - wall.p), 0), {}, arena, stats, floor));
         EXPECT_NEAR(floor.p.y, 0.0f, 1e-3f);
         x = {light[0], floor, wall, lens};
         if (travel.x != 0 || travel.y != 0 || travel.z != 0) {
@@ -93,7 +93,7 @@ struct PathSetup {
         MltVertex hit;
         const Ray ray = s == Surface::Floor ? Ray{Vec3(u, 1, v), Vec3(0, -1, 0)} : Ray{Vec3(u, v, 1), Vec3(0, 0, 1)};
         MltPath y = x;
-        if (!integrator->space().trace(ray, a, stats, hit)) return {};
+        if (!integrator->space().trace(ray, {}, a, stats, hit)) return {};
         y[size_t(i)] = hit;
         // A proposal reaches the point only along unblocked edges (the ray that made it and
         // the join to the other side).

@@ -87,10 +87,13 @@ bool BidirectionalMutation::insert(const MltPath& x, int lo, int d, int a, int c
     std::vector<MltVertex> light(x.begin(), x.begin() + lo), camera(x.rbegin(), x.rbegin() + (n - lo - d));
     for (MltVertex& v : light) PathSpace::rebind(v, arena);
     for (MltVertex& v : camera) PathSpace::rebind(v, arena);
-    // New vertices join kept ones at the path's time; a path made afresh draws its own.
-    const float time = !light.empty() ? light[0].time : !camera.empty() ? camera[0].time : space_.drawTime(rng);
-    if (!space_.walk(light, c, TransportMode::Importance, time, rng, arena, stats) ||
-        !space_.walk(camera, a - c, TransportMode::Radiance, time, rng, arena, stats))
+    // New vertices join kept ones at the path's time and wavelengths; a path made afresh
+    // draws its own (each of density 1 in the state's measure: path_space.h).
+    const MltVertex* kept = !light.empty() ? &light[0] : !camera.empty() ? &camera[0] : nullptr;
+    const float time = kept ? kept->time : space_.drawTime(rng);
+    const SampledWavelengths lambda = kept ? kept->lambda : space_.drawWavelengths(rng);
+    if (!space_.walk(light, c, TransportMode::Importance, time, lambda, rng, arena, stats) ||
+        !space_.walk(camera, a - c, TransportMode::Radiance, time, lambda, rng, arena, stats))
         return false;
     if (int(light.size()) != lo + c || int(camera.size()) != n2 - lo - c) return false;
     y.assign(light.begin(), light.end());

@@ -29,14 +29,16 @@ bool LensSubpathMutation::propose(const MltPath& x, Rng& rng, ScratchBuffer& are
     const Vec2 u(rng.uniform(), rng.uniform());
     const Vec2 pFilm(-space_.filmMargin().x + u.x * space_.filmSize().x,
                      -space_.filmMargin().y + u.y * space_.filmSize().y);
-    // The path keeps its time: the light subpath x0 .. x(m-1) stays where it was then.
-    Ray ray = space_.cameraRay(pFilm, Vec2(rng.uniform(), rng.uniform()), x.back().time, &camera[0]);
+    // The path keeps its time (the light subpath x0 .. x(m-1) stays where it was then) and
+    // its wavelengths.
+    const SampledWavelengths& lambda = x.back().lambda;
+    Ray ray = space_.cameraRay(pFilm, Vec2(rng.uniform(), rng.uniform()), x.back().time, lambda, &camera[0]);
     ++stats.cameraPaths;
     while (true) {
         if (m + int(camera.size()) >= space_.maxVertices()) return false;
         MltVertex v;
         // A subpath that ends at the light (m = 0) may end at infinity.
-        if (!space_.trace(ray, arena, stats, v, m == 0)) return false;
+        if (!space_.trace(ray, lambda, arena, stats, v, m == 0)) return false;
         camera.push_back(v);
         if (m == 0 ? v.light != nullptr : !v.delta) break;  // the subpath's end
         if (!v.isSpecularSurface() || !space_.scatter(camera, TransportMode::Radiance, rng, ray)) return false;

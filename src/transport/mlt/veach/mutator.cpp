@@ -16,6 +16,7 @@ const char* mutationName(Mutation m) {
         case Mutation::Lens: return "lens perturbation";
         case Mutation::MultiChain: return "multi-chain perturbation";
         case Mutation::Caustic: return "caustic perturbation";
+        case Mutation::Wavelengths: return "wavelengths";
         case Mutation::Regenerate: return "regenerate";
         case Mutation::Count: break;
     }
@@ -30,6 +31,7 @@ double VeachMutations::weight(Mutation m) const {
         case Mutation::Lens: return lens;
         case Mutation::MultiChain: return multiChain;
         case Mutation::Caustic: return caustic;
+        case Mutation::Wavelengths: return wavelengths;
         default: return 0;
     }
 }
@@ -47,11 +49,12 @@ VeachMutations parseMutationWeights(const std::string& spec) {
                          : key == "lens"         ? &w.lens
                          : key == "multi-chain"  ? &w.multiChain
                          : key == "caustic"      ? &w.caustic
+                         : key == "wavelengths"  ? &w.wavelengths
                          : key == "direct"       ? &w.direct
                                                  : nullptr;
         if (!target)
             throw InputError("--mlt-mutations: unknown mutation \"" + key +
-                             "\" (available: bidirectional, lens-subpath, lens, multi-chain, caustic)");
+                             "\" (available: bidirectional, lens-subpath, lens, multi-chain, caustic, wavelengths)");
         const std::string value = eq == std::string::npos ? "" : item.substr(eq + 1);
         char* end = nullptr;
         const double v = std::strtod(value.c_str(), &end);
@@ -74,6 +77,7 @@ bool Mutator::applies(Mutation m, const MltPath& x) const {
         case Mutation::Lens: return perturbations_.lensApplies(x);
         case Mutation::MultiChain: return perturbations_.multiChainApplies(x);
         case Mutation::Caustic: return perturbations_.causticApplies(x);
+        case Mutation::Wavelengths: return wavelengths_.applies(x);
         default: return true;
     }
 }
@@ -113,6 +117,7 @@ bool Mutator::mutate(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer& ar
         case Mutation::Lens:
         case Mutation::MultiChain: made = perturbations_.lens(x, rasterX, rng, arena, stats, y, &r); break;
         case Mutation::Caustic: made = perturbations_.caustic(x, rng, arena, stats, y, &r); break;
+        case Mutation::Wavelengths: made = wavelengths_.propose(x, rng, arena, y, &r); break;
         case Mutation::Regenerate: {
             double py = 0;
             made = bidirectional_.generate(rng, arena, stats, y, &py) && py > 0;

@@ -6,15 +6,17 @@
 #include "transport/mlt/veach/bidirectional_mutation.h"
 #include "transport/mlt/veach/lens_subpath_mutation.h"
 #include "transport/mlt/veach/perturbations.h"
+#include "transport/mlt/veach/wavelength_mutation.h"
 
 namespace ps {
 
-enum class Mutation : int { Bidirectional, LensSubpath, Lens, MultiChain, Caustic, Regenerate, Count };
+enum class Mutation : int { Bidirectional, LensSubpath, Lens, MultiChain, Caustic, Wavelengths, Regenerate, Count };
 const char* mutationName(Mutation m);
 
 // The mutations' weights (documented defaults: each equally, over those that apply).
 struct VeachMutations {
-    double bidirectional = 1, lensSubpath = 1, lens = 1, multiChain = 1, caustic = 1;
+    // `wavelengths` applies in spectral mode only.
+    double bidirectional = 1, lensSubpath = 1, lens = 1, multiChain = 1, caustic = 1, wavelengths = 1;
     // For tests: only an independent path generated from nothing (T(x -> y) = its
     // generation density): the image must be BDPT's whatever the other mutations'
     // densities are, a check of the chain's bookkeeping alone.
@@ -26,7 +28,8 @@ struct VeachMutations {
     double weight(Mutation m) const;
 };
 
-// Weights from "KEY=VALUE,..." (keys bidirectional, lens-subpath, lens, multi-chain, caustic;
+// Weights from "KEY=VALUE,..." (keys bidirectional, lens-subpath, lens, multi-chain, caustic,
+// wavelengths;
 // values >= 0; unnamed keys keep their defaults; and direct=N, whole); InputError on
 // anything else. The
 // bidirectional mutation must keep a positive weight: the others alone cannot reach every
@@ -36,8 +39,12 @@ VeachMutations parseMutationWeights(const std::string& spec);
 class Mutator {
 public:
     Mutator(const BidirectionalMutation& bidirectional, const LensSubpathMutation& lensSubpath,
-            const Perturbations& perturbations, const VeachMutations& weights)
-        : bidirectional_(bidirectional), lensSubpath_(lensSubpath), perturbations_(perturbations), weights_(weights) {}
+            const Perturbations& perturbations, const WavelengthMutation& wavelengths, const VeachMutations& weights)
+        : bidirectional_(bidirectional),
+          lensSubpath_(lensSubpath),
+          perturbations_(perturbations),
+          wavelengths_(wavelengths),
+          weights_(weights) {}
     bool applies(Mutation m, const MltPath& x) const;
     // Probability of choosing m at x (0 where it does not apply).
     double probability(Mutation m, const MltPath& x) const;
@@ -54,6 +61,7 @@ private:
     const BidirectionalMutation& bidirectional_;
     const LensSubpathMutation& lensSubpath_;
     const Perturbations& perturbations_;
+    const WavelengthMutation& wavelengths_;
     VeachMutations weights_;
 };
 

@@ -20,6 +20,23 @@ Ray fromLens(const MltVertex& lens, const MltVertex& to) {
 // The mirror direction of a local direction w about the shading normal (0, 0, 1).
 Vec3 mirror(Vec3 w) { return reflect(w, Vec3(0, 0, 1)); }
 
+// The wavelengths a vertex's BxDF and emission are evaluated at: null in RGB mode (a path's
+// wavelengths are all zero there).
+const SampledWavelengths* wavelengthsOf(const MltVertex& v) { return v.lambda.lambda[0] > 0 ? &v.lambda : nullptr; }
+
+// The BxDF of hit si at the path's wavelengths, and whether it is dispersive (it asked to
+// keep lambda[0] alone; the path's own wavelengths are not changed: contribution applies it).
+const BxDF* bxdfAt(SurfaceInteraction& si, const SampledWavelengths& lambda, ScratchBuffer& arena, bool* dispersive) {
+    if (!(lambda.lambda[0] > 0)) {
+        *dispersive = false;
+        return surfaceBxDF(si, arena);
+    }
+    SampledWavelengths copy = lambda;
+    const BxDF* b = surfaceBxDF(si, arena, &copy);
+    *dispersive = copy.terminationRequests != lambda.terminationRequests;
+    return b;
+}
+
 // The normal a ray leaving v is offset along (the lens and points have none).
 Vec3 offsetNormal(const MltVertex& v) { return v.kind == MltVertex::Kind::Lens ? Vec3() : v.ng; }
 
@@ -42,6 +59,7 @@ PathSpace::PathSpace(const Scene& scene, int maxDepth) : scene_(scene), maxDepth
     pinhole_ = !(c.lensRadius > 0);
     margin_ = scene.filter().radius();
     filmSize_ = Vec2(float(c.xRes) + 2 * margin_.x, float(c.yRes) + 2 * margin_.y);
+    if (scene.settings().spectral) sensor_.emplace(scene.settings());
 }
 
 void PathSpace::bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, Spectrum* f, float* pdf) const {
@@ -111,6 +129,12 @@ Spectrum PathSpace::contribution(const MltPath& x, Vec2* pRaster) const {
     if (f.isBlack()) return {};
     const float We = scene_.camera().We(fromLens(x[size_t(k)], x[size_t(k - 1)]), pRaster);
     f *= We;
+    if (sensor_) {
+        SampledWavelengths lambda = x[size_t(k)].lambda;
+        for (const MltVertex& v : x)
+            if (v.dispersive) lambda.terminateSecondary();
+        f = sensor_->toRendering(f, lambda);
+    }
     return f.isFinite() ? f : Spectrum();
 }
 
@@ -227,10 +251,11 @@ bool PathSpace::followSpecular(const MltVertex& v, const Ray& ray, bool reflect,
 void PathSpace::rebind(MltVertex& v, ScratchBuffer& arena) {
     if (v.kind != MltVertex::Kind::Surface) return;
     SurfaceInteraction si = v.si;
-    v.bxdf = surfaceBxDF(si, arena);
+    v.bxdf = bxdfAt(si, v.lambda, arena, &v.dispersive);
 }
 
-bool PathSpace::trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex& out, bool escape) const {
+bool PathSpace::trace(Ray ray, const SampledWavelengths& lambda, ScratchBuffer& arena, PathStats& stats, MltVertex& out,
+                      bool escape) const {
     for (int passThroughs = 0; passThroughs <= 1024; ++passThroughs) {
         SurfaceInteraction si;
         ++stats.rays;
@@ -243,11 +268,12 @@ bool PathSpace::trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex
             out.p = ray.o;
             out.ng = out.ns = -ray.d;
             out.time = ray.time;
+            out.lambda = lambda;
             return true;
         }
         out = MltVertex();
         out.si = si;
-        const BxDF* bxdf = surfaceBxDF(si, arena);
+        const BxDF* bxdf = bxdfAt(si, lambda, arena, &out.dispersive);
         if (!bxdf) {
             // `interface`: not a vertex; the ray continues.
             ray = spawnRay(si.p, si.ng, ray.d, ray.time);
@@ -271,6 +297,7 @@ bool PathSpace::trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex
         }
         out.light = si.areaLight;
         out.time = ray.time;
+        out.lambda = lambda;
         return true;
     }
     return false;
@@ -281,8 +308,21 @@ float PathSpace::drawTime(Rng& rng) const {
     return scene_.hasMotion() ? camera.shutterTime(rng.uniform()) : camera.shutterTime(0);
 }
 
-bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode, float time, Rng& rng,
-                     ScratchBuffer& arena, PathStats& stats) const {
+SampledWavelengths PathSpace::drawWavelengths(Rng& rng) const {
+    return sensor_ ? SpectralFilm::sampleWavelengths(rng.uniform()) : SampledWavelengths();
+}
+
+SampledWavelengths PathSpace::perturbWavelengths(const SampledWavelengths& lambda, Rng& rng) const {
+    if (!sensor_) return lambda;
+    constexpr double r1 = 1e-3, r2 = 0.25;
+    const double r = r1 * std::pow(r2 / r1, rng.uniformDouble());
+    double u = double(lambda.u) + (rng.uniform() < 0.5f ? -r : r);
+    u -= std::floor(u);
+    return SpectralFilm::sampleWavelengths(std::fmin(float(u), 0x1.fffffep-1f));
+}
+
+bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode, float time,
+                     const SampledWavelengths& lambda, Rng& rng, ScratchBuffer& arena, PathStats& stats) const {
     if (count <= 0) return true;
     if (!canContinue(int(side.size()), mode)) return false;
     Ray ray;
@@ -304,6 +344,7 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
         v.ng = v.ns = les->n;
         v.uv = les->uv;
         v.time = time;
+        v.lambda = lambda;
         ray = spawnRay(v.p, v.ng, les->ray.d, time);
         if (light->atInfinity()) {
             // A direction (path_space.h); the ray starts on the disk at infinity.
@@ -321,7 +362,7 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
         const Vec2 pFilm(-margin_.x + rng.uniform() * filmSize_.x, -margin_.y + rng.uniform() * filmSize_.y);
         const Vec2 uLens(rng.uniform(), rng.uniform());
         MltVertex lens;
-        ray = cameraRay(pFilm, uLens, time, &lens);
+        ray = cameraRay(pFilm, uLens, time, lambda, &lens);
         if (side.empty()) {
             side.push_back(lens);
             --count;
@@ -332,14 +373,14 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
     while (count > 0) {
         MltVertex next;
         // A camera walk may end at infinity (scatter cannot continue from there).
-        if (!trace(ray, arena, stats, next, mode == TransportMode::Radiance)) return false;
+        if (!trace(ray, lambda, arena, stats, next, mode == TransportMode::Radiance)) return false;
         side.push_back(next);
         if (--count > 0 && !scatter(side, mode, rng, ray)) return false;
     }
     return true;
 }
 
-Ray PathSpace::cameraRay(Vec2 pFilm, Vec2 uLens, float time, MltVertex* lens) const {
+Ray PathSpace::cameraRay(Vec2 pFilm, Vec2 uLens, float time, const SampledWavelengths& lambda, MltVertex* lens) const {
     CameraSample cs;
     cs.pFilm = pFilm;
     cs.pLens = pinhole_ ? Vec2(0.5f, 0.5f) : uLens;
@@ -348,6 +389,7 @@ Ray PathSpace::cameraRay(Vec2 pFilm, Vec2 uLens, float time, MltVertex* lens) co
     lens->kind = MltVertex::Kind::Lens;
     lens->p = ray.o;
     lens->time = time;
+    lens->lambda = lambda;
     lens->ng = scene_.camera().forward(time);
     return ray;
 }
@@ -386,14 +428,15 @@ double PathSpace::infinityDensity(const MltVertex& v) const {
 }
 
 Spectrum PathSpace::emitted(const MltVertex& x0, const MltVertex& x1) const {
-    if (!atInfinity(x0)) return x0.light->L(x0.p, x0.ng, x0.uv, unitTo(x0, x1), nullptr);
+    const SampledWavelengths* lambda = wavelengthsOf(x0);
+    if (!atInfinity(x0)) return x0.light->L(x0.p, x0.ng, x0.uv, unitTo(x0, x1), lambda);
     if (x0.delta) {
         // A distant light: its radiance along its own direction (a delta of unit weight).
-        auto li = x0.light->sampleLi(LightSampleContext{x1.p, x1.ng}, Vec2(0.5f, 0.5f));
+        auto li = x0.light->sampleLi(LightSampleContext{x1.p, x1.ng, lambda}, Vec2(0.5f, 0.5f));
         return li && dot(li->wi, x0.ng) < -0.9999f ? li->L : Spectrum();
     }
     Spectrum L;
-    for (const Light* light : scene_.infiniteLights()) L += light->Le(Ray{x1.p, -x0.ng}, nullptr);
+    for (const Light* light : scene_.infiniteLights()) L += light->Le(Ray{x1.p, -x0.ng}, lambda);
     return L;
 }
 

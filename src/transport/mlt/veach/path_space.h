@@ -32,6 +32,7 @@
 //    the light travels (into the scene), so cosAt(x0, edge) is 1.
 #pragma once
 #include <atomic>
+#include <optional>
 #include <vector>
 #include "geometry/interaction.h"
 #include "lights/light.h"
@@ -39,7 +40,9 @@
 #include "math/frame.h"
 #include "mc/rng.h"
 #include "render/scene.h"
+#include "spectral/wavelengths.h"
 #include "transport/integrator.h"
+#include "transport/spectral_film.h"
 #include "util/scratch.h"
 
 namespace ps {
@@ -62,6 +65,15 @@ struct MltVertex {
     // The path's scene time (motion blur): every vertex of a path has it, and every ray
     // leaving one travels at it.
     float time = 0;
+    // Spectral mode: the path's wavelengths, which every vertex of a path has, as its time:
+    // its BxDFs are built, its emission and its contribution evaluated at them (all zero in
+    // RGB mode). A path's wavelengths are part of the chain's state, drawn from the
+    // sensor's wavelength density, whose measure the state space takes for them, so that a
+    // fresh draw has density 1 and a kept one cancels in T (README "Metropolis").
+    SampledWavelengths lambda;
+    // A surface whose BxDF follows lambda[0] alone (dispersion): the path's contribution
+    // then keeps only that wavelength (SampledWavelengths::terminateSecondary).
+    bool dispersive = false;
     Frame frame;         // shading frame (surfaces)
     const Light* light = nullptr;  // the emitter at x0 (a light vertex or an emitting surface)
     const BxDF* bxdf = nullptr;    // surfaces, built in the owning path's arena
@@ -94,8 +106,10 @@ public:
 
     // f(x), the measurement contribution of the whole path (visibility of its edges is
     // established when they are made), with the film position it lands at; zero where any
-    // factor is.
+    // factor is. In spectral mode, the sensor's RGB of its values at the path's wavelengths
+    // (divided by their density: the state's measure, path_space.h MltVertex::lambda).
     Spectrum contribution(const MltPath& x, Vec2* pRaster) const;
+    bool spectral() const { return sensor_.has_value(); }
     // Area density (solid angle for a light vertex at infinity) of vertex i when
     // generated from the light side, given vertices i - 1 and i - 2, and from the camera side,
     // given i + 1 and i + 2. Vertex 0 from the light side: the light's choice and position;
@@ -124,6 +138,16 @@ public:
     // shutter's measure normalised to 1, so that no density changes), else the shutter's
     // opening without drawing a number (static scenes keep their random streams).
     float drawTime(Rng& rng) const;
+    // A new path's wavelengths in spectral mode (the sensor's density); in RGB mode none, and
+    // no number drawn.
+    SampledWavelengths drawWavelengths(Rng& rng) const;
+    // Wavelengths near `lambda` (spectral mode; in RGB mode `lambda` itself, no number
+    // drawn): sampleVisible's number moved by an offset of random sign and of length with
+    // density proportional to 1 / length in [1e-3, 1/4] (one stratum of the four), wrapping
+    // around [0, 1). Symmetric in that number, whose uniform measure is the state's for the
+    // wavelengths: T(y -> x) / T(x -> y) = 1. The perturbations use it, so that a path
+    // through a dispersive vertex, which only lambda[0] follows, changes colour as it moves.
+    SampledWavelengths perturbWavelengths(const SampledWavelengths& lambda, Rng& rng) const;
     // Walks that append `count` vertices to `side`, a subpath in walk order: from the light
     // (Importance: side[0] is x0) or from the lens (Radiance: side[0] is xk), at scene time
     // `time` (a non-empty side's own). An empty side
@@ -131,8 +155,8 @@ public:
     // from its light vertex alone, nor a camera side from a thin lens alone (no density
     // of a direction given a fixed point there); a pinhole's is regenerated. False when a
     // ray escapes or a sample fails.
-    bool walk(std::vector<MltVertex>& side, int count, TransportMode mode, float time, Rng& rng,
-              ScratchBuffer& arena, PathStats& stats) const;
+    bool walk(std::vector<MltVertex>& side, int count, TransportMode mode, float time, const SampledWavelengths& lambda,
+              Rng& rng, ScratchBuffer& arena, PathStats& stats) const;
     // Whether walk can extend a side (light or camera, by `mode`) that holds `size` vertices.
     bool canContinue(int size, TransportMode mode) const;
     // Mutual visibility of vertices a and b.
@@ -142,22 +166,26 @@ public:
     // A mixed vertex's role is chosen here.
     bool scatter(std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const;
     // A camera ray through film point pFilm (a pinhole's lens point is fixed; a thin lens
-    // takes its point from uLens) at scene time `time`, and the lens vertex it leaves.
-    Ray cameraRay(Vec2 pFilm, Vec2 uLens, float time, MltVertex* lens) const;
+    // takes its point from uLens) at scene time `time`, and the lens vertex it leaves, which
+    // carries `lambda`.
+    Ray cameraRay(Vec2 pFilm, Vec2 uLens, float time, const SampledWavelengths& lambda, MltVertex* lens) const;
     // The film, widened by the filter radius: where camera rays may pass.
     Vec2 filmMargin() const { return margin_; }
     Vec2 filmSize() const { return filmSize_; }
     bool sawUnsupportedSurface() const { return unsupportedSurface_.load(std::memory_order_relaxed); }
-    // Rebuilds a surface vertex's BxDF in `arena` (a path's vertices must all live in its own).
+    // Rebuilds a surface vertex's BxDF in `arena` (a path's vertices must all live in its own),
+    // at its wavelengths.
     static void rebind(MltVertex& v, ScratchBuffer& arena);
     // Whether the light at specular vertex i of x is reflected (else transmitted).
     static bool reflects(const MltPath& x, int i);
-    // Traces the ray to the next vertex (passing through interfaces): false if it escapes, or
+    // Traces the ray to the next vertex (passing through interfaces), whose BxDF is built at
+    // `lambda` (the path's; the vertex keeps them): false if it escapes, or
     // if it meets a layered surface whose mirror part lies under a smooth coating (then
     // sawUnsupportedSurface() turns true: the renderer refuses the scene).
     // With `escape`, a ray that leaves the scene ends on the infinite lights, if the scene
     // has any: `out` is then a light vertex at infinity (a camera-side walk's end).
-    bool trace(Ray ray, ScratchBuffer& arena, PathStats& stats, MltVertex& out, bool escape = false) const;
+    bool trace(Ray ray, const SampledWavelengths& lambda, ScratchBuffer& arena, PathStats& stats, MltVertex& out,
+               bool escape = false) const;
     // Continues a retraced specular chain at specular vertex v, reached along `ray`, by the
     // lobe that reflects or transmits as asked: the next ray, or false if v has no such lobe.
     bool followSpecular(const MltVertex& v, const Ray& ray, bool reflect, TransportMode mode, Ray& next) const;
@@ -181,6 +209,7 @@ private:
     bool pinhole_;
     Vec2 margin_, filmSize_;
     mutable std::atomic<bool> unsupportedSurface_{false};
+    std::optional<SpectralFilm> sensor_;  // spectral mode's sensor (empty in RGB mode)
 };
 
 // Whether v is a light vertex at infinity (an infinite or a distant light; see the top).

@@ -77,12 +77,17 @@ bool Perturbations::lens(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer
     space_.scene().camera().pdfWe(ray, &pdfPos, &pdfDir);
     if (!(pdfDir > 0)) return false;  // off the film
 
+    // Spectral mode: the whole path at nearby wavelengths, the retraced chain following them.
+    const SampledWavelengths lambda = space_.perturbWavelengths(x[0].lambda, rng);
     arena.reset();
     y = x;
-    for (MltVertex& v : y) PathSpace::rebind(v, arena);
+    for (MltVertex& v : y) {
+        v.lambda = lambda;
+        PathSpace::rebind(v, arena);
+    }
     for (int i = k - 1; i >= end; --i) {
         MltVertex v;
-        if (!space_.trace(ray, arena, stats, v, i == 0)) return false;  // x0 may lie at infinity
+        if (!space_.trace(ray, lambda, arena, stats, v, i == 0)) return false;  // x0 may lie at infinity
         const MltVertex& old = x[size_t(i)];
         if (i > 0 && old.isSpecularSurface() && !v.takeSpecularRole()) return false;
         y[size_t(i)] = v;
@@ -116,9 +121,14 @@ bool Perturbations::caustic(const MltPath& x, Rng& rng, ScratchBuffer& arena, Pa
     const int k = int(x.size()) - 1;
     int m = k - 2;
     while (m > 0 && x[size_t(m)].isSpecularSurface()) --m;
+    // Spectral mode: the whole path at nearby wavelengths, the retraced chain following them.
+    const SampledWavelengths lambda = space_.perturbWavelengths(x[0].lambda, rng);
     arena.reset();
     y = x;
-    for (MltVertex& v : y) PathSpace::rebind(v, arena);
+    for (MltVertex& v : y) {
+        v.lambda = lambda;
+        PathSpace::rebind(v, arena);
+    }
     const MltVertex& from = y[size_t(m)];
     Ray ray;
     if (atInfinity(from)) {
@@ -141,7 +151,7 @@ bool Perturbations::caustic(const MltPath& x, Rng& rng, ScratchBuffer& arena, Pa
     }
     for (int i = m + 1; i <= k - 1; ++i) {
         MltVertex v;
-        if (!space_.trace(ray, arena, stats, v)) return false;
+        if (!space_.trace(ray, lambda, arena, stats, v)) return false;
         if (i < k - 1 && !v.takeSpecularRole()) return false;
         y[size_t(i)] = v;
         if (i < k - 1) {

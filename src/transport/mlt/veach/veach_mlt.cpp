@@ -32,9 +32,10 @@ VeachMLTIntegrator::VeachMLTIntegrator(const Scene& scene, int maxDepth, const M
       bidirectional_(space_),
       lensSubpath_(space_),
       perturbations_(space_),
+      wavelengths_(space_),
       params_(params),
       mutations_(mutations),
-      mutator_(bidirectional_, lensSubpath_, perturbations_, mutations_) {}
+      mutator_(bidirectional_, lensSubpath_, perturbations_, wavelengths_, mutations_) {}
 
 Spectrum VeachMLTIntegrator::Li(const Ray&, SampleContext&) const {
     throw std::logic_error("mlt is a Markov-chain integrator: render it with renderVeachMLT");
@@ -88,9 +89,11 @@ double bootstrapSample(const VeachMLTIntegrator& integrator, uint64_t seed, int6
     out.arena->reset();
     std::vector<MltVertex> light, camera;
     const int maxV = space.maxVertices();
-    const float time = space.drawTime(rng);  // both subpaths', as one path's
-    space.walk(light, maxV - 1, TransportMode::Importance, time, rng, *out.arena, stats);
-    space.walk(camera, maxV, TransportMode::Radiance, time, rng, *out.arena, stats);
+    // Both subpaths' time and wavelengths, as one path's.
+    const float time = space.drawTime(rng);
+    const SampledWavelengths lambda = space.drawWavelengths(rng);
+    space.walk(light, maxV - 1, TransportMode::Importance, time, lambda, rng, *out.arena, stats);
+    space.walk(camera, maxV, TransportMode::Radiance, time, lambda, rng, *out.arena, stats);
     MltPath y;
     double total = 0;
     for (int n = integrator.minChainVertices(); n <= maxV; ++n)
@@ -467,6 +470,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
 
     for (int m = 0; m < int(Mutation::Count); ++m) {
         if (!(integrator.mutations().weight(Mutation(m)) > 0)) continue;
+        if (Mutation(m) == Mutation::Wavelengths && !space.spectral()) continue;
         MetropolisStats::Kind kind{mutationName(Mutation(m))};
         for (const Chain& ch : all) {
             kind.proposed += ch.counts.proposed[m];

@@ -31,12 +31,14 @@ public:
     // Not a per-ray estimator: render() runs renderVeachMLT instead.
     Spectrum Li(const Ray& ray, SampleContext& ctx) const override;
     bool splats() const override { return true; }
+    bool supportsSpectral() const override { return true; }
     const char* name() const { return "mlt"; }
 
     const PathSpace& space() const { return space_; }
     const BidirectionalMutation& bidirectional() const { return bidirectional_; }
     const Perturbations& perturbations() const { return perturbations_; }
     const LensSubpathMutation& lensSubpath() const { return lensSubpath_; }
+    const WavelengthMutation& wavelengths() const { return wavelengths_; }
     const Mutator& mutator() const { return mutator_; }
     const MetropolisParams& params() const { return params_; }
     const VeachMutations& mutations() const { return mutations_; }
@@ -50,6 +52,7 @@ private:
     BidirectionalMutation bidirectional_;
     LensSubpathMutation lensSubpath_;
     Perturbations perturbations_;
+    WavelengthMutation wavelengths_;
     MetropolisParams params_;
     VeachMutations mutations_;
     Mutator mutator_;
