@@ -19,7 +19,7 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # PS_SANITIZE_ALL=1. Each family keeps cheap cases under the sanitizers (the shared scenes'
 # renders, EstimatorAgreement.DiffuseBox, the other LightAgreement and Metropolis cases,
 # Cli.BdptStrategyImagesAndIntegratorChecks).
-skip='PbrtReference|EstimatorAgreement\.(SmoothNormals|GlassSphere)|SpectralAgreement\.DispersiveGlass|LightAgreement\.(EmitterInsideGlass|CameraInsideGlass|DiffuseUnderGlass)'
+skip='PbrtReference|PbrtColourReference|EstimatorAgreement\.(SmoothNormals|GlassSphere)|SpectralAgreement\.DispersiveGlass|LightAgreement\.(EmitterInsideGlass|CameraInsideGlass|DiffuseUnderGlass)'
 skip+='|Metropolis\.(AgreesWith|ClosedFurnace|PointLight|EachDepth)|VeachMLT\.(AgreesWith|ClosedFurnace|PointLight|Regenerating|DirectLighting)|VeachMutation\.|VeachMLTInfinityMutation\.|MovingCamera\.(PrimarySample|VeachMLT)|BdptStrategies\.|ErrorEstimate\.'
 exclude=()
 [ "${PS_SANITIZE_ALL:-0}" = 1 ] || exclude=(-E "$skip")

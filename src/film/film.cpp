@@ -28,8 +28,9 @@ Film::Film(int xRes, int yRes, PixelBounds bounds, const Filter* splatFilter, bo
     }
 }
 
-void Film::setMaxComponentValue(float m, float imagingRatio) {
+void Film::setMaxComponentValue(float m, float imagingRatio, const ClampSpace& sensorFromL) {
     maxComponent_ = m;
+    clampSpace_ = sensorFromL;
     splatMaxComponent_ = std::numeric_limits<float>::infinity();
     if (splatFilter_ && imagingRatio > 0 && std::isfinite(m))
         splatMaxComponent_ = float(double(m) * double(bounds_.area()) / (splatPixelCount() * imagingRatio));
@@ -107,7 +108,7 @@ void Film::addSplat(Vec2 pFilm, Spectrum L, int sampleIndex) {
         return;
     }
     if (L.isBlack()) return;
-    L = clampMaxComponent(L, splatMaxComponent_);
+    L = clampMaxComponent(L, splatMaxComponent_, clampSpace_);
     // Every pixel whose filter footprint covers pFilm gets its filter-weighted share.
     const auto [x0, x1, y0, y1] = splatFootprint(pFilm);
     int64_t* local = perThreadSplats_ ? threadSplatSums() : nullptr;

@@ -2,6 +2,7 @@
 // what it had to reject, so no NaN or infinity ever reaches an image.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -32,10 +33,19 @@ inline PixelBounds cropWindowToPixels(int xRes, int yRes, const float crop[4]) {
             px(yRes, c(std::min(crop[2], crop[3]))), px(yRes, c(std::max(crop[2], crop[3])))};
 }
 
-// pbrt-v4's Film "maxcomponentvalue": a sample whose largest RGB component exceeds m is scaled
-// down so that it equals m (hue kept). Biased (energy is lost), but it tames fireflies.
-inline Spectrum clampMaxComponent(Spectrum L, float m) {
-    float mx = std::max(L.r, std::max(L.g, L.b));
+// pbrt-v4's Film "maxcomponentvalue" (RGBFilm::AddSample, AddSplat): a sample whose largest
+// component in the sensor's space exceeds m is scaled down so that it equals m (hue kept).
+// pbrt-v4 measures the components before the sensor's output matrix, so for its default
+// "cie1931" sensor they are X, Y, Z, not the image's R, G, B: `sensorFromL` takes L (the film's
+// RGB) there. Biased (energy is lost), but it tames fireflies.
+using ClampSpace = std::array<float, 9>;  // row-major
+constexpr ClampSpace kIdentityClampSpace = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+inline Spectrum clampMaxComponent(Spectrum L, float m, const ClampSpace& sensorFromL) {
+    if (!(m < std::numeric_limits<float>::infinity())) return L;
+    const auto& a = sensorFromL;
+    const float x = a[0] * L.r + a[1] * L.g + a[2] * L.b, y = a[3] * L.r + a[4] * L.g + a[5] * L.b,
+                z = a[6] * L.r + a[7] * L.g + a[8] * L.b;
+    const float mx = std::max(x, std::max(y, z));
     return mx > m ? L * (m / mx) : L;
 }
 
@@ -59,8 +69,10 @@ public:
     // Film "maxcomponentvalue" m (default infinity: no clamping) for every camera sample and
     // splat, each measured as the value it would have as one camera sample of its pixel: the
     // sample as given (imaging ratio included), a splat times imagingRatio times the widened
-    // film's pixel count over the crop's (how image() scales splats per light path).
-    void setMaxComponentValue(float m, float imagingRatio);
+    // film's pixel count over the crop's (how image() scales splats per light path); its
+    // components are those of `sensorFromL` times the sample (clampMaxComponent).
+    void setMaxComponentValue(float m, float imagingRatio, const ClampSpace& sensorFromL = kIdentityClampSpace);
+    const ClampSpace& clampSpace() const { return clampSpace_; }
     float maxComponentValue() const { return maxComponent_; }
 
     int xRes() const { return xRes_; }
@@ -72,7 +84,7 @@ public:
     // too large for the fixed-point sums (kMaxSampleValue).
     void addSample(int px, int py, Spectrum L, float weight, int sampleIndex = 0) {
         size_t i = index(px, py);
-        L = clampMaxComponent(L, maxComponent_);
+        L = clampMaxComponent(L, maxComponent_, clampSpace_);
         double y = L.luminance();
         if (!L.isFinite() || !(std::fabs(y) < kMaxSampleValue) ||
             !(std::max(std::fabs(L.r), std::max(std::fabs(L.g), std::fabs(L.b))) * std::fabs(weight) < kMaxSampleValue)) {
@@ -241,6 +253,7 @@ private:
     PixelBounds bounds_;
     float maxComponent_ = std::numeric_limits<float>::infinity();
     float splatMaxComponent_ = std::numeric_limits<float>::infinity();  // the same, in splat units
+    ClampSpace clampSpace_ = kIdentityClampSpace;
     ZeroedArray<Pixel> pixels_;
     ZeroedArray<Moments> moments_;  // films with an error estimate only, one per pixel
     HighWords<kWideSums> high_;

@@ -128,7 +128,8 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     const PixelBounds& bounds = scene.pixelBounds();
     Film film(scene.camera().params().xRes, scene.camera().params().yRes, bounds,
               integrator.splats() ? &scene.filter() : nullptr, options.filmMoments());
-    film.setMaxComponentValue(scene.settings().maxComponentValue, scene.settings().imagingRatio);
+    film.setMaxComponentValue(scene.settings().maxComponentValue, scene.settings().imagingRatio,
+                             sensorFromRendering(scene.settings()));
     const int spp = std::max(1, options.spp);
 
     std::atomic<bool> stop{false};
@@ -183,7 +184,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
             case AdaptiveMode::TwoStage: {
                 distributed::Purpose purpose("adaptive");
                 pilot = std::make_unique<Film>(film.xRes(), film.yRes(), film.bounds());
-                pilot->setMaxComponentValue(film.maxComponentValue(), 1);  // its pixels may stand in for the film's
+                pilot->setMaxComponentValue(film.maxComponentValue(), 1, film.clampSpace());  // its pixels may stand in for the film's
                 complete = renderTwoStage(passes, film, *pilot, monitor, spp);
                 break;
             }

@@ -6,10 +6,10 @@
 
 namespace ps {
 
-SpectralFilm::SpectralFilm(const RenderSettings& settings) {
+Matrix3 renderingFromSensor(const RenderSettings& settings) {
     // The sensor's imaging ratio stays 1: RenderSettings::imagingRatio scales both modes.
     SensorSettings s;
-    s.whiteBalance = settings.whiteBalance;
+    s.whiteBalance = settings.spectral ? settings.whiteBalance : 0;  // RGB mode does not white-balance
     const RGBColorSpace& output = settings.filmColorSpace ? *settings.filmColorSpace : srgbColorSpace();
     Matrix3 m = Sensor::create(s, output).sensor.outputFromSensor();
     // The film holds the rendering space (linear sRGB) and converts to its colour space when
@@ -19,6 +19,18 @@ SpectralFilm::SpectralFilm(const RenderSettings& settings) {
         for (int k = 0; k < 9; ++k) o.a[k / 3][k % 3] = (*out)[size_t(k)];
         m = o.inverse() * m;
     }
+    return m;
+}
+
+ClampSpace sensorFromRendering(const RenderSettings& settings) {
+    const Matrix3 m = renderingFromSensor(settings).inverse();
+    ClampSpace c{};
+    for (size_t k = 0; k < 9; ++k) c[k] = float(m.a[k / 3][k % 3]);
+    return c;
+}
+
+SpectralFilm::SpectralFilm(const RenderSettings& settings) {
+    const Matrix3 m = renderingFromSensor(settings);
     // The rendering space's RGB matching functions on the 1 nm grid.
     for (int k = 0; k < kCieSamples; ++k) {
         const auto v = m * std::array<double, 3>{kCieX[k], kCieY[k], kCieZ[k]};

@@ -6,6 +6,8 @@
 #pragma once
 #include <array>
 
+#include "film/film.h"
+#include "math/matrix3.h"
 #include "math/spectrum.h"
 #include "render/scene.h"
 #include "spectral/cie.h"
@@ -30,6 +32,13 @@ private:
     // matrix (white balance included) to the rendering space; the sensor's imaging ratio is 1.
     std::array<std::array<float, 3>, kCieSamples> renderingCmf_;
 };
+
+// The film's linear RGB (the rendering space) from the sensor's (pbrt-v4's PixelSensor: XYZ
+// for its "cie1931" sensor) and back: white balance (spectral mode only), the output colour
+// space and its undoing by the film included. The inverse is where Film "maxcomponentvalue"
+// measures a sample's components, in both modes.
+Matrix3 renderingFromSensor(const RenderSettings& settings);
+ClampSpace sensorFromRendering(const RenderSettings& settings);
 
 // Throws InputError, naming what is missing, unless the integrator, every light and every
 // material of the scene support spectral mode.

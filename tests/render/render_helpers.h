@@ -2,6 +2,7 @@
 // region of pixels. In a region where the exact image is constant, pixels are independent
 // estimates of the same value, so their spread gives the standard error of the mean.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -91,6 +92,14 @@ inline RegionStats wholeImage(const Image& img) { return regionStats(img, 0, img
 inline double luminanceMean(const Image& img) {
     RegionStats s = wholeImage(img);
     return 0.2126 * s.mean[0] + 0.7152 * s.mean[1] + 0.0722 * s.mean[2];
+}
+
+// The largest of X, Y, Z of a linear sRGB colour (IEC 61966-2-1's matrix, to 4 digits): what
+// Film "maxcomponentvalue" clamps (pbrt-v4's cie1931 sensor measures X, Y, Z).
+inline double largestXYZ(Spectrum c) {
+    const double x = 0.4124 * c.r + 0.3576 * c.g + 0.1805 * c.b, y = 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b,
+                 z = 0.0193 * c.r + 0.1192 * c.g + 0.9505 * c.b;
+    return std::max(x, std::max(y, z));
 }
 
 // The path depth s + t - 2 of a BDPT strategy image named "s<S>_t<T>[...]", or -1.
