@@ -1,9 +1,9 @@
 // pbrt-v4's "goniometric" light: a point light whose intensity over directions is a grey
 // image in the equal-area octahedral layout of environment maps (math/equal_area.h),
 // looked up at the nearest texel and multiplied by the spectrum I (in spectral mode at the
-// path's wavelengths, normalised by its photometric integral as pbrt-v4 does). Its frame is the light's
-// transform with y and z swapped (pbrt-v4's semantics), so the image's pole (+z, the
-// image centre) points along the transform's +y. Emitted rays are importance-sampled by
+// path's wavelengths, normalised by its photometric integral as pbrt-v4 does). Its frame is
+// the light's transform with y and z swapped (pbrt-v4's semantics), so the image's pole (+z,
+// the image centre) points along the transform's +y. Emitted rays are importance-sampled by
 // the image.
 #pragma once
 #include <vector>

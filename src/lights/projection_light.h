@@ -6,8 +6,8 @@
 // ratio a = width / height > 1, else [-1, 1] x [-1/a, 1/a] (fov spans the shorter axis);
 // columns run along screen x, rows along screen y, and the intensity is the nearest
 // texel's RGB (in spectral mode lifted at the path's wavelengths as an sRGB illuminant, as
-// pbrt-v4 lifts it in the image's colour space); outside the screen it is zero. Emitted rays are importance-sampled by texel
-// values times the solid angle each texel subtends.
+// pbrt-v4 lifts it in the image's colour space); outside the screen it is zero. Emitted rays
+// are importance-sampled by texel values times the solid angle each texel subtends.
 #pragma once
 #include "image/image.h"
 #include "lights/light.h"

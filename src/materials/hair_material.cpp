@@ -31,8 +31,8 @@ const BxDF* HairMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& bu
         float cp = t_.pheomelanin ? std::max(0.0f, t_.pheomelanin->evaluate(ctx)) : 0.0f;
         p.sigmaA = HairBxDF::sigmaAFromConcentration(finiteOr(ce, 0), finiteOr(cp, 0), ctx.lambda);
     }
-    // Outside [0, 1] (a mesh's own uv) v is clamped; pbrt-v4 requires it there.
     p.spectral = ctx.lambda != nullptr;
+    // Outside [0, 1] (a mesh's own uv) v is clamped; pbrt-v4 requires it there.
     p.h = std::clamp(-1 + 2 * finiteOr(ctx.uv.y, 0.5f), -1.0f, 1.0f);
     return buf.alloc<HairBxDF>(p);
 }
