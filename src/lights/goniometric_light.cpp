@@ -13,7 +13,7 @@ Transform GoniometricLight::swapYZ() {
     return Transform(m, m);  // its own inverse
 }
 
-GoniometricLight::GoniometricLight(const Transform& worldFromLight, Spectrum I, std::vector<float> values, int res)
+GoniometricLight::GoniometricLight(const Transform& worldFromLight, LightSpectrum I, std::vector<float> values, int res)
     : Light(LightType::DeltaPosition), frame_(worldFromLight * swapYZ()), pos_(frame_.position()), I_(I),
       values_(std::move(values)), res_(res) {
     for (float& v : values_) v = std::max(v, 0.0f);
@@ -22,23 +22,23 @@ GoniometricLight::GoniometricLight(const Transform& worldFromLight, Spectrum I, 
     distribution_ = Distribution2D(values_, res_, res_);
 }
 
-Spectrum GoniometricLight::intensityLight(Vec3 wLight) const {
+Spectrum GoniometricLight::intensityLight(Vec3 wLight, const SampledWavelengths* lambda) const {
     Vec2 uv = equalAreaSphereToSquare(wLight);
     int x = std::clamp(int(uv.x * res_), 0, res_ - 1), y = std::clamp(int(uv.y * res_), 0, res_ - 1);
-    return I_ * values_[size_t(y) * res_ + x];
+    return I_(lambda) * values_[size_t(y) * res_ + x];
 }
 
 std::optional<LightLiSample> GoniometricLight::sampleLi(const LightSampleContext& ctx, Vec2) const {
-    return pointLightLi(pos_, ctx, [&](Vec3 w) { return intensity(w); });
+    return pointLightLi(pos_, ctx, [&](Vec3 w) { return intensity(w, ctx.lambda); });
 }
 
-std::optional<LightLeSample> GoniometricLight::sampleLe(Vec2, Vec2 uDir, const SampledWavelengths*) const {
+std::optional<LightLeSample> GoniometricLight::sampleLe(Vec2, Vec2 uDir, const SampledWavelengths* lambda) const {
     float pdfUV;
     Vec2 uv = distribution_.sampleContinuous(uDir, &pdfUV);
     if (!(pdfUV > 0)) return std::nullopt;
     Vec3 wLight = equalAreaSquareToSphere(uv);
     float pdfDir = frame_.toWorldDensity(pdfUV / (4 * kPi), wLight);
-    Spectrum I = intensityLight(wLight);
+    Spectrum I = intensityLight(wLight, lambda);
     if (!(pdfDir > 0) || I.isBlack()) return std::nullopt;
     return LightLeSample{I, Ray{pos_, frame_.toWorld(wLight)}, {}, 1.0f, pdfDir, {}};
 }
@@ -53,7 +53,7 @@ void GoniometricLight::pdfLe(Vec3, Vec3, Vec3 w, float* pdfPos, float* pdfDir) c
 Spectrum GoniometricLight::phi() const {
     double sum = 0;
     for (float v : values_) sum += v;
-    return I_ * float(4 * kPi * sum / values_.size());
+    return I_.rgb() * float(4 * kPi * sum / values_.size());
 }
 
 }  // namespace ps

@@ -65,9 +65,6 @@ public:
     }
     // Infinite lights: radiance arriving along a ray that escapes the scene.
     virtual Spectrum Le(const Ray& r, const SampledWavelengths* lambda) const { (void)r; (void)lambda; return {}; }
-    // Whether sampleLi, sampleLe, L and Le follow the path's wavelengths (spectral mode); a
-    // light that does not is refused there. phi is RGB in both modes (it only chooses lights).
-    virtual bool supportsSpectral() const { return true; }
     // Samples an emitted ray (uPos picks the origin, uDir the direction); L at lambda in
     // spectral mode (null: RGB). The ray's choice does not depend on lambda.
     virtual std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir, const SampledWavelengths* lambda) const = 0;
@@ -80,7 +77,7 @@ public:
     // True for lights infinitely far away (infinite and distant): their subpaths start on a
     // disk at infinity, and their connections carry no 1/d^2.
     bool atInfinity() const { return type_ == LightType::Infinite || type_ == LightType::DeltaDirection; }
-    // Emitted power (for choosing lights in proportion to it).
+    // Emitted power (for choosing lights in proportion to it), RGB in both colour modes.
     virtual Spectrum phi() const = 0;
     // Lights that depend on the scene's extent learn it here.
     virtual void preprocess(Vec3 sceneCenter, float sceneRadius) { (void)sceneCenter; (void)sceneRadius; }

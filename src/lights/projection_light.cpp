@@ -51,28 +51,28 @@ bool ProjectionLight::screenUV(Vec3 wl, Vec2* uv) const {
     return true;
 }
 
-Spectrum ProjectionLight::intensityLight(Vec3 wl) const {
+Spectrum ProjectionLight::intensityLight(Vec3 wl, const SampledWavelengths* lambda) const {
     Vec2 uv;
     if (!screenUV(wl, &uv)) return {};
     int x = std::clamp(int(uv.x * image_.width), 0, image_.width - 1);
     int y = std::clamp(int(uv.y * image_.height), 0, image_.height - 1);
-    return image_.get(x, y) * scale_;
+    return lambda ? liftIlluminant(image_.get(x, y), *lambda) * scale_ : image_.get(x, y) * scale_;
 }
 
 std::optional<LightLiSample> ProjectionLight::sampleLi(const LightSampleContext& ctx, Vec2) const {
-    return pointLightLi(pos_, ctx, [&](Vec3 w) { return intensity(w); });
+    return pointLightLi(pos_, ctx, [&](Vec3 w) { return intensity(w, ctx.lambda); });
 }
 
 // A texel by the distribution, a uniform point in it, the direction through that point:
 // the density over the plane z = 1 is pdfUV / planeArea, over directions divided by cos^3.
-std::optional<LightLeSample> ProjectionLight::sampleLe(Vec2, Vec2 uDir, const SampledWavelengths*) const {
+std::optional<LightLeSample> ProjectionLight::sampleLe(Vec2, Vec2 uDir, const SampledWavelengths* lambda) const {
     float pdfUV;
     Vec2 uv = distribution_.sampleContinuous(uDir, &pdfUV);
     if (!(pdfUV > 0)) return std::nullopt;
     float sx = screen_.x0 + uv.x * (screen_.x1 - screen_.x0), sy = screen_.y0 + uv.y * (screen_.y1 - screen_.y0);
     Vec3 wl = normalize(Vec3(sx * screen_.tanHalfFov, sy * screen_.tanHalfFov, 1));
     float pdfDir = frame_.toWorldDensity(pdfUV / (screen_.planeArea() * screen_.cos3(sx, sy)), wl);
-    Spectrum I = intensityLight(wl);
+    Spectrum I = intensityLight(wl, lambda);
     if (!(pdfDir > 0) || I.isBlack()) return std::nullopt;
     return LightLeSample{I, Ray{pos_, frame_.toWorld(wl)}, {}, 1.0f, pdfDir, {}};
 }

@@ -5,8 +5,9 @@
 // at (w.x, w.y) / (w.z tan(fov / 2)). The screen spans [-a, a] x [-1, 1] for an image aspect
 // ratio a = width / height > 1, else [-1, 1] x [-1/a, 1/a] (fov spans the shorter axis);
 // columns run along screen x, rows along screen y, and the intensity is the nearest
-// texel's RGB; outside the screen it is zero. Emitted rays are importance-sampled by texel
-// values times the solid angle each texel subtends.
+// texel's RGB (in spectral mode lifted at the path's wavelengths as an sRGB illuminant, as
+// pbrt-v4 lifts it in the image's colour space); outside the screen it is zero. Emitted rays
+// are importance-sampled by texel values times the solid angle each texel subtends.
 #pragma once
 #include "image/image.h"
 #include "lights/light.h"
@@ -23,11 +24,12 @@ public:
     std::optional<LightLiSample> sampleLi(const LightSampleContext& ctx, Vec2 u) const override;
     std::optional<LightLeSample> sampleLe(Vec2 uPos, Vec2 uDir, const SampledWavelengths* lambda) const override;
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
-    Spectrum L(Vec3, Vec3, Vec2, Vec3 w, const SampledWavelengths*) const override { return intensity(w); }
-    bool supportsSpectral() const override { return false; }
+    Spectrum L(Vec3, Vec3, Vec2, Vec3 w, const SampledWavelengths* lambda) const override { return intensity(w, lambda); }
     // pbrt-v4's power: texel values times their solid angles at the texel centres.
     Spectrum phi() const override;
-    Spectrum intensity(Vec3 w) const { return intensityLight(frame_.toLight(w)); }
+    Spectrum intensity(Vec3 w, const SampledWavelengths* lambda = nullptr) const {
+        return intensityLight(frame_.toLight(w), lambda);
+    }
 
     // The screen's geometry for an image of w x h texels and fov in degrees (shared with the
     // normalisation of "power", which needs it before the light exists).
@@ -45,7 +47,7 @@ public:
     static Screen screenFor(int width, int height, float fovDegrees);
 
 private:
-    Spectrum intensityLight(Vec3 wLight) const;
+    Spectrum intensityLight(Vec3 wLight, const SampledWavelengths* lambda) const;
     // Screen (u, v) in [0,1]^2 of light direction w, or false outside the frustum.
     bool screenUV(Vec3 wLight, Vec2* uv) const;
 

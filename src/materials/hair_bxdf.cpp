@@ -5,6 +5,7 @@
 
 #include "materials/fresnel.h"
 #include "math/bessel.h"
+#include "spectral/sampled_spectrum.h"
 
 namespace ps {
 
@@ -54,7 +55,7 @@ struct HairBxDF::Lobes {
     double sinThetaO, cosThetaO, phiO, gammaT;
     // theta_o tilted by the scales for each lobe (lobe kPMax untilted).
     std::array<double, kPMax + 1> sinThetaP, cosThetaP;
-    std::array<std::array<double, 3>, kPMax + 1> ap;
+    std::array<std::array<double, 4>, kPMax + 1> ap;
     std::array<double, kPMax + 1> apPdf;
     bool valid;  // some light is scattered
 };
@@ -63,7 +64,8 @@ HairBxDF::HairBxDF(const HairParams& p) : BxDF(true) {
     h_ = clampd(p.h, -1, 1);
     eta_ = p.eta;
     gammaO_ = std::asin(h_);
-    for (int c = 0; c < 3; ++c) sigmaA_[c] = clampd(p.sigmaA[c], 0, 1e30);  // also maps NaN to 0
+    for (int c = 0; c < 4; ++c) sigmaA_[c] = clampd(p.sigmaA[c], 0, 1e30);  // also maps NaN to 0
+    meanChannels_ = p.spectral ? 4 : 3;
     const double bm = p.betaM, bn = p.betaN;
     v_[0] = std::pow(0.726 * bm + 0.812 * bm * bm + 3.7 * std::pow(bm, 20), 2);
     v_[1] = 0.25 * v_[0];
@@ -101,7 +103,7 @@ HairBxDF::Lobes HairBxDF::lobes(Vec3 wo) const {
     // more Fresnel reflection per internal bounce; lobe kPMax sums the geometric series.
     const double fr = fresnelDielectric(float(L.cosThetaO * safeSqrtD(1 - h_ * h_)), float(eta_));
     double sumAvg = 0;
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < 4; ++c) {
         const double T = sigmaA_[c] == 0 ? 1.0 : std::exp(-sigmaA_[c] * pathLength);
         L.ap[0][c] = fr;
         L.ap[1][c] = (1 - fr) * (1 - fr) * T;
@@ -110,7 +112,8 @@ HairBxDF::Lobes HairBxDF::lobes(Vec3 wo) const {
         L.ap[kPMax][c] = rest > 0 ? L.ap[kPMax - 1][c] * fr * T / rest : 0.0;
     }
     for (int p = 0; p <= kPMax; ++p) {
-        L.apPdf[p] = (L.ap[p][0] + L.ap[p][1] + L.ap[p][2]) / 3;
+        L.apPdf[p] = meanChannels_ == 4 ? (L.ap[p][0] + L.ap[p][1] + L.ap[p][2] + L.ap[p][3]) / 4
+                                        : (L.ap[p][0] + L.ap[p][1] + L.ap[p][2]) / 3;
         sumAvg += L.apPdf[p];
     }
     L.valid = sumAvg > 0 && std::isfinite(sumAvg);
@@ -136,16 +139,16 @@ HairBxDF::Lobes HairBxDF::lobes(Vec3 wo) const {
 Spectrum HairBxDF::radiance(const Lobes& L, Vec3 wi) const {
     const double sinThetaI = clampd(wi.x, -1, 1), cosThetaI = safeSqrtD(1 - sinThetaI * sinThetaI);
     const double dphi = std::atan2(double(wi.z), double(wi.y)) - L.phiO;
-    std::array<double, 3> sum{0, 0, 0};
+    std::array<double, 4> sum{0, 0, 0, 0};
     for (int p = 0; p <= kPMax; ++p) {
         const double n = p < kPMax ? Np(dphi, p, s_, gammaO_, L.gammaT) : 1 / (2 * kPiD);
         const double m = Mp(cosThetaI, L.cosThetaP[p], sinThetaI, L.sinThetaP[p], v_[p]);
-        for (int c = 0; c < 3; ++c) sum[c] += m * n * L.ap[p][c];
+        for (int c = 0; c < 4; ++c) sum[c] += m * n * L.ap[p][c];
     }
     // The lobes give f |cos wi|.
     const double cosI = std::fabs(double(wi.z));
     Spectrum out;
-    for (int c = 0; c < 3; ++c) out[c] = float(cosI > 0 ? sum[c] / cosI : sum[c]);
+    for (int c = 0; c < 4; ++c) out[c] = float(cosI > 0 ? sum[c] / cosI : sum[c]);  // all four: c3 is g in RGB mode
     return out;
 }
 
@@ -205,15 +208,16 @@ std::optional<BSDFSample> HairBxDF::sample(Vec3 wo, float ucIn, Vec2 u, Transpor
     return BSDFSample{f, wi, pdf, uint8_t(kReflection | kGlossy), 1};
 }
 
-Spectrum HairBxDF::sigmaAFromConcentration(float eumelanin, float pheomelanin) {
-    return Spectrum(0.419f, 0.697f, 1.37f) * eumelanin + Spectrum(0.187f, 0.4f, 1.05f) * pheomelanin;
+Spectrum HairBxDF::sigmaAFromConcentration(float eumelanin, float pheomelanin, const SampledWavelengths* lambda) {
+    const Spectrum rgb = Spectrum(0.419f, 0.697f, 1.37f) * eumelanin + Spectrum(0.187f, 0.4f, 1.05f) * pheomelanin;
+    return lambda ? liftUnbounded(rgb, *lambda) : rgb;
 }
 
 Spectrum HairBxDF::sigmaAFromReflectance(const Spectrum& c, float betaN) {
     const double b = betaN;
     const double d = 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * b * b * b + 5.574 * b * b * b * b + 0.245 * std::pow(b, 5);
     Spectrum out;
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < 4; ++i) {  // c3 is g in RGB mode, a wavelength's value in spectral
         const double l = std::log(double(c[i])) / d;  // c = 0: infinite absorption
         out[i] = float(std::min(l * l, 1e30));
     }

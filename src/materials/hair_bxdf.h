@@ -18,12 +18,17 @@
 // are those of f(wo, .) reflected, e.g. +2 gamma_o for the reflection instead of -2 gamma_o).
 // pdf() is the exact density of each mode's sampling.
 //
+// In spectral mode the four channels are the path's wavelengths and the lobe is chosen by the
+// mean of Ap over all four (pbrt-v4's Average); in RGB mode by the mean of r, g, b, and the
+// fourth channel repeats g.
+//
 // h is taken as given. Where it is a property of the surface point (ribbons, meshes) the
 // adjoint is exact. On flat and cylinder curves pbrt-v4 derives h from the ray that found
 // the hit, so a light-tracing vertex has the light ray's h, not the camera side's.
 #pragma once
 #include <array>
 #include "materials/bxdf.h"
+#include "spectral/wavelengths.h"
 
 namespace ps {
 
@@ -34,6 +39,7 @@ struct HairParams {
     float betaM = 0.3f;     // longitudinal roughness, 0.01 .. 1
     float betaN = 0.3f;     // azimuthal roughness, 0.01 .. 1
     float alphaDegrees = 2; // tilt of the cuticle scales
+    bool spectral = false;  // sigmaA holds four wavelengths' values (else r, g, b and g)
 };
 
 class HairBxDF final : public BxDF {
@@ -46,11 +52,11 @@ public:
     std::optional<BSDFSample> sample(Vec3 wo, float uc, Vec2 u, TransportMode mode) const override;
     float pdf(Vec3 wo, Vec3 wi, TransportMode mode) const override;
 
-    // pbrt-v4's absorption of melanin concentrations, given in RGB (as pbrt-v4 states them
-    // before its conversion to a spectrum).
-    static Spectrum sigmaAFromConcentration(float eumelanin, float pheomelanin);
+    // pbrt-v4's absorption of melanin concentrations, given in RGB; in spectral mode (lambda
+    // not null) that RGB lifted as an unbounded sRGB spectrum at lambda, as pbrt-v4 does.
+    static Spectrum sigmaAFromConcentration(float eumelanin, float pheomelanin, const SampledWavelengths* lambda = nullptr);
     // The absorption that gives a fibre of azimuthal roughness betaN the multiply-scattered
-    // colour c (Chiang et al.'s fit), per channel.
+    // colour c (Chiang et al.'s fit), per channel (colour or wavelength).
     static Spectrum sigmaAFromReflectance(const Spectrum& c, float betaN);
 
 private:
@@ -61,7 +67,8 @@ private:
     double density(const Lobes& L, double sinThetaI, double cosThetaI, double dphi) const;
 
     double h_, eta_, gammaO_;
-    std::array<double, 3> sigmaA_;
+    std::array<double, 4> sigmaA_;
+    int meanChannels_;  // channels whose mean chooses the lobe: 3 (RGB) or 4 (spectral)
     std::array<double, kPMax + 1> v_;  // longitudinal variance per lobe
     double s_;                         // logistic scale of Np
     std::array<double, kPMax> sin2kAlpha_, cos2kAlpha_;

@@ -29,8 +29,9 @@ const BxDF* HairMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& bu
     } else {
         float ce = t_.eumelanin ? std::max(0.0f, t_.eumelanin->evaluate(ctx)) : 0.0f;
         float cp = t_.pheomelanin ? std::max(0.0f, t_.pheomelanin->evaluate(ctx)) : 0.0f;
-        p.sigmaA = HairBxDF::sigmaAFromConcentration(finiteOr(ce, 0), finiteOr(cp, 0));
+        p.sigmaA = HairBxDF::sigmaAFromConcentration(finiteOr(ce, 0), finiteOr(cp, 0), ctx.lambda);
     }
+    p.spectral = ctx.lambda != nullptr;
     // Outside [0, 1] (a mesh's own uv) v is clamped; pbrt-v4 requires it there.
     p.h = std::clamp(-1 + 2 * finiteOr(ctx.uv.y, 0.5f), -1.0f, 1.0f);
     return buf.alloc<HairBxDF>(p);

@@ -1,6 +1,7 @@
 // pbrt-v4's "hair" material: the hair BSDF (hair_bxdf.h) with its absorption given directly
 // (sigma_a), by the colour it should have (reflectance) or by melanin concentrations, and the
 // offset h across the fibre from the hit's v (h = -1 + 2 v, as pbrt-v4 does on every shape).
+// In spectral mode every absorption is at the path's wavelengths (pbrt-v4's GetBxDF).
 #pragma once
 #include "materials/materials.h"
 
@@ -18,7 +19,6 @@ class HairMaterial final : public Material {
 public:
     explicit HairMaterial(HairTextures t) : t_(std::move(t)) {}
     const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override;
-    const char* rgbOnly() const override { return "hair"; }  // melanin absorption per colour channel
 
 private:
     HairTextures t_;

@@ -27,9 +27,6 @@ public:
     // only approximates how they sample): fine for estimators and MIS, not for the exact
     // transition densities of path-space mutations.
     virtual bool stochasticBxDF() const { return false; }
-    // The name of a material that works in RGB only (its BxDF computes with colour channels,
-    // not wavelengths), which spectral mode refuses; null for every other.
-    virtual const char* rgbOnly() const { return nullptr; }
     // The BxDF when it is the same at every point (all textures constant), built once, so
     // the render loop neither evaluates textures nor builds one per hit; null otherwise.
     const BxDF* constantBxDF() const { return constant_.get(); }

@@ -135,7 +135,6 @@ public:
     const BxDF* bxdf(const MaterialEvalContext& ctx, ScratchBuffer& buf) const override { return resolve(ctx)->bxdf(ctx, buf); }
     const Material* resolve(const MaterialEvalContext& ctx) const override;
     bool stochasticBxDF() const override { return m_[0]->stochasticBxDF() || m_[1]->stochasticBxDF(); }
-    const char* rgbOnly() const override { return m_[0]->rgbOnly() ? m_[0]->rgbOnly() : m_[1]->rgbOnly(); }
 
 private:
     std::array<std::shared_ptr<Material>, 2> m_;

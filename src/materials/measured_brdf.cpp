@@ -93,6 +93,8 @@ std::shared_ptr<const MeasuredBRDF> read(const std::string& path) {
                     float* dst = &rgb[(s * 3 + c) * plane];
                     for (size_t i = 0; i < plane; ++i) dst[i] += w[k][c] * src[i];
                 }
+        b->spectra = table(tf, "spectra", spectra, int(n), int(n), {phiI, thetaI, lambda}, Mode::Interpolant);
+        b->hasSpectra = true;
     }
     b->rgb = table(tf, tf.has("rgb") ? "rgb" : "spectra", rgb, int(n), int(n), {phiI, thetaI, {0, 1, 2}}, Mode::Interpolant);
     return b;

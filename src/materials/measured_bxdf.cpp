@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "materials/fresnel.h"
+#include "spectral/sampled_spectrum.h"
 
 namespace ps {
 
@@ -26,9 +27,22 @@ float jacobian(float uTheta, float sinThetaM, float woDotWm) {
 Spectrum MeasuredBxDF::reflectance(Vec2 ui, const float* woParams, Vec2 uWm, Vec2 uWo, float cosI) const {
     const MeasuredBRDF& b = *brdf_;
     Spectrum r;
-    for (int c = 0; c < 3; ++c) {
-        float p[3] = {woParams[0], woParams[1], float(c)};
-        r[c] = std::max(0.0f, b.rgb.evaluate(ui, p));
+    if (spectral_ && b.hasSpectra) {
+        for (int i = 0; i < kWavelengthSamples; ++i) {
+            float p[3] = {woParams[0], woParams[1], lambda_[i]};
+            r[i] = std::max(0.0f, b.spectra.evaluate(ui, p));
+        }
+    } else {
+        for (int c = 0; c < 3; ++c) {
+            float p[3] = {woParams[0], woParams[1], float(c)};
+            r[c] = std::max(0.0f, b.rgb.evaluate(ui, p));
+        }
+        r.c3 = r.g;  // the RGB invariant (math/spectrum.h)
+        if (spectral_) {
+            SampledWavelengths w;
+            w.lambda = lambda_;
+            r = liftUnbounded(r, w);
+        }
     }
     float scale = b.ndf.evaluate(uWm) / (4 * b.sigma.evaluate(uWo) * cosI);
     if (!std::isfinite(scale) || scale < 0) return {};

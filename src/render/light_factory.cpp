@@ -65,7 +65,7 @@ std::unique_ptr<Light> createInfinite(const LightEntity& e, const std::string& b
 // 4 pi times the mean texel (and keeps the RGB multiplier of I, as for point lights).
 std::unique_ptr<Light> createGoniometric(const LightEntity& e, const std::string& base) {
     const ParamSet& ps = e.params;
-    Spectrum I = emission(ps, "I").rgb();
+    LightSpectrum I = emission(ps, "I");
     float scale = ps.getFloat("scale", 1);
     float P = ps.getFloat("power", -1);
     std::string file = ps.getString("filename", "");

@@ -112,7 +112,7 @@ void checkRenderable(const Scene& scene, const Integrator& integrator, const Ren
     if ((options.resume || options.checkpoint) && options.adaptive != AdaptiveMode::None)
         throw InputError("adaptive sampling (--adaptive) does not yet write or resume checkpoints: path, light and "
                          "bdpt with uniform sampling and the Metropolis integrators do");
-    if (scene.settings().spectral) requireSpectralSupport(scene, integrator, scene.settings().integrator);
+    if (scene.settings().spectral) requireSpectralSupport(integrator, scene.settings().integrator);
     requireFilmMemory(scene, integrator, options);
     if (auto* veach = dynamic_cast<const VeachMLTIntegrator*>(&integrator)) requireVeachMLTSupport(scene, *veach);
     if (auto* mlt = dynamic_cast<const MetropolisIntegrator*>(&integrator)) requireMetropolisSupport(scene, *mlt);

@@ -55,17 +55,9 @@ Spectrum SpectralFilm::toRendering(const Spectrum& L, const SampledWavelengths& 
 
 Spectrum SampleContext::toFilm(const Spectrum& L) const { return sensor ? sensor->toRendering(L, *lambda) : L; }
 
-void requireSpectralSupport(const Scene& scene, const Integrator& integrator, const std::string& integratorName) {
+void requireSpectralSupport(const Integrator& integrator, const std::string& integratorName) {
     if (!integrator.supportsSpectral())
         throw InputError("--color spectral: integrator \"" + integratorName + "\" renders in RGB only (use --color rgb)");
-    for (const auto& light : scene.lights())
-        if (!light->supportsSpectral())
-            throw InputError("--color spectral: the scene has a goniometric or projection light, which renders in RGB "
-                             "only for now (use --color rgb)");
-    for (const auto& material : scene.materials())
-        if (const char* name = material->rgbOnly())
-            throw InputError(std::string("--color spectral: the \"") + name +
-                             "\" material renders in RGB only for now (use --color rgb)");
 }
 
 }  // namespace ps

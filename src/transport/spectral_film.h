@@ -40,8 +40,8 @@ private:
 Matrix3 renderingFromSensor(const RenderSettings& settings);
 ClampSpace sensorFromRendering(const RenderSettings& settings);
 
-// Throws InputError, naming what is missing, unless the integrator, every light and every
-// material of the scene support spectral mode.
-void requireSpectralSupport(const Scene& scene, const Integrator& integrator, const std::string& integratorName);
+// Throws InputError, naming the integrator, unless it supports spectral mode (every light and
+// material does).
+void requireSpectralSupport(const Integrator& integrator, const std::string& integratorName);
 
 }  // namespace ps

@@ -64,7 +64,8 @@ struct GgxTableSpec {
     int nTheta = 12;                // theta_i values, 0 .. thetaMax
     float thetaMax = 1.45f;
     Spectrum R{0.9f, 0.6f, 0.3f};   // reflectance (rgb field)
-    std::vector<float> wavelengths; // non-empty: a `spectra` field with R.g at every wavelength
+    std::vector<float> wavelengths; // non-empty: a `spectra` field with R.g at every wavelength,
+    std::vector<float> spectrum;    // or, when given, spectrum[l] at wavelengths[l]
 };
 
 // The fields of the file for spec (drop some to test the reader's errors).
@@ -130,7 +131,8 @@ inline std::vector<TensorField> ggxTensorFields(const GgxTableSpec& s) {
         std::vector<float> spectra(nt * nl * plane);
         for (int k = 0; k < nt; ++k)
             for (size_t l = 0; l < nl; ++l)
-                for (size_t i = 0; i < plane; ++i) spectra[(k * nl + l) * plane + i] = s.R.g * refl[k * plane + i];
+                for (size_t i = 0; i < plane; ++i)
+                    spectra[(k * nl + l) * plane + i] = (s.spectrum.empty() ? s.R.g : s.spectrum[l]) * refl[k * plane + i];
         f.push_back(floatField("wavelengths", {nl}, s.wavelengths));
         f.push_back(floatField("spectra", {1, unt, nl, un, un}, spectra));
     }

@@ -3,6 +3,7 @@
 // and BDPT's light subpaths evaluate the BSDF in importance mode, the adjoint f(wi, wo) of
 // this non-reciprocal model: with f(wo, wi) there they would converge to another image.
 // On these shapes h = -1 + 2v is a property of the surface point, so the adjoint is exact.
+// The same in spectral mode.
 #include <gtest/gtest.h>
 
 #include "agreement.h"
@@ -10,8 +11,9 @@
 using namespace ps;
 using namespace ps::test;
 
-TEST(HairRender, PathLightAndBdptAgree) {
-    const std::string scene = R"(
+namespace {
+
+const std::string kScene = R"(
         LookAt 0 0.5 2.2  0 0.5 0  0 1 0
         Camera "perspective" "float fov" [ 30 ]
         Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
@@ -35,5 +37,17 @@ TEST(HairRender, PathLightAndBdptAgree) {
           Shape "sphere" "float radius" [ 0.22 ]
         AttributeEnd
     )";
-    expectAgreement(AgreementCase{"hair", scene, {"path", "light", "bdpt"}, 16, 16, {{"light", 64}}});
+
+}  // namespace
+
+TEST(HairRender, PathLightAndBdptAgree) {
+    expectAgreement(AgreementCase{"hair", kScene, {"path", "light", "bdpt"}, 16, 16, {{"light", 64}}});
+}
+
+// Spectral mode: sigma_a lifted at the path's wavelengths (an unbounded RGB, and the melanin
+// concentrations' RGB), and the lobe chosen by the mean over the four wavelengths.
+TEST(HairRender, SpectralPathLightAndBdptAgree) {
+    AgreementCase c{"spectral hair", kScene, {"path", "light", "bdpt"}, 32, 16, {{"light", 128}}};
+    c.spectral = true;
+    expectAgreement(c);
 }

@@ -308,6 +308,39 @@ TEST(LightAgreement, ProjectionLight) {
     expectAgreement(AgreementCase{"projection", scene, {"path", "light", "bdpt"}, 32});
 }
 
+// Spectral mode: the goniometric light's I (a blackbody here) and the projection light's
+// slide (lifted as an illuminant per texel) at the path's wavelengths, in sampleLi, sampleLe
+// and L alike.
+TEST(LightAgreement, SpectralGoniometricLight) {
+    TempImages tmp("agree-spectral-gonio");
+    std::string file = tmp.write("gonio.pfm", patternImage(16, 16, 5));
+    std::string scene = header("LookAt 0 2 2.2  0 0.2 0  0 1 0", R"("float fov" [ 40 ])", 4) + R"(
+        AttributeBegin
+          Translate 0.3 1.6 0.4
+          Rotate 150 1 0 0.3
+          LightSource "goniometric" "blackbody I" [ 3000 ] "float scale" [ 1.5 ] "string filename" [ ")" + file + R"(" ]
+        AttributeEnd
+    )" + groundAndBall();
+    AgreementCase c{"spectral goniometric", scene, {"path", "light", "bdpt"}, 32, 16, {{"light", 128}}};
+    c.spectral = true;
+    expectAgreement(c);
+}
+
+TEST(LightAgreement, SpectralProjectionLight) {
+    TempImages tmp("agree-spectral-projection");
+    std::string file = tmp.write("slide.pfm", patternImage(8, 6, 6));
+    std::string scene = header("LookAt 0 2 2.2  0 0.2 0  0 1 0", R"("float fov" [ 40 ])", 4) + R"(
+        AttributeBegin
+          Translate 0 2 0.8
+          Rotate 112 1 0 0
+          LightSource "projection" "float fov" [ 40 ] "float scale" [ 4 ] "string filename" [ ")" + file + R"(" ]
+        AttributeEnd
+    )" + groundAndBall();
+    AgreementCase c{"spectral projection", scene, {"path", "light", "bdpt"}, 32};
+    c.spectral = true;
+    expectAgreement(c);
+}
+
 TEST(LightAgreement, ImageAreaLight) {
     TempImages tmp("agree-area-image");
     std::string file = tmp.write("emit.pfm", patternImage(8, 8, 7));

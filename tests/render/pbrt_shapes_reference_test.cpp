@@ -26,19 +26,21 @@ double luminance(Spectrum c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b
 // image's mean luminance within 4 sigma with sigma under 0.5%. Texture and lens paths in the
 // file are relative to it.
 // `allowance` (relative, 0 by default) widens each block's and the image's test where the two
-// renderers are known to differ slightly (the caller says why).
-void expectPbrtReference(const std::string& sceneFile, const std::string& refFile, int refSpp, int spp, double allowance = 0) {
+// renderers are known to differ slightly (the caller says why). `spectral`: rendered with
+// --color spectral, and the image's mean R, G and B each compared too (within 4 sigma).
+void expectPbrtReference(const std::string& sceneFile, const std::string& refFile, int refSpp, int spp, double allowance = 0,
+                         bool spectral = false) {
     const fs::path dir = fs::path(PATHSPACE_SOURCE_DIR) / "tests" / "data" / "pbrt-v4";
     std::ifstream in(dir / sceneFile);
     std::stringstream text;
     text << in.rdbuf();
     std::string scene = text.str();
-    for (const std::string rel : {"\"textures/", "\"../lenses/"})
+    for (const std::string rel : {"\"textures/", "\"../lenses/", "\"measured/"})
         for (size_t at = 0; (at = scene.find(rel, at)) != std::string::npos; at += dir.string().size() + rel.size())
             scene.insert(at + 1, dir.string() + "/");
     Image ref = readImage((dir / refFile).string());
     const int renders = 16, blocks = 4;
-    BlockMeans ours = blockMeans(scene, "", spp, renders, blocks);
+    BlockMeans ours = blockMeans(scene, "", spp, renders, blocks, 100, spectral);
     ASSERT_EQ(ref.width, 64);
     const int bw = ref.width / blocks, bh = ref.height / blocks;
     // The reference's noise, from ours: a render's spread scaled to the reference's samples
@@ -67,6 +69,15 @@ void expectPbrtReference(const std::string& sceneFile, const std::string& refFil
                 ours.imageMean / refImage, se / refImage, (ours.imageMean - refImage) / se);
     EXPECT_LT(se / refImage, 0.005) << "too noisy to detect a 2% change";
     EXPECT_NEAR(ours.imageMean, refImage, 4 * se + allowance * refImage);
+    for (int c = 0; spectral && c < 3; ++c) {
+        double r = 0;
+        for (int y = 0; y < ref.height; ++y)
+            for (int x = 0; x < ref.width; ++x) r += ref.get(x, y)[c] / (double(ref.width) * ref.height);
+        const double seC = ours.channelStdErr[c] * std::hypot(1.0, refScale);
+        std::printf("  channel %d: ours %.5f pbrt-v4 %.5f, ratio %.4f +- %.4f (%+.2f sigma)\n", c, ours.channelMean[c], r,
+                    ours.channelMean[c] / r, seC / r, (ours.channelMean[c] - r) / seC);
+        EXPECT_NEAR(ours.channelMean[c], r, 4 * seC + allowance * r) << "channel " << c;
+    }
 }
 
 }  // namespace
@@ -129,4 +140,15 @@ TEST(PbrtShapesReference, TexturesAlphaAndMotion) {
 // (film centre up, corners down), every pixel an equal solid angle.
 TEST(PbrtShapesReference, SphericalCamera) {
     expectPbrtReference("spherical-camera.pbrt", "spherical-camera-4096spp.exr", 4096, 64);
+}
+
+// Spectral mode on coloured scenes (no allowance): a goniometric light with a blackbody I and
+// a projection light with a coloured slide; hair with melanin and with a coloured reflectance,
+// and a measured material whose tabulated spectrum varies with the wavelength.
+TEST(PbrtShapesReference, SpectralImageLights) {
+    expectPbrtReference("spectral-lights.pbrt", "spectral-lights-4096spp.exr", 4096, 64, 0, true);
+}
+
+TEST(PbrtShapesReference, SpectralHairAndMeasured) {
+    expectPbrtReference("spectral-materials.pbrt", "spectral-materials-4096spp.exr", 4096, 64, 0, true);
 }
