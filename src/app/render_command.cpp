@@ -241,9 +241,9 @@ void RenderCommand::attach(CLI::App& app) {
                      "multi-chain, caustic, wavelengths (spectral mode) (default 1 each; a mutation is chosen among those that apply to the path in "
                      "proportion to its weight; 0 switches one off; bidirectional must stay > 0)");
     cmd_->add_option("--color", color_,
-                     "rgb (default): paths carry linear RGB; spectral: each camera sample follows four wavelengths and "
-                     "the film's sensor (cie1931, \"whitebalance\") makes colour, as pbrt-v4 renders (for now with "
-                     "--integrator path only)")
+                     "spectral (default): each camera sample follows four wavelengths and the film's sensor (cie1931, "
+                     "\"whitebalance\") makes colour, as pbrt-v4 renders; rgb: paths carry linear RGB (faster; saturated "
+                     "colours, dispersion and white balance differ)")
         ->check(CLI::IsMember({"rgb", "spectral"}));
     cmd_->add_option("--mlt-direct", mltDirect_,
                      "mlt only: render the paths of at most one bounce (emission seen directly and direct lighting) "

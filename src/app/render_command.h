@@ -31,7 +31,7 @@ private:
     std::string mis_ = "power";
     std::string strategiesDir_;
     std::string sampler_;
-    std::string color_;
+    std::string color_ = "spectral";
     std::string adaptive_;
     std::vector<std::string> aovs_;
     std::vector<std::string> outputs_;

@@ -84,7 +84,7 @@ std::vector<Case> cases() {
          kHeader + "AttributeBegin\n  ConcatTransform [ 1 0 0 0  0 1 0 0  0 0 0 0  0 0 0 1 ]\nAttributeEnd\nShape \"sphere\"", {},
          0, {}, "", {"singular", "error"}},
         {"dispersion_warning", kHeader + "Material \"dielectric\" \"rgb eta\" [ 1.4 1.5 1.6 ]\nShape \"sphere\"", {}, 0,
-         {":7:", "dispersion is modelled in spectral mode only"}},
+         {":7:", "dispersion is modelled in spectral mode only"}, "--color rgb"},
         {"no_dispersion_warning_for_constant_eta",
          kHeader + "Material \"dielectric\" \"rgb eta\" [ 1.5 1.5 1.5 ]\nShape \"sphere\"\n"
                    "Material \"dielectric\" \"spectrum eta\" [ 300 1.33 900 1.33 ]\nShape \"sphere\"",
@@ -94,7 +94,7 @@ std::vector<Case> cases() {
          kHeader + "Material \"dielectric\" \"rgb eta\" [ 1.4 1.5 1.6 ]\nShape \"sphere\"", {}, 0, {}, "--color spectral",
          {"dispersion", "warning"}},
         {"whitebalance_warning_in_rgb_mode", filmScene("\"rgb\" \"float whitebalance\" [ 5000 ]"), {}, 0,
-         {":3:1:", "whitebalance", "spectral mode only"}},
+         {":3:1:", "whitebalance", "spectral mode only"}, "--color rgb"},
         {"no_whitebalance_warning_in_spectral_mode", filmScene("\"rgb\" \"float whitebalance\" [ 5000 ]"), {}, 0, {},
          "--color spectral", {"whitebalance", "warning"}},
         // pbrt-v4's gbuffer and spectral films: one warning each saying what is not written,
