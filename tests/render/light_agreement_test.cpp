@@ -282,29 +282,44 @@ Image patternImage(int w, int h, uint64_t seed) {
 // a goniometric light (its image importance-sampled for light subpaths), a projection
 // light aimed down at the ball (directions outside its frustum carry nothing), and a
 // two-sided area light with an emission image, seen from above.
-TEST(LightAgreement, GoniometricLight) {
-    TempImages tmp("agree-gonio");
-    std::string file = tmp.write("gonio.pfm", patternImage(16, 16, 5));
-    std::string scene = header("LookAt 0 2 2.2  0 0.2 0  0 1 0", R"("float fov" [ 40 ])", 4) + R"(
+namespace {
+
+// A goniometric light of intensity `intensity` (its parameter) and map `file`, tilted over
+// the ground and ball.
+std::string goniometricScene(const std::string& intensity, const std::string& file) {
+    return header("LookAt 0 2 2.2  0 0.2 0  0 1 0", R"("float fov" [ 40 ])", 4) + R"(
         AttributeBegin
           Translate 0.3 1.6 0.4
           Rotate 150 1 0 0.3
-          LightSource "goniometric" "rgb I" [ 1.5 1.3 1.1 ] "string filename" [ ")" + file + R"(" ]
+          LightSource "goniometric" )" + intensity + R"( "string filename" [ ")" + file + R"(" ]
         AttributeEnd
     )" + groundAndBall();
-    expectAgreement(AgreementCase{"goniometric", scene, {"path", "light", "bdpt"}, 32, 16, {{"light", 128}}});
 }
 
-TEST(LightAgreement, ProjectionLight) {
-    TempImages tmp("agree-projection");
-    std::string file = tmp.write("slide.pfm", patternImage(8, 6, 6));
-    std::string scene = header("LookAt 0 2 2.2  0 0.2 0  0 1 0", R"("float fov" [ 40 ])", 4) + R"(
+// A projection light of slide `file` onto the ground and ball.
+std::string projectionScene(const std::string& file) {
+    return header("LookAt 0 2 2.2  0 0.2 0  0 1 0", R"("float fov" [ 40 ])", 4) + R"(
         AttributeBegin
           Translate 0 2 0.8
           Rotate 112 1 0 0
           LightSource "projection" "float fov" [ 40 ] "float scale" [ 4 ] "string filename" [ ")" + file + R"(" ]
         AttributeEnd
     )" + groundAndBall();
+}
+
+}  // namespace
+
+TEST(LightAgreement, GoniometricLight) {
+    TempImages tmp("agree-gonio");
+    std::string file = tmp.write("gonio.pfm", patternImage(16, 16, 5));
+    std::string scene = goniometricScene(R"("rgb I" [ 1.5 1.3 1.1 ])", file);
+    expectAgreement(AgreementCase{"goniometric", scene, {"path", "light", "bdpt"}, 32, 16, {{"light", 128}}});
+}
+
+TEST(LightAgreement, ProjectionLight) {
+    TempImages tmp("agree-projection");
+    std::string file = tmp.write("slide.pfm", patternImage(8, 6, 6));
+    std::string scene = projectionScene(file);
     expectAgreement(AgreementCase{"projection", scene, {"path", "light", "bdpt"}, 32});
 }
 
@@ -314,13 +329,7 @@ TEST(LightAgreement, ProjectionLight) {
 TEST(LightAgreement, SpectralGoniometricLight) {
     TempImages tmp("agree-spectral-gonio");
     std::string file = tmp.write("gonio.pfm", patternImage(16, 16, 5));
-    std::string scene = header("LookAt 0 2 2.2  0 0.2 0  0 1 0", R"("float fov" [ 40 ])", 4) + R"(
-        AttributeBegin
-          Translate 0.3 1.6 0.4
-          Rotate 150 1 0 0.3
-          LightSource "goniometric" "blackbody I" [ 3000 ] "float scale" [ 1.5 ] "string filename" [ ")" + file + R"(" ]
-        AttributeEnd
-    )" + groundAndBall();
+    std::string scene = goniometricScene(R"("blackbody I" [ 3000 ] "float scale" [ 1.5 ])", file);
     AgreementCase c{"spectral goniometric", scene, {"path", "light", "bdpt"}, 32, 16, {{"light", 128}}};
     c.spectral = true;
     expectAgreement(c);
@@ -329,13 +338,7 @@ TEST(LightAgreement, SpectralGoniometricLight) {
 TEST(LightAgreement, SpectralProjectionLight) {
     TempImages tmp("agree-spectral-projection");
     std::string file = tmp.write("slide.pfm", patternImage(8, 6, 6));
-    std::string scene = header("LookAt 0 2 2.2  0 0.2 0  0 1 0", R"("float fov" [ 40 ])", 4) + R"(
-        AttributeBegin
-          Translate 0 2 0.8
-          Rotate 112 1 0 0
-          LightSource "projection" "float fov" [ 40 ] "float scale" [ 4 ] "string filename" [ ")" + file + R"(" ]
-        AttributeEnd
-    )" + groundAndBall();
+    std::string scene = projectionScene(file);
     AgreementCase c{"spectral projection", scene, {"path", "light", "bdpt"}, 32};
     c.spectral = true;
     expectAgreement(c);
