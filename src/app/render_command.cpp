@@ -562,6 +562,10 @@ int RenderCommand::run() {
                              {"acceptance_rate", MetropolisStats::rate(k.accepted, k.proposed)}});
         stats["metropolis"]["mutations_by_kind"] = kinds;
     }
+    // Film "maxcomponentvalue": a biased image, said where the numbers are read.
+    const bool clamped = std::isfinite(settings.maxComponentValue);
+    constexpr const char* kClampNote = "biased: energy is lost where the clamp acts";
+    if (clamped) stats["max_component_value"] = {{"value", settings.maxComponentValue}, {"note", kClampNote}};
     if (!statsFile_.empty()) {
         std::ofstream f(statsFile_);
         if (!f) throw InputError("--stats: cannot write \"" + statsFile_ + "\"");
@@ -578,6 +582,8 @@ int RenderCommand::run() {
                     (unsigned long long)r.stats.guarded, r.rejectedSamples);
         std::printf("noise estimate: mean relative variance %.3g, efficiency 1/(V T) %.3g\n", r.error.meanRelativeVariance,
                     r.efficiency);
+        if (clamped)
+            std::printf("clamp: Film \"maxcomponentvalue\" %g (%s)\n", double(settings.maxComponentValue), kClampNote);
         if (r.distributed.ranks > 1)
             std::printf("%d processes (MPI) | rank 0's collectives: %.3g MB in %.3f s\n", r.distributed.ranks,
                         r.distributed.reductionBytes / 1e6, r.distributed.reductionSeconds);

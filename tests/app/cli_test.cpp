@@ -94,6 +94,28 @@ TEST_F(Cli, SummaryOfASuccessfulRenderHasNoErrorLine) {
     EXPECT_EQ(r.out.find("error:"), std::string::npos) << r.out;
 }
 
+// Film "maxcomponentvalue" makes the image biased: the summary and the statistics say so, and
+// say nothing of a clamp when there is none.
+TEST_F(Cli, ClampIsReportedAsBiased) {
+    std::string text = kSmallScene;
+    const std::string film = R"("string filename" [ "small.exr" ])";
+    const std::string clampedScene = write("c.pbrt", text.replace(text.find(film), film.size(),
+                                                                   film + R"( "float maxcomponentvalue" [ 2 ])"));
+    const std::string plainScene = write("s.pbrt", kSmallScene);
+    const std::string clampedStats = (dir / "c.json").string(), plainStats = (dir / "s.json").string();
+    Result c = run("render " + clampedScene + " --stats " + clampedStats + " -o " + (dir / "c.pfm").string());
+    Result p = run("render " + plainScene + " --stats " + plainStats + " -o " + (dir / "s.pfm").string());
+    ASSERT_EQ(c.status, 0) << c.out;
+    ASSERT_EQ(p.status, 0) << p.out;
+    EXPECT_NE(c.out.find("\nclamp: Film \"maxcomponentvalue\" 2 (biased"), std::string::npos) << c.out;
+    EXPECT_EQ(p.out.find("clamp:"), std::string::npos) << p.out;
+    const auto cj = nlohmann::json::parse(std::ifstream(clampedStats)), pj = nlohmann::json::parse(std::ifstream(plainStats));
+    ASSERT_TRUE(cj.contains("max_component_value"));
+    EXPECT_EQ(cj["max_component_value"]["value"].get<double>(), 2.0);
+    EXPECT_NE(cj["max_component_value"]["note"].get<std::string>().find("biased"), std::string::npos);
+    EXPECT_FALSE(pj.contains("max_component_value"));
+}
+
 TEST_F(Cli, SeveralOutputsAndCrop) {
     std::string scene = write("s.pbrt", kSmallScene);
     std::string exr = (dir / "a.exr").string(), png = (dir / "a.png").string(), pfm = (dir / "a.pfm").string();
