@@ -2,6 +2,7 @@
 // light tracing and BDPT estimate the same image (see agreement.h for the tests).
 // Light tracing cannot see specular surfaces or the environment directly (no camera
 // connection through a delta lobe), so scenes showing those compare path tracing and BDPT.
+// The cases of one box run in both colour modes (--color rgb and spectral).
 #include <gtest/gtest.h>
 
 #include "agreement.h"
@@ -63,10 +64,19 @@ std::string glassSphereCaustic(const std::string& eta) {
     )";
 }
 
+// The case in RGB mode, then in spectral mode (R, G, B compared too: agreement.h).
+void expectAgreementInBothModes(AgreementCase c) {
+    expectAgreement(c);
+    const std::string name = std::string("spectral ") + c.name;
+    c.name = name.c_str();
+    c.spectral = true;
+    expectAgreement(c);
+}
+
 }  // namespace
 
 TEST(EstimatorAgreement, DiffuseBox) {
-    expectAgreement(AgreementCase{"diffuse box", box(R"(
+    expectAgreementInBothModes(AgreementCase{"diffuse box", box(R"(
         Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ]
         Shape "sphere" "float radius" [ 0.2 ]
     )"), {"path", "light", "bdpt"}, 16});
@@ -79,7 +89,7 @@ TEST(EstimatorAgreement, GlassSphereCaustic) {
 }
 
 TEST(EstimatorAgreement, GlossyConductor) {
-    expectAgreement(AgreementCase{"rough conductor", box(R"(
+    expectAgreementInBothModes(AgreementCase{"rough conductor", box(R"(
         Material "conductor" "spectrum eta" "metal-Cu-eta" "spectrum k" "metal-Cu-k" "float roughness" [ 0.25 ]
         Shape "sphere" "float radius" [ 0.3 ]
     )"), {"path", "light", "bdpt"}, 16});
@@ -87,7 +97,7 @@ TEST(EstimatorAgreement, GlossyConductor) {
 
 // A smooth mirror shows the light: light tracing cannot connect through it.
 TEST(EstimatorAgreement, AreaLightSeenInMirror) {
-    expectAgreement(AgreementCase{"mirror", box(R"(
+    expectAgreementInBothModes(AgreementCase{"mirror", box(R"(
         Material "conductor" "rgb reflectance" [ 0.9 0.9 0.9 ] "float roughness" [ 0 ]
         Shape "bilinearmesh" "point3 P" [ -0.45 0.01 0.3   0.45 0.01 0.3   -0.45 0.01 -0.45   0.45 0.01 -0.45 ]
     )"), {"path", "bdpt"}, 32});
@@ -120,7 +130,7 @@ TEST(EstimatorAgreement, PointAndSpotLights) {
         LightSource "point" "rgb I" [ 0.6 0.6 0.6 ] "point3 from" [ -0.2 0.8 0.1 ]
         LightSource "spot" "rgb I" [ 2 2 2 ] "point3 from" [ 0.3 0.9 0.3 ] "point3 to" [ 0 0 0 ]
             "float coneangle" [ 30 ] "float conedeltaangle" [ 10 ])";
-    expectAgreement(AgreementCase{"point and spot", box(R"(
+    expectAgreementInBothModes(AgreementCase{"point and spot", box(R"(
         Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ]
         Shape "sphere" "float radius" [ 0.2 ]
     )", "5", lights), {"path", "light", "bdpt"}, 48, 16, {{"light", 80}}});
