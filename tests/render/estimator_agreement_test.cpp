@@ -64,12 +64,15 @@ std::string glassSphereCaustic(const std::string& eta) {
     )";
 }
 
-// The case in RGB mode, then in spectral mode (R, G, B compared too: agreement.h).
+// The case in RGB mode, then in spectral mode (R, G, B compared too: agreement.h) with twice
+// the samples (each sample's colour varies with its wavelengths).
 void expectAgreementInBothModes(AgreementCase c) {
     expectAgreement(c);
     const std::string name = std::string("spectral ") + c.name;
     c.name = name.c_str();
     c.spectral = true;
+    c.spp *= 2;
+    for (auto& [integrator, spp] : c.sppOf) spp *= 2;
     expectAgreement(c);
 }
 
