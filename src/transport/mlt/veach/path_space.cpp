@@ -254,6 +254,15 @@ void PathSpace::rebind(MltVertex& v, ScratchBuffer& arena) {
     v.bxdf = bxdfAt(si, v.lambda, arena, &v.dispersive);
 }
 
+void PathSpace::copyAt(const MltPath& x, const SampledWavelengths& lambda, ScratchBuffer& arena, MltPath& y) {
+    arena.reset();
+    y = x;
+    for (MltVertex& v : y) {
+        v.lambda = lambda;
+        rebind(v, arena);
+    }
+}
+
 bool PathSpace::trace(Ray ray, const SampledWavelengths& lambda, ScratchBuffer& arena, PathStats& stats, MltVertex& out,
                       bool escape) const {
     for (int passThroughs = 0; passThroughs <= 1024; ++passThroughs) {

@@ -176,6 +176,8 @@ public:
     // Rebuilds a surface vertex's BxDF in `arena` (a path's vertices must all live in its own),
     // at its wavelengths.
     static void rebind(MltVertex& v, ScratchBuffer& arena);
+    // y = x at wavelengths `lambda`, its BxDFs rebuilt in `arena` (which is reset first).
+    static void copyAt(const MltPath& x, const SampledWavelengths& lambda, ScratchBuffer& arena, MltPath& y);
     // Whether the light at specular vertex i of x is reflected (else transmitted).
     static bool reflects(const MltPath& x, int i);
     // Traces the ray to the next vertex (passing through interfaces), whose BxDF is built at

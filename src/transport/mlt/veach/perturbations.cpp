@@ -79,12 +79,7 @@ bool Perturbations::lens(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer
 
     // Spectral mode: the whole path at nearby wavelengths, the retraced chain following them.
     const SampledWavelengths lambda = space_.perturbWavelengths(x[0].lambda, rng);
-    arena.reset();
-    y = x;
-    for (MltVertex& v : y) {
-        v.lambda = lambda;
-        PathSpace::rebind(v, arena);
-    }
+    PathSpace::copyAt(x, lambda, arena, y);
     for (int i = k - 1; i >= end; --i) {
         MltVertex v;
         if (!space_.trace(ray, lambda, arena, stats, v, i == 0)) return false;  // x0 may lie at infinity
@@ -123,12 +118,7 @@ bool Perturbations::caustic(const MltPath& x, Rng& rng, ScratchBuffer& arena, Pa
     while (m > 0 && x[size_t(m)].isSpecularSurface()) --m;
     // Spectral mode: the whole path at nearby wavelengths, the retraced chain following them.
     const SampledWavelengths lambda = space_.perturbWavelengths(x[0].lambda, rng);
-    arena.reset();
-    y = x;
-    for (MltVertex& v : y) {
-        v.lambda = lambda;
-        PathSpace::rebind(v, arena);
-    }
+    PathSpace::copyAt(x, lambda, arena, y);
     const MltVertex& from = y[size_t(m)];
     Ray ray;
     if (atInfinity(from)) {

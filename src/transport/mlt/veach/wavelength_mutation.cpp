@@ -11,13 +11,7 @@ bool WavelengthMutation::applies(const MltPath& x) const {
 
 bool WavelengthMutation::propose(const MltPath& x, Rng& rng, ScratchBuffer& arena, MltPath& y, double* ratio) const {
     if (!applies(x)) return false;
-    const SampledWavelengths lambda = space_.drawWavelengths(rng);
-    arena.reset();
-    y = x;
-    for (MltVertex& v : y) {
-        v.lambda = lambda;
-        PathSpace::rebind(v, arena);
-    }
+    PathSpace::copyAt(x, space_.drawWavelengths(rng), arena, y);
     *ratio = 1;
     return true;
 }
