@@ -36,6 +36,13 @@ void Film::setMaxComponentValue(float m, float imagingRatio, const ClampSpace& s
         splatMaxComponent_ = float(double(m) * double(bounds_.area()) / (splatPixelCount() * imagingRatio));
 }
 
+void Film::setChainMaxComponentValue(float m, float imagingRatio, const ClampSpace& sensorFromL) {
+    maxComponent_ = m;
+    clampSpace_ = sensorFromL;
+    splatMaxComponent_ = std::numeric_limits<float>::infinity();
+    if (splatFilter_ && imagingRatio > 0 && std::isfinite(m)) splatMaxComponent_ = m / imagingRatio;
+}
+
 bool Film::perThreadSplatsFit(double pixels, int threads) {
     return kSplatBytesPerPixel * pixels * threads < kPerThreadSplatBytes;
 }

@@ -72,6 +72,11 @@ public:
     // film's pixel count over the crop's (how image() scales splats per light path); its
     // components are those of `sensorFromL` times the sample (clampMaxComponent).
     void setMaxComponentValue(float m, float imagingRatio, const ClampSpace& sensorFromL = kIdentityClampSpace);
+    // The same for a Markov chain's splats, as pbrt-v4's MLTIntegrator has it: each splat
+    // (a sample's contribution over its target value, times its expected-value weight, before
+    // the image's scale b / mutations per pixel) is clamped as it is given, with the imaging
+    // ratio, which pbrt-v4's sensor applies to the splat and not to the target.
+    void setChainMaxComponentValue(float m, float imagingRatio, const ClampSpace& sensorFromL);
     const ClampSpace& clampSpace() const { return clampSpace_; }
     float maxComponentValue() const { return maxComponent_; }
 

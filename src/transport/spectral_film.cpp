@@ -29,6 +29,10 @@ ClampSpace sensorFromRendering(const RenderSettings& settings) {
     return c;
 }
 
+void setChainClamp(Film& film, const RenderSettings& settings) {
+    film.setChainMaxComponentValue(settings.maxComponentValue, settings.imagingRatio, sensorFromRendering(settings));
+}
+
 SpectralFilm::SpectralFilm(const RenderSettings& settings) {
     const Matrix3 m = renderingFromSensor(settings);
     // The rendering space's RGB matching functions on the 1 nm grid.

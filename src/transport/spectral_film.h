@@ -39,6 +39,8 @@ private:
 // measures a sample's components, in both modes.
 Matrix3 renderingFromSensor(const RenderSettings& settings);
 ClampSpace sensorFromRendering(const RenderSettings& settings);
+// Film "maxcomponentvalue" on the film of a Markov chain (Film::setChainMaxComponentValue).
+void setChainClamp(Film& film, const RenderSettings& settings);
 
 // Throws InputError, naming the integrator, unless it supports spectral mode (every light and
 // material does).

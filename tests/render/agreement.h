@@ -33,7 +33,8 @@ struct AgreementCase {
     // --color spectral; the image's R, G and B means are then compared too, each within 4
     // sigma, and each block's, within 4 sigma + 1% of the channel's image mean (a wrong
     // spectrum can keep the luminance and move the colour, or spread it wrongly: dispersion).
-    bool spectral = false;
+    // By default the tests' mode (render_helpers.h, defaultSpectral).
+    bool spectral = defaultSpectral();
 };
 
 // The smallest uniform relative difference the pooled test must be able to detect (by

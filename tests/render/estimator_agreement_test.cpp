@@ -67,6 +67,7 @@ std::string glassSphereCaustic(const std::string& eta) {
 // The case in RGB mode, then in spectral mode (R, G, B compared too: agreement.h) with twice
 // the samples (each sample's colour varies with its wavelengths).
 void expectAgreementInBothModes(AgreementCase c) {
+    c.spectral = false;
     expectAgreement(c);
     const std::string name = std::string("spectral ") + c.name;
     c.name = name.c_str();

@@ -1,9 +1,11 @@
-// Film "maxcomponentvalue" m: every camera sample, and every light-path splat measured as a
-// camera sample of its pixel, whose largest component in the sensor's space (X, Y, Z for the
-// cie1931 sensor, as pbrt-v4 measures it) exceeds m is scaled down to m, hue kept.
+// Film "maxcomponentvalue" m: every camera sample, every light-path splat measured as a
+// camera sample of its pixel, and every Markov chain's splat as it is given, whose largest
+// component in the sensor's space (X, Y, Z for the cie1931 sensor, as pbrt-v4 measures it)
+// exceeds m is scaled down to m, hue kept. RGB mode: the values are exact.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -67,6 +69,46 @@ TEST(MaxComponentValue, ClampsEachSplatInCameraSampleUnits) {
                 b.mean[0], b.mean[1], b.mean[2]);
     EXPECT_GT(a.mean[0], 10.0);  // 1000 x the emitter's share of the view, 0.0204
     expectClampedHue(Spectrum(float(b.mean[0]), float(b.mean[1]), float(b.mean[2])), 2, 1e-3);
+}
+
+// Metropolis (pssmlt, mmlt, mlt): each splat, the sample's contribution over its target (its
+// luminance) times its expected-value weight, is clamped as it is given, the imaging ratio
+// included (pbrt-v4's MLTIntegrator, with the target in the sensor's units). Here every path
+// is the emitter seen directly, whose contribution is the same wherever it is hit: a proposal
+// is accepted with probability 1 or 0, so every splat has weight 1, and its largest component
+// is the emitter colour's X / Y. A clamp m below that scales the whole image by
+// m / (ratio X / Y), exactly; one above it leaves the image bit for bit.
+TEST(MaxComponentValue, ClampsEachChainSplat) {
+    const Spectrum colour(1000, 500, 250);
+    const double xOverY = largestXYZ(colour) / colour.luminance();
+    for (const char* integrator : {"pssmlt", "mmlt", "mlt"})
+        for (const double iso : {100.0, 200.0}) {
+            const double ratio = iso / 100;
+            const std::string film = "\"float iso\" [ " + std::to_string(iso) + " ] ";
+            auto render = [&](const std::string& clamp) {
+                RenderOptions opts;
+                opts.spp = 4;
+                opts.seed = 3;
+                return renderWith(tinyBrightEmitter(film + clamp), opts, integrator, false).image;
+            };
+            const Image plain = render("");
+            const Image above = render("\"float maxcomponentvalue\" [ " + std::to_string(1.001 * ratio * xOverY) + " ]");
+            const Image clamped = render("\"float maxcomponentvalue\" [ 0.5 ]");
+            EXPECT_EQ(comparePixels(above, plain).differ, 0) << integrator << " iso " << iso;
+            const double scale = 0.5 / (ratio * xOverY);
+            double worst = 0, lit = 0;
+            for (int y = 0; y < plain.height; ++y)
+                for (int x = 0; x < plain.width; ++x) {
+                    const Spectrum p = plain.get(x, y), c = clamped.get(x, y);
+                    if (p.r <= 0) continue;
+                    lit += 1;
+                    for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, std::fabs(c[ch] / (p[ch] * scale) - 1));
+                }
+            std::printf("  %s, iso %g: %g lit pixels, clamped / unclamped within %.2g of %.4f\n", integrator, iso, lit,
+                        worst, scale);
+            EXPECT_GT(lit, 4);
+            EXPECT_LT(worst, 1e-4) << integrator << " iso " << iso;
+        }
 }
 
 TEST(MaxComponentValue, MustBePositive) {

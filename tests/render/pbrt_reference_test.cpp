@@ -1,27 +1,21 @@
 // Agreement with pbrt-v4 itself: reference renders made by pbrt-v4 at high sample counts
-// (../shared/refs, and tests/data/pbrt-v4) against our renders of the same scene files.
+// (../shared/refs, and tests/data/pbrt-v4) against our renders of the same scene files, in
+// spectral mode (the default; pbrt-v4 renders spectrally), and the grey box in RGB mode too.
 // - Region means (16x16 pixel blocks) must agree within 4 standard errors, measured from the
-//   spread of K independent renders and from the reference's fireflies (see
-//   referenceFireflyError), plus a per-scene allowance for pbrt-v4's spectral rendering of
-//   saturated colours, measured and documented in the README (largest measured differences
-//   beyond 4 sigma, relative to block + image mean, Cornell box: R 0.047, G 0.013, B 0.105;
-//   veach-mis: R 0.018, G 0.005, B 0.002; allowances are those plus a third or more).
-//   veach-bidir's allowance (0.03) covers its 512-spp reference's own noise, larger than its
-//   fireflies: blocks differ by up to 0.0023 beyond 4 sigma.
-// - The image's mean luminance must equal a documented per-scene ratio to the reference's
-//   within 4 sigma, sigma under 0.5% (a 2% change fails): 1 where the scene's colours are
-//   near grey (veach-mis, veach-bidir), the measured RGB-versus-spectral offset where they
-//   are not (Cornell box 1.0071; caustic-glass 0.9810, its blackbody spot light and
-//   coated-diffuse floor as RGB: our path tracer shows the same offset where it can render).
-// - A grey scene (grey reflectances, white light, glass of constant index) renders the same
-//   in RGB and spectrally: it is compared with no allowance at all.
-// - Spectral mode (--color spectral) renders as pbrt-v4 does: the Cornell box and the grey box
-//   with no allowance and a luminance ratio of 1; veach-mis with a small allowance for its
-//   reference's fireflies (largest difference beyond 4 sigma R 0.0040, G 0.0022, B 0, where RGB
-//   mode needs 0.019 for red); veach-bidir with its RGB case's allowance for its reference's
-//   noise; caustic-glass with its RGB case's allowance and ratio 0.9815: spectral mode keeps
-//   the 1.8% offset, so it is not the colours but the rough coated-diffuse floor (README,
-//   "Rough coatings").
+//   spread of K independent renders and from the reference's own noise: its fireflies (see
+//   referenceFireflyError) and, where the reference is noisy, the spread of pbrt-v4's block
+//   means across other seeds (tests/data/pbrt-v4/noise, made by make_reference_noise.py).
+// - The image's mean luminance must equal the reference's within 4 sigma, sigma under 0.5%
+//   (a 2% change fails).
+// - No allowance for colour. caustic-glass's floor is a rough `coateddiffuse`, which pbrt-v4's
+//   layered BSDF evaluates brighter than its own sampling (README, "Rough coatings"); ours is
+//   1.8% darker there, in every channel alike, in RGB and spectral mode, with the path tracer
+//   as with BDPT: its allowance (3.5% of block + image mean) and ratio 0.9815 are that.
+//   veach-mis and veach-bidir agree but for a few blocks (10 of 660 and 2 of 768 block
+//   channels) that differ by up to 0.05% and 0.1% of (block + image mean) beyond 4 sigma:
+//   veach-mis's at its lights' edges and at the sharpest plate's highlight, ours darker, cause
+//   not found; an allowance of 0.2% each (it was 0.6% and 3% before their reference noise was
+//   measured).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -74,15 +68,20 @@ struct Reference {
     const char* image;
     int spp;              // per independent render
     int renders;          // K
-    // RGB against pbrt-v4's spectral rendering, measured and documented in the README: an
-    // allowance per channel for block means, relative to (block + image mean), and the ratio
-    // of the image's mean luminance, ours / pbrt-v4. Grey scenes have none: zero and one.
-    double spectralTol[3];
-    double luminanceRatio;
+    // The image's mean luminance, ours / pbrt-v4: 1, except where pbrt-v4's layered BSDF
+    // differs from ours (caustic-glass's rough-coated floor, README "Rough coatings").
+    double luminanceRatio = 1;
+    // An allowance for block means beyond 4 sigma, relative to (block + image mean): none
+    // where the scenes agree, the layered BSDF's difference on caustic-glass, and 0.2% where a
+    // few blocks differ by up to 0.1% for reasons not found (see the header).
+    double allowance = 0;
     // Where scene and image live: ../shared (scenes/ and refs/), or this repository's
     // tests/data/pbrt-v4 (both in one folder).
     bool inRepository = false;
-    bool spectral = false;  // rendered with --color spectral
+    bool spectral = true;  // rendered with --color spectral (RGB only for grey scenes)
+    // The reference's block noise measured from other pbrt-v4 renders (make_reference_noise.py;
+    // tests/data/pbrt-v4/noise), or null.
+    const char* noise = nullptr;
 };
 
 double luminance(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
@@ -105,6 +104,12 @@ TEST_P(PbrtReference, BlockMeansAgree) {
     ASSERT_EQ(scene->pixelBounds().height(), pbrt.height);
 
     const int B = 16, bw = pbrt.width / B, bh = pbrt.height / B;
+    Image refNoise(bw, bh);  // zero unless measured
+    if (ref.noise) {
+        refNoise = readImage((data / "noise" / ref.noise).string());
+        ASSERT_EQ(refNoise.width, bw);
+        ASSERT_EQ(refNoise.height, bh);
+    }
     const int K = ref.renders;
     std::vector<double> sum(size_t(bw) * bh * 3, 0.0), sum2(sum.size(), 0.0), refMean(sum.size(), 0.0),
         refErr(sum.size(), 0.0);
@@ -137,7 +142,8 @@ TEST_P(PbrtReference, BlockMeansAgree) {
             RegionStats s = regionStats(pbrt, bx * B, bx * B + B, by * B, by * B + B);
             for (int c = 0; c < 3; ++c) {
                 refMean[(size_t(by) * bw + bx) * 3 + c] = s.mean[c];
-                double e = referenceFireflyError(pbrt, oursMean, bx * B, bx * B + B, by * B, by * B + B, c);
+                double e = std::hypot(referenceFireflyError(pbrt, oursMean, bx * B, bx * B + B, by * B, by * B + B, c),
+                                      double(refNoise.get(bx, by)[c]));
                 refErr[(size_t(by) * bw + bx) * 3 + c] = e;
                 refErr2[c] += e * e / (double(bw) * bh * bw * bh);
                 imageMean[c] += s.mean[c] / (bw * bh);
@@ -145,7 +151,7 @@ TEST_P(PbrtReference, BlockMeansAgree) {
         }
     int failures = 0, checked = 0, failuresPerChannel[3] = {0, 0, 0};
     double oursTotal[3] = {0, 0, 0}, worstPerChannel[3] = {0, 0, 0}, worstRefErr = 0, worstZ[3] = {0, 0, 0};
-    int widened = 0;  // blocks x channels where the reference's fireflies dominate the error
+    int widened = 0;  // blocks x channels where the reference's noise dominates the error
     for (size_t i = 0; i < sum.size(); ++i) {
         int c = int(i % 3);
         double mean = sum[i] / K;
@@ -156,12 +162,11 @@ TEST_P(PbrtReference, BlockMeansAgree) {
         worstRefErr = std::max(worstRefErr, refErr[i] / (refMean[i] + 1e-3));
         double r = refMean[i];
         ++checked;
-        // The spectral allowance scales with the block and with the image's mean level, so
-        // dim blocks of saturated colour are not judged by relative error alone.
+        // The allowance scales with the block and with the image's mean level.
         double scale = r + imageMean[c];
-        double tol = 4 * se + ref.spectralTol[c] * scale;
+        double tol = 4 * se + ref.allowance * scale;
         worstPerChannel[c] = std::max(worstPerChannel[c], std::max(0.0, std::fabs(mean - r) - 4 * se) / scale);
-        worstZ[c] = std::max(worstZ[c], std::max(0.0, std::fabs(mean - r) - ref.spectralTol[c] * scale) / se);
+        worstZ[c] = std::max(worstZ[c], std::max(0.0, std::fabs(mean - r) - ref.allowance * scale) / se);
         if (std::fabs(mean - r) > tol) {
             ++failuresPerChannel[c];
             if (++failures <= 8)
@@ -186,24 +191,26 @@ TEST_P(PbrtReference, BlockMeansAgree) {
                 (ratio - ref.luminanceRatio) / ratioErr);
     EXPECT_LT(ratioErr, 0.005) << "too noisy to detect a 2% change";
     EXPECT_NEAR(ratio, ref.luminanceRatio, 4 * ratioErr);
-    std::printf("  %d blocks x channels checked, outside tolerance: %d; the reference's fireflies dominate the error "
+    std::printf("  %d blocks x channels checked, outside tolerance: %d; the reference's noise dominates the error "
                 "in %d (largest relative to its block %.3f)\n",
                 checked, failures, widened, worstRefErr);
     EXPECT_EQ(failures, 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Shared, PbrtReference,
-                         ::testing::Values(Reference{"cornell-box/scene-v4-256.pbrt", "cornell-box-path-4096spp.pfm", 16, 8, {0.06, 0.02, 0.14}, 1.0071},
-                                           Reference{"veach-mis/scene-v4-320x180.pbrt", "veach-mis-path-4096spp.pfm", 32, 8, {0.025, 0.01, 0.01}, 1.0},
-                                           Reference{"veach-bidir/scene-v4-256.pbrt", "veach-bidir-bdpt-512spp.pfm", 16, 8, {0.03, 0.03, 0.03}, 1.0},
-                                           Reference{"caustic-glass/caustic-glass-v4-210x300.pbrt", "caustic-glass-bdpt-1024spp.pfm", 16, 8, {0.035, 0.035, 0.035}, 0.9810},
-                                           Reference{"grey-box.pbrt", "grey-box-path-16384spp.pfm", 256, 8, {0, 0, 0}, 1.0, true},
-                                           Reference{"cornell-box/scene-v4-256.pbrt", "cornell-box-path-4096spp.pfm", 4, 32, {0, 0, 0}, 1.0, false, true},
-                                           Reference{"grey-box.pbrt", "grey-box-path-16384spp.pfm", 256, 8, {0, 0, 0}, 1.0, true, true},
-                                           Reference{"veach-mis/scene-v4-320x180.pbrt", "veach-mis-path-4096spp.pfm", 8, 32, {0.006, 0.003, 0.003}, 1.0, false, true},
-                                           Reference{"veach-bidir/scene-v4-256.pbrt", "veach-bidir-bdpt-512spp.pfm", 16, 8, {0.03, 0.03, 0.03}, 1.0, false, true},
-                                           Reference{"caustic-glass/caustic-glass-v4-210x300.pbrt", "caustic-glass-bdpt-1024spp.pfm", 16, 8, {0.035, 0.035, 0.035}, 0.9815, false, true}),
-                         [](const ::testing::TestParamInfo<Reference>& i) {
+INSTANTIATE_TEST_SUITE_P(
+    Shared, PbrtReference,
+    ::testing::Values(
+        Reference{.scene = "cornell-box/scene-v4-256.pbrt", .image = "cornell-box-path-4096spp.pfm", .spp = 4, .renders = 32},
+        Reference{.scene = "grey-box.pbrt", .image = "grey-box-path-16384spp.pfm", .spp = 256, .renders = 8, .inRepository = true},
+        Reference{.scene = "grey-box.pbrt", .image = "grey-box-path-16384spp.pfm", .spp = 256, .renders = 8, .inRepository = true,
+                  .spectral = false},
+        Reference{.scene = "veach-mis/scene-v4-320x180.pbrt", .image = "veach-mis-path-4096spp.pfm", .spp = 8, .renders = 32,
+                  .allowance = 0.002, .noise = "veach-mis-path-4096spp.pfm"},
+        Reference{.scene = "veach-bidir/scene-v4-256.pbrt", .image = "veach-bidir-bdpt-512spp.pfm", .spp = 16, .renders = 8,
+                  .allowance = 0.002, .noise = "veach-bidir-bdpt-512spp.pfm"},
+        Reference{.scene = "caustic-glass/caustic-glass-v4-210x300.pbrt", .image = "caustic-glass-bdpt-1024spp.pfm", .spp = 16,
+                  .renders = 8, .luminanceRatio = 0.9815, .allowance = 0.035, .noise = "caustic-glass-bdpt-1024spp.pfm"}),
+    [](const ::testing::TestParamInfo<Reference>& i) {
                              std::string s = std::string(i.param.image) + (i.param.spectral ? "_spectral" : "");
                              for (char& ch : s)
                                  if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,10 +19,22 @@
 
 namespace ps::test {
 
+// The colour mode of a render whose test does not choose one: RGB, or spectral when the
+// environment has PATHSPACE_TEST_COLOR=spectral. CTest runs the render tests in both modes
+// (tests/CMakeLists.txt), so that what holds in one is checked in the other.
+inline bool defaultSpectral() {
+    const char* mode = std::getenv("PATHSPACE_TEST_COLOR");
+    return mode && std::string(mode) == "spectral";
+}
+
 // Renders with `options`, taking the sampler from the scene; progress off. An integrator
-// "mlt:WEIGHTS" is mlt with --mlt-mutations WEIGHTS. `spectral`: --color spectral.
+// "mlt:WEIGHTS" is mlt with --mlt-mutations WEIGHTS. `spectral`: --color spectral (unset: the
+// tests' default mode). `adjust` may change the scene's settings last (what a command-line
+// option would).
 inline RenderResult renderWith(const std::string& text, RenderOptions opts, const std::string& integrator = "",
-                               bool spectral = false) {
+                               std::optional<bool> spectralMode = std::nullopt,
+                               const std::function<void(RenderSettings&)>& adjust = nullptr) {
+    const bool spectral = spectralMode.value_or(defaultSpectral());
     setWarningsQuiet(true);
     SceneDescription desc = parseSceneString(text, ".", "<test>");
     auto scene = buildScene(desc, spectral);
@@ -29,6 +44,7 @@ inline RenderResult renderWith(const std::string& text, RenderOptions opts, cons
         scene->settings().mltMutations = integrator.substr(4);
     }
     scene->settings().spectral = spectral;
+    if (adjust) adjust(scene->settings());
     auto integ = createIntegrator(scene->settings().integrator, *scene);
     opts.sampler = scene->settings().sampler;
     opts.progress = false;
@@ -36,7 +52,7 @@ inline RenderResult renderWith(const std::string& text, RenderOptions opts, cons
 }
 
 inline RenderResult renderString(const std::string& text, int spp, uint64_t seed = 7, int threads = 0,
-                                 const std::string& integrator = "", bool spectral = false) {
+                                 const std::string& integrator = "", std::optional<bool> spectral = std::nullopt) {
     RenderOptions opts;
     opts.spp = spp;
     opts.seed = seed;
@@ -125,7 +141,7 @@ struct BlockMeans {
 };
 
 inline BlockMeans blockMeans(const std::string& scene, const std::string& integrator, int spp, int renders,
-                             int blocksPerSide, uint64_t seed0 = 100, bool spectral = false) {
+                             int blocksPerSide, uint64_t seed0 = 100, std::optional<bool> spectral = std::nullopt) {
     std::vector<double> s, s2, bc[3], bc2[3];
     double is = 0, is2 = 0, cs[3] = {0, 0, 0}, cs2[3] = {0, 0, 0};
     for (int k = 0; k < renders; ++k) {

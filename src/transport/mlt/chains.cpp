@@ -21,6 +21,7 @@
 #include "transport/mlt/chain_checkpoint.h"
 #include "transport/mlt/chain_ranks.h"
 #include "transport/render_monitor.h"
+#include "transport/spectral_film.h"
 #include "util/error.h"
 
 namespace ps {
@@ -217,17 +218,18 @@ void requireMetropolisSupport(const Scene& scene, const MetropolisIntegrator& in
 RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& integrator, const RenderOptions& options) {
     const std::string name = integrator.name();
     requireMetropolisSupport(scene, integrator);
-    if (std::isfinite(scene.settings().maxComponentValue))
-        warning(name + ": Film \"maxcomponentvalue\" is not applied to Metropolis renders (a chain's splats are "
-                       "not camera samples); the image is not clamped");
     const MetropolisParams& mp = integrator.params();
     const PixelBounds& bounds = scene.pixelBounds();
     const Camera::Params& cp = scene.camera().params();
     Film film(cp.xRes, cp.yRes, bounds, &scene.filter(), options.filmMoments());
+    setChainClamp(film, scene.settings());
     const int depths = integrator.maxDepth() + 1;
     std::vector<std::unique_ptr<Film>> depthFilms;
     if (mp.depthImages)
-        for (int d = 0; d < depths; ++d) depthFilms.push_back(std::make_unique<Film>(cp.xRes, cp.yRes, bounds, &scene.filter()));
+        for (int d = 0; d < depths; ++d) {
+            depthFilms.push_back(std::make_unique<Film>(cp.xRes, cp.yRes, bounds, &scene.filter()));
+            setChainClamp(*depthFilms.back(), scene.settings());
+        }
     PrimarySampleParams pss;
     pss.sigma = mp.sigma;
     pss.largeStepProbability = mp.largeStepProbability;

@@ -20,6 +20,7 @@
 #include "transport/mlt/chain_checkpoint.h"
 #include "transport/mlt/chain_ranks.h"
 #include "transport/mlt/bootstrap.h"
+#include "transport/spectral_film.h"
 #include "transport/path_tracer.h"
 #include "transport/render_monitor.h"
 #include "util/error.h"
@@ -257,14 +258,12 @@ void requireVeachMLTSupport(const Scene& scene, const VeachMLTIntegrator& integr
 
 RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integrator, const RenderOptions& options) {
     requireVeachMLTSupport(scene, integrator);
-    if (std::isfinite(scene.settings().maxComponentValue))
-        warning("mlt: Film \"maxcomponentvalue\" is not applied to Metropolis renders (a chain's splats are not "
-                "camera samples); the image is not clamped");
     const MetropolisParams& mp = integrator.params();
     const PathSpace& space = integrator.space();
     const PixelBounds& bounds = scene.pixelBounds();
     const Camera::Params& cp = scene.camera().params();
     Film film(cp.xRes, cp.yRes, bounds, &scene.filter(), options.filmMoments());
+    setChainClamp(film, scene.settings());
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     tbb::enumerable_thread_specific<PathState> scratchStates;
     tbb::enumerable_thread_specific<PathStats> threadStats;
