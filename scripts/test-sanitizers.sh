@@ -20,6 +20,9 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # renders, EstimatorAgreement.DiffuseBox, the other LightAgreement and Metropolis cases,
 # Cli.BdptStrategyImagesAndIntegratorChecks).
 skip='PbrtReference|PbrtColourReference|EstimatorAgreement\.(SmoothNormals|GlassSphere)|SpectralAgreement\.DispersiveGlass|LightAgreement\.(EmitterInsideGlass|CameraInsideGlass|DiffuseUnderGlass)'
+# The render tests' spectral instance (NAME/spectral, tests/CMakeLists.txt) repeats them in
+# the other colour mode; the spectral code paths are covered here by the spectral tests.
+skip+='|/spectral$'
 skip+='|Metropolis\.(AgreesWith|ClosedFurnace|PointLight|EachDepth)|VeachMLT\.(AgreesWith|ClosedFurnace|PointLight|Regenerating|DirectLighting)|VeachMutation\.|VeachMLTInfinityMutation\.|MovingCamera\.(PrimarySample|VeachMLT)|BdptStrategies\.|ErrorEstimate\.'
 exclude=()
 [ "${PS_SANITIZE_ALL:-0}" = 1 ] || exclude=(-E "$skip")

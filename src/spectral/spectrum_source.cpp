@@ -3,7 +3,6 @@
 #include "spectral/rgb_to_spectrum.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 
 namespace ps {
@@ -111,31 +110,8 @@ void polynomial(const SigmoidPolynomial& p, const SampledWavelengths& w, Spectra
 
 }  // namespace
 
-SpectrumSource::SpectrumSource(Variant v) : v_(std::move(v)) {
-    static std::atomic<uint64_t> made{0};
-    id_ = ++made;
-}
-
 SpectralValues SpectrumSource::sample(const SampledWavelengths& w) const {
-    // A path meets the same few spectra (its light, the surfaces around it) at every vertex,
-    // at the same wavelengths: a small per-thread cache, keyed by the spectrum's id and the
-    // wavelengths, returns what was computed for them, bit for bit the same values.
-    if (std::holds_alternative<Constant>(v_)) return evaluate(w);
-    struct Entry {
-        uint64_t id = 0;  // 0: empty
-        SpectralValues lambda{}, value{};
-    };
-    thread_local std::array<Entry, 8> cache;
-    Entry& e = cache[id_ & 7];
-    if (e.id == id_ && e.lambda == w.lambda) return e.value;
-    e.value = evaluate(w);
-    e.id = id_;
-    e.lambda = w.lambda;
-    return e.value;
-}
-
-SpectralValues SpectrumSource::evaluate(const SampledWavelengths& w) const {
-    // One dispatch for the four wavelengths.
+    // One dispatch for the four wavelengths (this runs at every hit in spectral mode).
     SpectralValues out;
     auto each = [&](auto f) {
         for (int i = 0; i < kWavelengthSamples; ++i) out[size_t(i)] = f(w.lambda[size_t(i)]);

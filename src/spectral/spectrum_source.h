@@ -2,7 +2,6 @@
 // evaluated at any wavelength, at a path's sampled wavelengths, and bounded above.
 #pragma once
 #include <array>
-#include <cstdint>
 #include <memory>
 #include <span>
 #include <variant>
@@ -76,12 +75,8 @@ class SpectrumSource {
         const DenseSpectrum* illuminant;
     };
     using Variant = std::variant<Constant, Tabulated, Dense, Blackbody, RGBAlbedo, RGBUnbounded, RGBIlluminant>;
-    explicit SpectrumSource(Variant v);
-    SpectralValues evaluate(const SampledWavelengths& w) const;
+    explicit SpectrumSource(Variant v) : v_(std::move(v)) {}
     Variant v_;
-    // Names the value for sample()'s per-thread cache: unique to each spectrum made, kept by
-    // copies (which have the same values), never reused by another spectrum.
-    uint64_t id_;
 };
 
 // Planck's law: spectral radiance of a blackbody at `kelvin` (W / (m^2 sr m)), lambda in nm.
