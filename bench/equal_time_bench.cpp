@@ -63,6 +63,11 @@ int main(int argc, char** argv) {
     app.add_option("--integrators", integrators,
                    "Integrators to compare (mlt:KEY=VALUE,... is mlt with those --mlt-mutations weights)");
     app.add_option("--json", jsonPath, "Write the results as JSON");
+    std::string color = "rgb";
+    app.add_option("--color", color,
+                   "Colour mode: rgb (the default here, that of the figures in bench/README.md before 2026-12-03) "
+                   "or spectral (the renderer's default)")
+        ->check(CLI::IsMember({"rgb", "spectral"}));
     int chains = 0, bootstrap = 0;
     double largeStep = -1, sigma = 0, cameraSteps = -1;
     app.add_option("--chains", chains, "Metropolis: chains (default: the scene's)");
@@ -86,8 +91,10 @@ int main(int argc, char** argv) {
         Image ref = readImage(refPath);
         Image refVariance;
         if (!refVariancePath.empty()) refVariance = readImage(refVariancePath);
-        auto scene = buildScene(parseSceneFile(scenePath));
+        const bool spectral = color == "spectral";
+        auto scene = buildScene(parseSceneFile(scenePath), spectral);
         RenderSettings& st = scene->settings();
+        st.spectral = spectral;
         if (chains > 0) st.mltChains = chains;
         if (bootstrap > 0) st.mltBootstrapSamples = bootstrap;
         if (largeStep >= 0) st.mltLargeStepProbability = float(largeStep);
