@@ -37,9 +37,8 @@ void Film::setMaxComponentValue(float m, float imagingRatio, const ClampSpace& s
 }
 
 void Film::setChainMaxComponentValue(float m, float imagingRatio, const ClampSpace& sensorFromL) {
-    maxComponent_ = m;
-    clampSpace_ = sensorFromL;
-    splatMaxComponent_ = std::numeric_limits<float>::infinity();
+    setMaxComponentValue(m, imagingRatio, sensorFromL);
+    // A chain's splat is clamped as it is given, not as the camera sample it stands for.
     if (splatFilter_ && imagingRatio > 0 && std::isfinite(m)) splatMaxComponent_ = m / imagingRatio;
 }
 
