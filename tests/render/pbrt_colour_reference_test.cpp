@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <sstream>
 
 #include "image/image.h"
@@ -42,9 +41,6 @@ std::string readScene(const std::string& name) {
     return s;
 }
 
-// What the command line would change for a comparison (RenderSettings), or nothing.
-using Adjust = std::function<void(RenderSettings&)>;
-
 // Per-channel means of kBlocks x kBlocks blocks and of the whole image, over `renders`
 // independent renders (seeds 100...), with standard errors from their spread.
 struct ChannelBlocks {
@@ -52,14 +48,14 @@ struct ChannelBlocks {
     std::array<double, 3> image{}, imageStdErr{};
 };
 
-ChannelBlocks channelBlocks(const std::string& scene, const Adjust& adjust, int spp, int renders, bool spectral) {
+ChannelBlocks channelBlocks(const std::string& scene, int spp, int renders, bool spectral) {
     const size_t n = size_t(kBlocks) * kBlocks;
     std::vector<std::array<double, 3>> s(n + 1, {0, 0, 0}), s2(n + 1, {0, 0, 0});  // [n]: the image
     for (int k = 0; k < renders; ++k) {
         RenderOptions opts;
         opts.spp = spp;
         opts.seed = 100 + uint64_t(k);
-        const Image img = renderWith(scene, opts, "", spectral, adjust).image;
+        const Image img = renderWith(scene, opts, "", spectral).image;
         const int bw = img.width / kBlocks, bh = img.height / kBlocks;
         for (size_t i = 0; i <= n; ++i) {
             const RegionStats r = i == n ? wholeImage(img)
@@ -103,12 +99,11 @@ void expectAgreement(const Agreement& a) {
 // `imageAllowance` (relative) widen the blocks' and the image's tests where the two are known to
 // differ (the caller says why).
 Agreement compareWithPbrt(const std::string& sceneText, const std::string& refFile, int refSpp, int spp, int renders,
-                          bool spectral, double allowance = 0, double imageAllowance = 0,
-                          const Adjust& adjust = nullptr) {
+                          bool spectral, double allowance = 0, double imageAllowance = 0) {
     const fs::path dir = fs::path(PATHSPACE_SOURCE_DIR) / "tests" / "data" / "pbrt-v4";
     const Image ref = readImage((dir / refFile).string());
     EXPECT_TRUE(ref.width == 64 && ref.height == 64) << refFile;
-    const ChannelBlocks ours = channelBlocks(sceneText, adjust, spp, renders, spectral);
+    const ChannelBlocks ours = channelBlocks(sceneText, spp, renders, spectral);
     // The reference's noise, from ours: a render's spread scaled to the reference's samples
     // (pbrt-v4 samples these paths, and in spectral mode the wavelengths, as ours does).
     const double refScale = std::sqrt(double(renders) * spp / refSpp);
