@@ -40,6 +40,13 @@ void expectExact(const RegionStats& r, const std::array<double, 3>& exact, bool 
 double product(double a, double b) { return a * b; }
 double itself(double a) { return a; }
 
+// The grey diffuse surfaces below (albedo 0.5) lit by "rgb L" or "rgb I" [ 2 3 4 ] with the
+// geometric factor g: rho g L, per channel or per wavelength.
+std::array<double, 3> greyLitBy234(double g, bool spectral = defaultSpectral()) {
+    return exactPixel(
+        spectral, [g](double rho, double L) { return rho * g * L; }, reflectance({0.5f, 0.5f, 0.5f}), emission({2, 3, 4}));
+}
+
 // Irradiance below the centre of a parallel rectangle of radiance L, 2a x 2b at height h:
 // four corner form factors F = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + (X<->Y)].
 double cornerFormFactor(double a, double b, double h) {
@@ -169,8 +176,7 @@ TEST(ExactScenes, SubdividedCubeUnderUniformSky) {
 // Scale) and BSDF sampling, combined by MIS, give the closed-form irradiance.
 TEST(ExactScenes, DiskLitByTheInsideOfACylinder) {
     RenderResult r = renderString(kDiskInsideCylinder, 256);
-    const double exact[3] = {0.5 * 2 / 2, 0.5 * 3 / 2, 0.5 * 4 / 2};
-    expectWithin4Sigma(wholeImage(r.image), exact);
+    expectWithin4Sigma(wholeImage(r.image), greyLitBy234(0.5).data());
 }
 
 // Light tracing starts its paths on the cylinder (sampleArea with density 1/area) and must
@@ -263,32 +269,24 @@ TEST(ExactScenes, BidirectionalDirectlySeenLight) {
 }
 
 TEST(ExactScenes, BidirectionalPlaneUnderLights) {
-    const char* rect = kPlaneUnderRectangle;
-    double f = 4 * cornerFormFactor(1.0, 0.5, 1.0);
-    const double exactRect[3] = {0.5 * 2 * f, 0.5 * 3 * f, 0.5 * 4 * f};
-    expectWithin4Sigma(wholeImage(renderString(rect, 256, 7, 0, "bdpt").image), exactRect);
-    const char* point = kPlaneUnderPoint;
-    const double exactPoint[3] = {0.5 * 2 / (M_PI * 4), 0.5 * 3 / (M_PI * 4), 0.5 * 4 / (M_PI * 4)};
-    expectWithin4Sigma(wholeImage(renderString(point, 64, 7, 0, "bdpt").image), exactPoint);
+    const double f = 4 * cornerFormFactor(1.0, 0.5, 1.0);
+    expectWithin4Sigma(wholeImage(renderString(kPlaneUnderRectangle, 256, 7, 0, "bdpt").image), greyLitBy234(f).data());
+    expectWithin4Sigma(wholeImage(renderString(kPlaneUnderPoint, 64, 7, 0, "bdpt").image),
+                       greyLitBy234(1 / (M_PI * 4)).data());
 }
 
 
 TEST(ExactScenes, DiffusePlaneUnderRectangularLight) {
     // The camera sits between plane and light (it does not occlude) and sees a tiny spot.
-    const char* scene = kPlaneUnderRectangle;
-    RenderResult r = renderString(scene, 256);
-    double f = 4 * cornerFormFactor(1.0, 0.5, 1.0);
-    const double exact[3] = {0.5 * 2 * f, 0.5 * 3 * f, 0.5 * 4 * f};
-    expectWithin4Sigma(wholeImage(r.image), exact);
+    RenderResult r = renderString(kPlaneUnderRectangle, 256);
+    expectWithin4Sigma(wholeImage(r.image), greyLitBy234(4 * cornerFormFactor(1.0, 0.5, 1.0)).data());
 }
 
 // A point light of intensity I at height h over a diffuse plane: L = rho I / (pi h^2).
 TEST(ExactScenes, DiffusePlaneUnderPointLight) {
     const bool spectral = defaultSpectral();
     RenderResult r = renderString(kPlaneUnderPoint, spectral ? 256 : 16);
-    const auto exact = exactPixel(
-        spectral, [](double rho, double I) { return rho * I / (M_PI * 4); }, reflectance({0.5f, 0.5f, 0.5f}),
-        emission({2, 3, 4}));
+    const auto exact = greyLitBy234(1 / (M_PI * 4), spectral);
     // Deterministic in RGB mode up to the footprint's cos^4 falloff (< 1e-5 relative here).
     expectExact(wholeImage(r.image), exact, spectral, 1e-4);
 }
