@@ -30,10 +30,9 @@ void expectWithin4Sigma(const RegionStats& r, const double expected[3], double m
 }
 
 // A render that is deterministic in RGB mode (every sample gives the exact value) is checked
-// there to `rgbTolerance`; spectral mode adds the wavelengths' noise, so 4 sigma, with sigma
-// under 0.2% so that a 1% error fails.
+// there to `rgbTolerance`; spectral mode adds the wavelengths' noise (expectSpectralMean).
 void expectExact(const RegionStats& r, const std::array<double, 3>& exact, bool spectral, double rgbTolerance = 1e-5) {
-    if (spectral) return expectWithin4Sigma(r, exact.data(), 0.002, kSpectralSystematic);
+    if (spectral) return expectSpectralMean(r, exact);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.mean[c], exact[c], rgbTolerance) << "channel " << c;
 }
 

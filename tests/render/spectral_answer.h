@@ -4,6 +4,11 @@
 // (sensorRGB, checked in tests/spectral/sensor_test.cpp).
 #pragma once
 #include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <gtest/gtest.h>
 
 #include "render_helpers.h"
 #include "spectral/spectral_test_util.h"
@@ -48,5 +53,18 @@ std::array<double, 3> exactPixel(bool spectral, F f, const P&... p) {
 // of the renderer and its sensor (the 1 nm sum itself is within 2e-5 of the sensor's
 // continuous integral, sensor_test.cpp).
 constexpr double kSpectralSystematic = 1e-4;
+
+// Spectral mode's check of a render that is exact to float precision in RGB mode: the
+// wavelengths add noise, so the region's mean is within 4 sigma (plus kSpectralSystematic) of
+// `exact`, and sigma is under 0.2% of it, so that a 1% error fails.
+inline void expectSpectralMean(const RegionStats& r, const std::array<double, 3>& exact, const std::string& what = "") {
+    for (int c = 0; c < 3; ++c) {
+        std::printf("  %s channel %d: %.6f +- %.6f, exact %.6f, %+.2f sigma\n", what.c_str(), c, r.mean[c], r.stdErr[c],
+                    exact[c], (r.mean[c] - exact[c]) / std::max(r.stdErr[c], 1e-12));
+        EXPECT_NEAR(r.mean[c], exact[c], 4 * r.stdErr[c] + kSpectralSystematic * std::fabs(exact[c]))
+            << what << " channel " << c;
+        EXPECT_LT(r.stdErr[c], 0.002 * std::fabs(exact[c])) << what << " channel " << c << ": too noisy to test";
+    }
+}
 
 }  // namespace ps::test
