@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "render_helpers.h"
+#include "spectral_answer.h"
 
 using namespace ps;
 using namespace ps::test;
@@ -26,6 +27,23 @@ void expectWithin4Sigma(const RegionStats& r, const double expected[3], double m
             EXPECT_LT(r.stdErr[c], maxRelStdErr * expected[c]) << "channel " << c;
         }
     }
+}
+
+// A render that is deterministic in RGB mode (every sample gives the exact value) is checked
+// there to `rgbTolerance`; spectral mode adds the wavelengths' noise (expectSpectralMean).
+void expectExact(const RegionStats& r, const std::array<double, 3>& exact, bool spectral, double rgbTolerance = 1e-5) {
+    if (spectral) return expectSpectralMean(r, exact);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.mean[c], exact[c], rgbTolerance) << "channel " << c;
+}
+
+double product(double a, double b) { return a * b; }
+double itself(double a) { return a; }
+
+// The grey diffuse surfaces below (albedo 0.5) lit by "rgb L" or "rgb I" [ 2 3 4 ] with the
+// geometric factor g: rho g L, per channel or per wavelength.
+std::array<double, 3> greyLitBy234(double g, bool spectral = defaultSpectral()) {
+    return exactPixel(
+        spectral, [g](double rho, double L) { return rho * g * L; }, reflectance({0.5f, 0.5f, 0.5f}), emission({2, 3, 4}));
 }
 
 // Irradiance below the centre of a parallel rectangle of radiance L, 2a x 2b at height h:
@@ -136,36 +154,38 @@ const char* kInsideCylinder = R"(
 
 }  // namespace
 
-// A convex diffuse object under a uniform sky reflects a * L exactly (it never sees itself).
+// A convex diffuse object under a uniform sky reflects a * L exactly (it never sees itself),
+// per channel in RGB mode and per wavelength in spectral mode.
+static std::array<double, 3> skyTimesAlbedo(bool spectral) {
+    return exactPixel(spectral, product, reflectance({0.5f, 0.3f, 0.7f}), emission({0.8f, 0.9f, 1.0f}));
+}
+
 TEST(ExactScenes, DiffuseSphereUnderUniformSky) {
-    const char* scene = kSphereUnderSky;
-    RenderResult r = renderString(scene, 64);
-    const double exact[3] = {0.5 * 0.8, 0.3 * 0.9, 0.7 * 1.0};
-    expectWithin4Sigma(wholeImage(r.image), exact);
+    RenderResult r = renderString(kSphereUnderSky, 64);
+    expectWithin4Sigma(wholeImage(r.image), skyTimesAlbedo(defaultSpectral()).data());
 }
 
 // The same for the limit surface of a subdivided cube, shaded with its limit normals.
 TEST(ExactScenes, SubdividedCubeUnderUniformSky) {
     RenderResult r = renderString(kSubdividedCubeUnderSky, 64);
-    const double exact[3] = {0.5 * 0.8, 0.3 * 0.9, 0.7 * 1.0};
-    expectWithin4Sigma(wholeImage(r.image), exact);
+    expectWithin4Sigma(wholeImage(r.image), skyTimesAlbedo(defaultSpectral()).data());
 }
 
 // Direct lighting from a cylinder: light sampling by area (its pdf is 1/area under the
 // Scale) and BSDF sampling, combined by MIS, give the closed-form irradiance.
 TEST(ExactScenes, DiskLitByTheInsideOfACylinder) {
     RenderResult r = renderString(kDiskInsideCylinder, 256);
-    const double exact[3] = {0.5 * 2 / 2, 0.5 * 3 / 2, 0.5 * 4 / 2};
-    expectWithin4Sigma(wholeImage(r.image), exact);
+    expectWithin4Sigma(wholeImage(r.image), greyLitBy234(0.5).data());
 }
 
 // Light tracing starts its paths on the cylinder (sampleArea with density 1/area) and must
 // reproduce the wall's radiance that camera rays see directly.
 TEST(ExactScenes, CylinderEmitterSeenByLightTracing) {
-    const double exact[3] = {1, 2, 3};
-    RegionStats b = wholeImage(renderString(kInsideCylinder, 4, 7, 0, "path").image);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(b.mean[c], c + 1.0, 1e-5);
-    expectWithin4Sigma(wholeImage(renderString(kInsideCylinder, 16384, 7, 0, "light").image), exact);
+    // Spectral mode: path tracing's samples as in BidirectionalDirectlySeenLight.
+    const bool spectral = defaultSpectral();
+    const auto exact = exactPixel(spectral, itself, emission({1, 2, 3}));
+    expectExact(wholeImage(renderString(kInsideCylinder, spectral ? 1024 : 4, 7, 0, "path").image), exact, spectral);
+    expectWithin4Sigma(wholeImage(renderString(kInsideCylinder, 16384, 7, 0, "light").image), exact.data());
 }
 
 // Inside a closed sphere emitting Le with albedo r: pixel = Le * sum_{k=0..d} r^k.
@@ -215,12 +235,12 @@ INSTANTIATE_TEST_SUITE_P(SpectralDepths, ClosedFurnace,
 // The other exact scenes with light tracing and BDPT, where light tracing can reach the
 // camera's view (not the tiny footprints below, which only the camera can find).
 TEST(ExactScenes, BidirectionalDiffuseSphereUnderUniformSky) {
-    const char* scene = kSphereUnderSky;
-    const double exact[3] = {0.5 * 0.8, 0.3 * 0.9, 0.7 * 1.0};
+    const auto exact = skyTimesAlbedo(defaultSpectral());
     for (const char* integrator : {"light", "bdpt"}) {
         SCOPED_TRACE(integrator);
-        int spp = std::string(integrator) == "light" ? 6144 : 64;
-        expectWithin4Sigma(wholeImage(renderString(scene, spp, 7, 0, integrator).image), exact);
+        // Spectral mode's blue is noisier: light tracing takes a third more samples.
+        int spp = std::string(integrator) == "light" ? (defaultSpectral() ? 8192 : 6144) : 64;
+        expectWithin4Sigma(wholeImage(renderString(kSphereUnderSky, spp, 7, 0, integrator).image), exact.data());
     }
 }
 
@@ -238,40 +258,36 @@ TEST(ExactScenes, BidirectionalDirectlySeenLight) {
         AttributeEnd
     )";
     // BDPT sees it by the camera ray alone (s + t = 2 has one strategy): exact. Light tracing
-    // splats points of the disk through the lens: unbiased, with noise.
-    RegionStats b = wholeImage(renderString(scene, 4, 7, 0, "bdpt").image);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(b.mean[c], c + 1.0, 1e-5);
-    const double exact[3] = {1, 2, 3};
-    expectWithin4Sigma(wholeImage(renderString(scene, 40960, 7, 0, "light").image), exact);
+    // splats points of the disk through the lens: unbiased, with noise. Spectral mode: enough
+    // samples that sigma (0.01%) tells its answer from the RGB one (9e-4 apart in red), and
+    // half as many again for light tracing's blue.
+    const bool spectral = defaultSpectral();
+    const auto exact = exactPixel(spectral, itself, emission({1, 2, 3}));
+    expectExact(wholeImage(renderString(scene, spectral ? 1024 : 4, 7, 0, "bdpt").image), exact, spectral);
+    expectWithin4Sigma(wholeImage(renderString(scene, spectral ? 61440 : 40960, 7, 0, "light").image), exact.data());
 }
 
 TEST(ExactScenes, BidirectionalPlaneUnderLights) {
-    const char* rect = kPlaneUnderRectangle;
-    double f = 4 * cornerFormFactor(1.0, 0.5, 1.0);
-    const double exactRect[3] = {0.5 * 2 * f, 0.5 * 3 * f, 0.5 * 4 * f};
-    expectWithin4Sigma(wholeImage(renderString(rect, 256, 7, 0, "bdpt").image), exactRect);
-    const char* point = kPlaneUnderPoint;
-    const double exactPoint[3] = {0.5 * 2 / (M_PI * 4), 0.5 * 3 / (M_PI * 4), 0.5 * 4 / (M_PI * 4)};
-    expectWithin4Sigma(wholeImage(renderString(point, 64, 7, 0, "bdpt").image), exactPoint);
+    const double f = 4 * cornerFormFactor(1.0, 0.5, 1.0);
+    expectWithin4Sigma(wholeImage(renderString(kPlaneUnderRectangle, 256, 7, 0, "bdpt").image), greyLitBy234(f).data());
+    expectWithin4Sigma(wholeImage(renderString(kPlaneUnderPoint, 64, 7, 0, "bdpt").image),
+                       greyLitBy234(1 / (M_PI * 4)).data());
 }
 
 
 TEST(ExactScenes, DiffusePlaneUnderRectangularLight) {
     // The camera sits between plane and light (it does not occlude) and sees a tiny spot.
-    const char* scene = kPlaneUnderRectangle;
-    RenderResult r = renderString(scene, 256);
-    double f = 4 * cornerFormFactor(1.0, 0.5, 1.0);
-    const double exact[3] = {0.5 * 2 * f, 0.5 * 3 * f, 0.5 * 4 * f};
-    expectWithin4Sigma(wholeImage(r.image), exact);
+    RenderResult r = renderString(kPlaneUnderRectangle, 256);
+    expectWithin4Sigma(wholeImage(r.image), greyLitBy234(4 * cornerFormFactor(1.0, 0.5, 1.0)).data());
 }
 
 // A point light of intensity I at height h over a diffuse plane: L = rho I / (pi h^2).
 TEST(ExactScenes, DiffusePlaneUnderPointLight) {
-    const char* scene = kPlaneUnderPoint;
-    RenderResult r = renderString(scene, 16);
-    RegionStats s = wholeImage(r.image);
-    // Deterministic up to the footprint's cos^4 falloff (< 1e-5 relative here).
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.mean[c], 0.5 * (c + 2) / (M_PI * 4), 1e-4);
+    const bool spectral = defaultSpectral();
+    RenderResult r = renderString(kPlaneUnderPoint, spectral ? 256 : 16);
+    const auto exact = greyLitBy234(1 / (M_PI * 4), spectral);
+    // Deterministic in RGB mode up to the footprint's cos^4 falloff (< 1e-5 relative here).
+    expectExact(wholeImage(r.image), exact, spectral, 1e-4);
 }
 
 // "rgb L [1 1 1]" on a light seen directly gives pixel value 1 (as in pbrt-v4).
@@ -287,9 +303,9 @@ TEST(ExactScenes, DirectlySeenLightHasItsRadiance) {
           Shape "disk" "float height" [ 3 ] "float radius" [ 10 ]
         AttributeEnd
     )";
-    RenderResult r = renderString(scene, 4);
-    RegionStats s = wholeImage(r.image);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.mean[c], 1.0, 1e-5);
+    const bool spectral = defaultSpectral();
+    RenderResult r = renderString(scene, spectral ? 64 : 4);
+    expectExact(wholeImage(r.image), exactPixel(spectral, itself, emission({1, 1, 1})), spectral);
 }
 
 // Every sampler gives an unbiased image: the closed furnace (maxdepth 3) with each.

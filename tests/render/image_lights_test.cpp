@@ -1,7 +1,8 @@
 // Lights defined by images (pbrt-v4's semantics): goniometric and projection point lights
 // and diffuse area lights with an emission image, against hand-computed values.
-// The renders here are deterministic (lights seen directly, or one bounce of a delta light
-// seen through a tiny field of view), so values are exact up to float rounding.
+// The renders here are deterministic in RGB mode (lights seen directly, or one bounce of a delta
+// light seen through a tiny field of view), so values are exact up to float rounding; spectral
+// mode evaluates the same answers per wavelength, with the wavelengths' noise.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include "math/warp.h"
 #include "mc/rng.h"
 #include "render_helpers.h"
+#include "spectral_answer.h"
 #include "temp_images.h"
 
 using namespace ps;
@@ -72,6 +74,19 @@ Spectrum imageMean(const std::string& scene) {
     return {float(s.mean[0]), float(s.mean[1]), float(s.mean[2])};
 }
 
+// A render's image mean against `exact`: to `rel` of it in RGB mode; in spectral mode within 4
+// sigma of the wavelengths' noise (expectSpectralMean), with samples enough (sigma 0.02%) to
+// tell the spectral answer from the RGB one.
+void expectRendered(const std::string& scene, const std::array<double, 3>& exact, double rel, const std::string& what) {
+    const bool spectral = defaultSpectral();
+    const RegionStats s = wholeImage(renderString(scene, spectral ? 1024 : 4).image);
+    if (spectral) return expectSpectralMean(s, exact, what);
+    expectSpectrumNear(Spectrum(float(s.mean[0]), float(s.mean[1]), float(s.mean[2])),
+                       Spectrum(float(exact[0]), float(exact[1]), float(exact[2])), rel, what);
+}
+
+const Lifted kGrey = reflectance({0.5f, 0.5f, 0.5f});
+
 }  // namespace
 
 // A goniometric light whose image is constant c is a point light of intensity c I (with any
@@ -101,13 +116,15 @@ TEST(ImageLights, GoniometricConstantImageIsPointLight) {
         expectSpectrumNear(g.phi(), p.phi(), 1e-5, "phi");
     }
     // Rendered: a plane lit from 2 above by I = 0.7 * (1, 2, 3): radiance rho / pi * I / 4.
-    Spectrum v = imageMean(spotView({0, 0.5f, 0}, {0, 0, 0}, {0, 0, 1}) + R"(
+    const std::string scene = spotView({0, 0.5f, 0}, {0, 0, 0}, {0, 0, 1}) + R"(
         AttributeBegin
           Translate 0 2 0
           LightSource "goniometric" "rgb I" [ 1 2 3 ] "string filename" [ ")" + file + R"(" ]
         AttributeEnd
-    )" + kGroundPlane);
-    expectSpectrumNear(v, Spectrum(1, 2, 3) * float(0.5 / M_PI * 0.7 / 4), 1e-4, "render");
+    )" + kGroundPlane;
+    const auto exact = exactPixel(
+        defaultSpectral(), [](double rho, double I) { return rho / M_PI * 0.7 * I / 4; }, kGrey, emission({1, 2, 3}));
+    expectRendered(scene, exact, 1e-4, "render");
 }
 
 // One hot texel: (x, y) = (5, 2) of an 8 x 8 map, centre (u, v) = (0.6875, 0.3125). Worked by
@@ -203,14 +220,18 @@ TEST(ImageLights, ProjectionPixelsAndFrustum) {
     nine.set(1, 1, Spectrum(0.4f, 0.8f, 1.2f));
     nine.set(0, 1, Spectrum(9, 9, 9));
     std::string nineFile = tmp.write("nine.pfm", nine);
-    Spectrum v = imageMean(spotView({0, 0.5f, 0}, {0, 0, 0}, {0, 0, 1}) + R"(
+    const std::string lit = spotView({0, 0.5f, 0}, {0, 0, 0}, {0, 0, 1}) + R"(
         AttributeBegin
           Translate 0 2 0
           Rotate 90 1 0 0
           LightSource "projection" "float fov" [ 30 ] "string filename" [ ")" + nineFile + R"(" ]
         AttributeEnd
-    )" + kGroundPlane);
-    expectSpectrumNear(v, Spectrum(0.4f, 0.8f, 1.2f) * float(0.5 / M_PI / 4), 1e-4, "render");
+    )" + kGroundPlane;
+    // The texel is lifted as an illuminant, as "rgb I" is.
+    const auto exact = exactPixel(
+        defaultSpectral(), [](double rho, double texel) { return rho / M_PI * texel / 4; }, kGrey,
+        emission({0.4f, 0.8f, 1.2f}));
+    expectRendered(lit, exact, 1e-4, "render");
 }
 
 // An area light with an image: a square (bilinear patch, uv = ((x + 1) / 2, (y + 1) / 2))
@@ -232,10 +253,12 @@ TEST(ImageLights, AreaLightImageSeenByCamera) {
     for (auto [bx, by] : {std::pair{0, 0}, {3, 0}, {1, 2}, {2, 3}}) {
         float u = (2 * bx + 1) / 8.0f, v = 1 - (2 * by + 1) / 8.0f;
         Vec3 at(2 * u - 1, 2 * v - 1, 0);
-        Spectrum seen = imageMean(spotView(at + Vec3(0.3f, 0.2f, 2), at, {0, 1, 0}) + light);
-        std::printf("area image: block (%d, %d) at (%.3f, %.3f): %.5f %.5f %.5f\n", bx, by, at.x, at.y,
-                    double(seen.r), double(seen.g), double(seen.b));
-        expectSpectrumNear(seen, block(bx, by) * 1.5f, 1e-5, "block " + std::to_string(bx) + "," + std::to_string(by));
+        std::printf("area image: block (%d, %d) at (%.3f, %.3f)\n", bx, by, at.x, at.y);
+        // The texels are lifted as illuminants, as "rgb L" is.
+        const Spectrum b = block(bx, by);
+        const auto exact = exactPixel(defaultSpectral(), [](double L) { return 1.5 * L; }, emission({b.r, b.g, b.b}));
+        expectRendered(spotView(at + Vec3(0.3f, 0.2f, 2), at, {0, 1, 0}) + light, exact, 1e-5,
+                       "block " + std::to_string(bx) + "," + std::to_string(by));
     }
     // One-sided: the back shows nothing.
     Spectrum back = imageMean(spotView({0.1f, 0.1f, -2}, {0.1f, 0.1f, 0}, {0, 1, 0}) + light);

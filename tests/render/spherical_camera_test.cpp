@@ -8,6 +8,7 @@
 #include "camera/camera.h"
 #include "mc/rng.h"
 #include "render_helpers.h"
+#include "spectral_answer.h"
 
 using namespace ps;
 using namespace ps::test;
@@ -145,14 +146,38 @@ std::string sphericalScene(const std::string& cameraParams, int xRes, int yRes, 
 // A constant environment seen through the spherical camera is that colour in every pixel,
 // with the default (gaussian) filter whose samples reach beyond the film's edge. The shutter
 // interval still sets the imaging ratio (pbrt-v4 reads it for every camera type); the lens
-// parameters are accepted and ignored.
+// parameters are accepted and ignored. In spectral mode, where each pixel carries its
+// wavelengths' noise: every pixel is bit for bit that of a perspective camera (whose every
+// sample sees the sky, with weight 1, from the same sample dimensions), and the image mean is
+// the sky through the sensor (its standard error from independent renders: the filter spreads
+// each sample over several pixels, which are therefore not independent).
 TEST(SphericalCamera, ConstantEnvironmentFillsEveryPixel) {
-    struct Case { const char* params; float scale; };
-    for (Case c : {Case{"", 1.0f}, Case{"\"string mapping\" \"equirectangular\"", 1.0f},
-                   Case{"\"float shutterclose\" 0.5 \"float lensradius\" 0.1 \"float focaldistance\" 3", 0.5f}}) {
-        std::string scene = "LookAt 0 0 0  0 0 1  0 1 0\nCamera \"spherical\" " + std::string(c.params) +
-                            "\nFilm \"rgb\" \"integer xresolution\" 24 \"integer yresolution\" 16\n"
-                            "WorldBegin\nLightSource \"infinite\" \"rgb L\" [0.2 0.5 0.9]\n";
+    const bool spectral = defaultSpectral();
+    struct Case { const char* params; float scale; const char* perspective; };
+    for (Case c : {Case{"", 1.0f, ""}, Case{"\"string mapping\" \"equirectangular\"", 1.0f, ""},
+                   Case{"\"float shutterclose\" 0.5 \"float lensradius\" 0.1 \"float focaldistance\" 3", 0.5f,
+                        "\"float shutterclose\" 0.5"}}) {
+        auto sceneWith = [](const std::string& camera) {
+            return "LookAt 0 0 0  0 0 1  0 1 0\nCamera " + camera +
+                   "\nFilm \"rgb\" \"integer xresolution\" 24 \"integer yresolution\" 16\n"
+                   "WorldBegin\nLightSource \"infinite\" \"rgb L\" [0.2 0.5 0.9]\n";
+        };
+        const std::string scene = sceneWith("\"spherical\" " + std::string(c.params));
+        if (spectral) {
+            SCOPED_TRACE(c.params);
+            RenderResult r = renderString(scene, 4);
+            RenderResult p = renderString(sceneWith("\"perspective\" " + std::string(c.perspective)), 4);
+            EXPECT_EQ(comparePixels(r.image, p.image).differ, 0);
+            const BlockMeans b = blockMeans(scene, "path", 64, 12, 1);
+            RegionStats m;
+            for (int k = 0; k < 3; ++k) {
+                m.mean[k] = b.channelMean[k];
+                m.stdErr[k] = b.channelStdErr[k];
+            }
+            const float s = c.scale;
+            expectSpectralMean(m, exactPixel(true, [s](double L) { return s * L; }, emission({0.2f, 0.5f, 0.9f})), c.params);
+            continue;
+        }
         RenderResult r = renderString(scene, 4);
         float worst = 0;
         for (int y = 0; y < r.image.height; ++y)
@@ -168,27 +193,43 @@ TEST(SphericalCamera, ConstantEnvironmentFillsEveryPixel) {
 
 // A black sphere straight ahead (half-angle asin 0.4) under a white sky. Where it appears:
 // bottom-middle (equal-area) or a quarter across the middle row (equirectangular); the
-// pixels looking up see the sky. The equal-area image's mean is 1 - Omega / 4 pi exactly in
-// expectation (uniform film -> uniform sphere), Omega = 2 pi (1 - sqrt(1 - 0.4^2)).
+// pixels looking up see the sky: 1 in RGB mode, in spectral mode (each pixel with its
+// wavelengths' noise) bit for bit the pixel of the sky alone. The equal-area image's mean is
+// 1 - Omega / 4 pi of the sky's exactly in expectation (uniform film -> uniform sphere),
+// Omega = 2 pi (1 - sqrt(1 - 0.4^2)).
 TEST(SphericalCamera, BlackSphereAheadUnderWhiteSky) {
-    const std::string world = "LightSource \"infinite\"\nMaterial \"diffuse\" \"rgb reflectance\" [0 0 0]\n"
-                              "Translate 0 0 5\nShape \"sphere\" \"float radius\" 2\n";
+    const bool spectral = defaultSpectral();
+    const std::string sky = "LightSource \"infinite\"\n";
+    const std::string world = sky + "Material \"diffuse\" \"rgb reflectance\" [0 0 0]\n"
+                                    "Translate 0 0 5\nShape \"sphere\" \"float radius\" 2\n";
+    // Pixel (x, y) sees the sky alone.
+    auto expectSky = [&](const Image& img, const Image& skyAlone, int x, int y) {
+        if (spectral) EXPECT_EQ(img.get(x, y)[1], skyAlone.get(x, y)[1]) << x << "," << y;
+        else EXPECT_NEAR(img.get(x, y)[1], 1.0f, 1e-5f) << x << "," << y;
+    };
     {
-        RenderResult r = renderString(sphericalScene("", 32, 32, world), 4);
+        const std::string camera = "";
+        RenderResult r = renderString(sphericalScene(camera, 32, 32, world), 4);
+        const Image skyAlone = renderString(sphericalScene(camera, 32, 32, sky), 4).image;
         EXPECT_NEAR(r.image.get(16, 31)[1], 0.0f, 1e-6f);  // forward
         EXPECT_NEAR(r.image.get(15, 31)[1], 0.0f, 1e-6f);
-        EXPECT_NEAR(r.image.get(16, 16)[1], 1.0f, 1e-5f);  // up
-        EXPECT_NEAR(r.image.get(16, 0)[1], 1.0f, 1e-5f);   // backward
+        expectSky(r.image, skyAlone, 16, 16);  // up
+        expectSky(r.image, skyAlone, 16, 0);   // backward
     }
     {
-        RenderResult r = renderString(sphericalScene("\"string mapping\" \"equirectangular\"", 32, 16, world), 4);
-        EXPECT_NEAR(r.image.get(8, 8)[1], 0.0f, 1e-6f);   // forward
+        const std::string camera = "\"string mapping\" \"equirectangular\"";
+        RenderResult r = renderString(sphericalScene(camera, 32, 16, world), 4);
+        const Image skyAlone = renderString(sphericalScene(camera, 32, 16, sky), 4).image;
+        EXPECT_NEAR(r.image.get(8, 8)[1], 0.0f, 1e-6f);  // forward
         EXPECT_NEAR(r.image.get(7, 7)[1], 0.0f, 1e-6f);
-        EXPECT_NEAR(r.image.get(24, 8)[1], 1.0f, 1e-5f);  // backward
-        EXPECT_NEAR(r.image.get(8, 0)[1], 1.0f, 1e-5f);   // up
+        expectSky(r.image, skyAlone, 24, 8);  // backward
+        expectSky(r.image, skyAlone, 8, 0);   // up
     }
     BlockMeans b = blockMeans(sphericalScene("", 32, 32, world), "path", 8, 12, 1);
-    const double expected = 1 - (1 - std::sqrt(1 - 0.16)) / 2;
+    // The sky's luminance: 1 in RGB mode, the default light's through the sensor in spectral.
+    const auto skyRGB = exactPixel(spectral, [](double L) { return L; }, emission({1, 1, 1}));
+    const double skyY = 0.2126 * skyRGB[0] + 0.7152 * skyRGB[1] + 0.0722 * skyRGB[2];
+    const double expected = skyY * (1 - (1 - std::sqrt(1 - 0.16)) / 2);
     std::printf("image mean %.5f +- %.5f, expected %.5f (%.2f sigma)\n", b.imageMean, b.imageStdErr, expected,
                 (b.imageMean - expected) / b.imageStdErr);
     EXPECT_LT(std::fabs(b.imageMean - expected), 4 * b.imageStdErr);

@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include "spectral/cie.h"
@@ -28,6 +29,22 @@ inline std::array<double, 3> reflectanceRGB(const SpectrumSource& s, const RGBCo
     }
     for (double& v : xyz) v /= y;
     return c.rgbFromXYZ * xyz;
+}
+
+// What the film's sensor outputs, in expectation over the wavelengths, for radiance L(lambda)
+// (lambda in nm): outputFromSensor * imagingRatio * the integral of (xbar, ybar, zbar) L, summed
+// over the 1 nm grid. The sensor looks the matching functions up at the nearest whole nm, so the
+// sum differs from its expectation only by L's curvature within each nm.
+inline std::array<double, 3> sensorRGB(const Sensor& sensor, const std::function<double(double)>& L) {
+    std::array<double, 3> xyz{0, 0, 0};
+    for (int i = 0; i < kCieSamples; ++i) {
+        const double v = L(kCieLambdaMin + i);
+        xyz[0] += kCieX[i] * v;
+        xyz[1] += kCieY[i] * v;
+        xyz[2] += kCieZ[i] * v;
+    }
+    for (double& v : xyz) v *= sensor.imagingRatio();
+    return sensor.outputFromSensor() * xyz;
 }
 
 struct Estimate {
