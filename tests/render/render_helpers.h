@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,11 +28,9 @@ inline bool defaultSpectral() {
 
 // Renders with `options`, taking the sampler from the scene; progress off. An integrator
 // "mlt:WEIGHTS" is mlt with --mlt-mutations WEIGHTS. `spectral`: --color spectral (unset: the
-// tests' default mode). `adjust` may change the scene's settings last (what a command-line
-// option would).
+// tests' default mode).
 inline RenderResult renderWith(const std::string& text, RenderOptions opts, const std::string& integrator = "",
-                               std::optional<bool> spectralMode = std::nullopt,
-                               const std::function<void(RenderSettings&)>& adjust = nullptr) {
+                               std::optional<bool> spectralMode = std::nullopt) {
     const bool spectral = spectralMode.value_or(defaultSpectral());
     setWarningsQuiet(true);
     SceneDescription desc = parseSceneString(text, ".", "<test>");
@@ -44,7 +41,6 @@ inline RenderResult renderWith(const std::string& text, RenderOptions opts, cons
         scene->settings().mltMutations = integrator.substr(4);
     }
     scene->settings().spectral = spectral;
-    if (adjust) adjust(scene->settings());
     auto integ = createIntegrator(scene->settings().integrator, *scene);
     opts.sampler = scene->settings().sampler;
     opts.progress = false;
