@@ -3,7 +3,8 @@
 // and BDPT's light subpaths evaluate the BSDF in importance mode, the adjoint f(wi, wo) of
 // this non-reciprocal model: with f(wo, wi) there they would converge to another image.
 // On these shapes h = -1 + 2v is a property of the surface point, so the adjoint is exact.
-// The same in spectral mode.
+// In spectral mode too: sigma_a lifted at the path's wavelengths (an unbounded RGB, and the
+// melanin concentrations' RGB), and the lobe chosen by the mean over the four wavelengths.
 #include <gtest/gtest.h>
 
 #include "agreement.h"
@@ -40,14 +41,8 @@ const std::string kScene = R"(
 
 }  // namespace
 
+// 32 samples (light tracing 128): at 16 the hair's rare bright paths left the 1% bound to the
+// seeds' luck (4 sigma 1.1-1.4% on two of three sets of seeds, in RGB mode too).
 TEST(HairRender, PathLightAndBdptAgree) {
-    expectAgreement(AgreementCase{"hair", kScene, {"path", "light", "bdpt"}, 16, 16, {{"light", 64}}});
-}
-
-// Spectral mode: sigma_a lifted at the path's wavelengths (an unbounded RGB, and the melanin
-// concentrations' RGB), and the lobe chosen by the mean over the four wavelengths.
-TEST(HairRender, SpectralPathLightAndBdptAgree) {
-    AgreementCase c{"spectral hair", kScene, {"path", "light", "bdpt"}, 32, 16, {{"light", 128}}};
-    c.spectral = true;
-    expectAgreement(c);
+    expectAgreement(AgreementCase{"hair", kScene, {"path", "light", "bdpt"}, 32, 16, {{"light", 128}}});
 }
