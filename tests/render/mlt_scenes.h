@@ -16,6 +16,29 @@ inline std::string mltIntegrator(int bootstrapSamples = 50000) {
            std::to_string(bootstrapSamples) + " ]";
 }
 
+// The scene with another bootstrap sample count: b's error, common to the whole image, is
+// most of an MLT image mean's spread, and mlt's bootstrap samples (one strategy of one
+// path each) are cheaper and noisier than BDPT's.
+inline std::string withBootstrap(std::string scene, int samples) {
+    const std::string key = "\"integer bootstrapsamples\" [ ";
+    const size_t at = scene.find(key) + key.size();
+    return scene.replace(at, scene.find(' ', at) - at, std::to_string(samples));
+}
+
+// The scene with k times its Integrator line's chains.
+inline std::string withChainsTimes(std::string scene, int k) {
+    const std::string key = "\"integer chains\" [ ";
+    const size_t at = scene.find(key) + key.size(), end = scene.find(' ', at);
+    return scene.replace(at, end - at, std::to_string(k * std::stoi(scene.substr(at, end - at))));
+}
+
+// Where the agreement tests' chains are too few: a chain keeps the luck of its start (its
+// wavelengths among it) a long while, so more chains, not longer ones, bring a block's sigma
+// across renders down. On the mirror scene in spectral mode 2x the mutations took it from
+// 1.40 to 1.30 of agreement.h's bound, 4x the chains at the same cost to 0.71. The tests
+// that use it run this many times the chains, each as long (this many times the mutations).
+constexpr int kMoreChains = 4;
+
 // A sphere lit from inside by its own emission, albedo 0.6: every pixel sees Le sum_k 0.6^k
 // (app/furnace_scene.h's scene, with the tests' Integrator line).
 inline std::string furnace() {

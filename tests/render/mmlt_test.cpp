@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "mlt_scenes.h"
 #include "render_helpers.h"
 #include "transport/mlt/mmlt.h"
 #include "transport/mlt/strategy_choice.h"
