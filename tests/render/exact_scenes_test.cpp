@@ -28,15 +28,7 @@ void expectWithin4Sigma(const RegionStats& r, const double expected[3], double m
     }
 }
 
-// A render that is deterministic in RGB mode (every sample gives the exact value) is checked
-// there to `rgbTolerance`; spectral mode adds the wavelengths' noise (expectSpectralMean).
-void expectExact(const RegionStats& r, const std::array<double, 3>& exact, bool spectral, double rgbTolerance = 1e-5) {
-    if (spectral) return expectSpectralMean(r, exact);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.mean[c], exact[c], rgbTolerance) << "channel " << c;
-}
-
 double product(double a, double b) { return a * b; }
-double itself(double a) { return a; }
 
 // The grey diffuse surfaces below (albedo 0.5) lit by "rgb L" or "rgb I" [ 2 3 4 ] with the
 // geometric factor g: rho g L, per channel or per wavelength.

@@ -51,8 +51,7 @@ TEST(Lights, DistantLight) {
     const auto exact = exactPixel(
         spectral, [](double rho, double L) { return rho * L * 0.5 / M_PI; }, reflectance({0.5f, 0.5f, 0.5f}),
         emission({3, 3, 3}));
-    if (spectral) expectSpectralMean(s, exact);
-    else for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.mean[c], exact[c], 1e-4) << "channel " << c;
+    expectExact(s, exact, spectral, 1e-4);
 }
 
 // A spot light straight above: inside its cone it is a point light; outside, dark.

@@ -67,4 +67,15 @@ inline void expectSpectralMean(const RegionStats& r, const std::array<double, 3>
     }
 }
 
+// A render that is deterministic in RGB mode (every sample gives the exact value) is checked
+// there to `rgbTolerance`; spectral mode adds the wavelengths' noise (expectSpectralMean).
+inline void expectExact(const RegionStats& r, const std::array<double, 3>& exact, bool spectral,
+                        double rgbTolerance = 1e-5) {
+    if (spectral) return expectSpectralMean(r, exact);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.mean[c], exact[c], rgbTolerance) << "channel " << c;
+}
+
+// The formula of a light seen directly, for exactPixel.
+inline double itself(double L) { return L; }
+
 }  // namespace ps::test
