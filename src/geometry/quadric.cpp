@@ -221,10 +221,12 @@ std::optional<ShapeSample> Sphere::sampleToward(int prim, Vec3 ref, Vec2 u) cons
     float phi = 2 * kPi * u.y;
     Frame f = Frame::fromNormal(toC / dc);
     Vec3 w = f.toWorld({sinT * std::cos(phi), sinT * std::sin(phi), cosT});
-    // Nearest intersection along w (clamped for rays grazing the silhouette).
-    float b = dot(toC, w);
-    float disc = r2 - (dc2 - b * b);
-    float t = b - safeSqrt(disc);
+    // Nearest intersection along w. The squared distance of the ray from the centre is
+    // dc2 sin^2(theta), not dc2 - b^2: that difference of two large numbers lost the
+    // discriminant near the silhouette of a small, distant sphere, and the point then fell
+    // inside the sphere, which blocked the shadow ray to it.
+    float disc = r2 - dc2 * (omc * (2 - omc));
+    float t = dc * cosT - safeSqrt(disc);
     ShapeSample s;
     s.p = ref + w * t;
     s.wi = w;

@@ -284,6 +284,42 @@ TEST(ExactScenes, DiffusePlaneUnderPointLight) {
     expectExact(wholeImage(r.image), exact, spectral, 1e-4);
 }
 
+// A small sphere light of radius r at height h over a diffuse plane: below its centre the
+// sphere subtends a cone of sin^2 = r^2 / h^2, so E = pi L r^2 / h^2 and the plane shows
+// rho L r^2 / h^2. Here r = 0.02 at h = 20. The point the cone's direction hits on such a
+// sphere was once computed from the difference of two squared distances near h^2, which lost
+// the discriminant near the silhouette; the point fell inside the sphere, the shadow ray to it
+// was blocked, and the plane came out darker (Veach's MIS scene's smallest light, r = 0.05 at
+// about 10, lit the wall 1.3% too dark).
+TEST(ExactScenes, DiffusePlaneUnderASmallDistantSphere) {
+    const char* scene = R"(
+        LookAt 0 0.5 0   0 0 0   0 0 1
+        Camera "perspective" "float fov" [ 0.5 ]
+        Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ 1 ]
+        WorldBegin
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 500000 750000 1000000 ]
+          Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+          Translate 0 20 0
+          Shape "sphere" "float radius" [ 0.02 ]
+        AttributeEnd
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+        Shape "trianglemesh" "point3 P" [ -20 0 -20  20 0 -20  20 0 20  -20 0 20 ]
+            "integer indices" [ 0 1 2 0 2 3 ]
+    )";
+    const bool spectral = defaultSpectral();
+    const double g = 0.02 * 0.02 / (20.0 * 20.0);
+    const auto exact = exactPixel(
+        spectral, [g](double rho, double L) { return rho * g * L; }, reflectance({0.5f, 0.5f, 0.5f}),
+        emission({500000, 750000, 1000000}));
+    for (const char* integrator : {"path", "bdpt"}) {
+        SCOPED_TRACE(integrator);
+        expectWithin4Sigma(wholeImage(renderString(scene, spectral ? 256 : 64, 7, 0, integrator).image), exact.data());
+    }
+}
+
 // "rgb L [1 1 1]" on a light seen directly gives pixel value 1 (as in pbrt-v4).
 TEST(ExactScenes, DirectlySeenLightHasItsRadiance) {
     const char* scene = R"(
