@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Set up, build and run the whole test suite; then the same suite under ASan+UBSan, and a short
-# seeded fuzz run of each fuzz target (about 15 minutes in all on 2 cores; see README "Hardening").
+# seeded fuzz run of each fuzz target (about 35 minutes in all on 2 cores; see README "Hardening").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
