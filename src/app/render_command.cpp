@@ -239,7 +239,9 @@ void RenderCommand::attach(CLI::App& app) {
     cmd_->add_option("--mlt-mutations", mltMutations_,
                      "mlt only: the mutations' weights, KEY=VALUE,... with keys bidirectional, lens-subpath, lens, "
                      "multi-chain, caustic, wavelengths (spectral mode) (default 1 each; a mutation is chosen among those that apply to the path in "
-                     "proportion to its weight; 0 switches one off; bidirectional must stay > 0)");
+                     "proportion to its weight; 0 switches one off; bidirectional must stay > 0); also direct=N "
+                     "(as --mlt-direct) and pilot=F: two-stage MLT, the target divided by a pilot image made of F "
+                     "times the bootstrap's samples (default 0: off)");
     cmd_->add_option("--color", color_,
                      "spectral (default): each camera sample follows four wavelengths and the film's sensor (cie1931, "
                      "\"whitebalance\") makes colour, as pbrt-v4 renders; rgb: paths carry linear RGB (faster; saturated "

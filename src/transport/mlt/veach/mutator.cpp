@@ -51,6 +51,7 @@ VeachMutations parseMutationWeights(const std::string& spec) {
                          : key == "caustic"      ? &w.caustic
                          : key == "wavelengths"  ? &w.wavelengths
                          : key == "direct"       ? &w.direct
+                         : key == "pilot"        ? &w.pilot
                                                  : nullptr;
         if (!target)
             throw InputError("--mlt-mutations: unknown mutation \"" + key +

@@ -1,4 +1,5 @@
 #include "transport/mlt/veach/veach_mlt.h"
+#include "transport/mlt/veach/pilot_importance.h"
 
 #include <algorithm>
 #include <atomic>
@@ -54,15 +55,17 @@ struct PathState {
     double f = 0;
 };
 
-// A path shorter than minVertices (rendered apart: direct lighting) has target 0.
-bool evaluate(const PathSpace& space, int minVertices, PathState& s) {
+// A path shorter than minVertices (rendered apart: direct lighting) has target 0; the
+// target is the luminance over the pilot's brightness where the path lands (two-stage MLT,
+// pilot_importance.h; 1 without a pilot).
+bool evaluate(const PathSpace& space, int minVertices, const PilotImportance& importance, PathState& s) {
     if (int(s.path.size()) < minVertices) {
         s.C = Spectrum();
         s.f = 0;
         return false;
     }
     s.C = space.contribution(s.path, &s.pRaster);
-    const double f = s.C.luminance();
+    const double f = s.C.luminance() / importance.at(s.pRaster);
     s.f = f > 0 && std::isfinite(f) ? f : 0.0;
     return s.f > 0;
 }
@@ -75,7 +78,8 @@ uint64_t chainSeed(uint64_t seed, int chain) { return mixWithKey(mix64(seed ^ 0x
 // camera walk ending on an emitter), as BDPT makes them. Each path's weight is f over the
 // sum of the densities of every split that generates it (the balance heuristic): the
 // weights sum to an estimate of b. With `pick` in [0, total), the path whose weight range
-// holds it goes to `out` (its BxDFs in out's arena); returns the total.
+// holds it goes to `out` (its BxDFs in out's arena); returns the total. With `pilotSums`
+// (a pilot sample), each path's luminance over its density is added to its tile's sum.
 // Layered surfaces are sampled with a density of our own (path_space.h, MltVertex::mixed),
 // which has no place for the composite mirror of a smooth coating over a smooth base.
 constexpr const char* kUnsupportedCoating =
@@ -83,8 +87,8 @@ constexpr const char* kUnsupportedCoating =
     "0, pbrt-v4's default): its reflection is a sum of mirror paths inside the layer whose weight is only estimated, "
     "and a path-space mutation needs it exactly; give either layer a roughness, or render with mmlt, bdpt or path";
 
-double bootstrapSample(const VeachMLTIntegrator& integrator, uint64_t seed, int64_t i, PathStats& stats,
-                       PathState& out, double pick = -1) {
+double bootstrapSample(const VeachMLTIntegrator& integrator, const PilotImportance& importance, uint64_t seed,
+                       int64_t i, PathStats& stats, PathState& out, double pick = -1, double* pilotSums = nullptr) {
     const PathSpace& space = integrator.space();
     Rng rng(bootstrapSeed(seed, i));
     out.arena->reset();
@@ -112,11 +116,12 @@ double bootstrapSample(const VeachMLTIntegrator& integrator, uint64_t seed, int6
                 continue;
             Vec2 pRaster;
             const Spectrum C = space.contribution(y, &pRaster);
-            const double f = C.luminance();
+            const double f = C.luminance() / importance.at(pRaster);
             // The densities of the n splits, each chosen with probability 1 / n by insertedDensity.
             const double p = integrator.bidirectional().insertedDensity(y, 0, n) * n;
             const double w = f / p;
             if (!(f > 0) || !(w > 0) || !std::isfinite(w)) continue;
+            if (pilotSums) pilotSums[importance.tileOf(pRaster)] += w;
             if (pick >= total && pick < total + w) {
                 out.path = y;
                 out.C = C;
@@ -295,9 +300,38 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     distributed::barrier();  // over several processes (chain_ranks.h) the clocks start together
     const auto startTime = std::chrono::steady_clock::now();
 
+    // Two-stage MLT (pilot_importance.h): the pilot's own samples, past the bootstrap's
+    // indices, in a fixed number of blocks summed in order (the same map for any thread or
+    // process count, and again on resuming).
+    const int64_t nBoot = std::max(1, mp.bootstrapSamples);
+    const int64_t nPilot = int64_t(std::ceil(integrator.mutations().pilot * double(nBoot)));
+    PilotImportance importance(bounds, nPilot);
+    if (nPilot > 0) {
+        constexpr int64_t kPilotBlocks = 64;
+        const size_t tiles = size_t(importance.tiles());
+        std::vector<double> blockSums(size_t(kPilotBlocks) * tiles, 0.0);
+        const PilotImportance plain(bounds, nPilot);  // B = 1: the pilot measures f itself
+        arena.execute([&] {
+            tbb::parallel_for(int64_t(0), kPilotBlocks, [&](int64_t block) {
+                if (!chain_ranks::ownsBlock(block)) return;
+                PathState& s = scratchStates.local();
+                for (int64_t j = block * nPilot / kPilotBlocks; j < (block + 1) * nPilot / kPilotBlocks; ++j)
+                    bootstrapSample(integrator, plain, options.seed, nBoot + j, threadStats.local(), s, -1,
+                                    blockSums.data() + size_t(block) * tiles);
+            });
+        });
+        {
+            distributed::Purpose purpose("pilot merge");
+            distributed::mergeDisjoint(blockSums);
+        }
+        std::vector<double> sums(tiles, 0.0);
+        for (int64_t block = 0; block < kPilotBlocks; ++block)
+            for (size_t t = 0; t < tiles; ++t) sums[t] += blockSums[size_t(block) * tiles + t];
+        importance.finish(sums);
+    }
+
     // Bootstrap: b and the weights of the candidate initial states, each process taking its
     // blocks of samples and every process getting all the weights (chain_ranks.h).
-    const int64_t nBoot = std::max(1, mp.bootstrapSamples);
     std::vector<double> weights(checkpoints.resuming() ? 0 : size_t(nBoot), 0.0);
     std::atomic<bool> bootstrapCancelled{false};
     if (!checkpoints.resuming()) arena.execute([&] {
@@ -310,7 +344,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
             }
             PathState& s = scratchStates.local();
             for (int64_t i = block * kBlock; i < std::min(nBoot, (block + 1) * kBlock); ++i)
-                weights[size_t(i)] = bootstrapSample(integrator, options.seed, i, threadStats.local(), s);
+                weights[size_t(i)] = bootstrapSample(integrator, importance, options.seed, i, threadStats.local(), s);
         });
     });
     {
@@ -377,7 +411,8 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                 while (i > 0 && weights[size_t(i)] == 0) --i;
                 // Then one of its paths in proportion to their weights.
                 const double within = ch.rng.uniformDouble() * weights[size_t(i)];
-                if (bootstrapSample(integrator, options.seed, i, threadStats.local(), ch.x, within) != weights[size_t(i)] ||
+                if (bootstrapSample(integrator, importance, options.seed, i, threadStats.local(), ch.x, within) !=
+                        weights[size_t(i)] ||
                     !(ch.x.f > 0))
                     replayMismatch = true;
                 ch.remaining = total / chains + (c < total % chains ? 1 : 0);
@@ -423,7 +458,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                         if (kind < int(Mutation::Count)) ++ch.counts.proposed[kind];
                         if (!made) {
                             if (kind < int(Mutation::Count)) ++ch.counts.failed[kind];
-                        } else if (!evaluate(space, integrator.minChainVertices(), ch.y) || !(ratio > 0)) {
+                        } else if (!evaluate(space, integrator.minChainVertices(), importance, ch.y) || !(ratio > 0)) {
                             ++ch.counts.invalid;
                         } else {
                             const double r = ch.y.f / ch.x.f * ratio;

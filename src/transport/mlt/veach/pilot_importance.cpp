@@ -1,0 +1,43 @@
+#include "transport/mlt/veach/pilot_importance.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ps {
+
+PilotImportance::PilotImportance(const PixelBounds& bounds, int64_t pilotSamples, double samplesPerTile)
+    : bounds_(bounds) {
+    const double area = double(std::max(1LL, bounds.area()));
+    const double perPixel = double(std::max<int64_t>(1, pilotSamples)) / area;
+    tile_ = std::max(1, int(std::ceil(std::sqrt(samplesPerTile / perPixel))));
+    nx_ = std::max(1, (bounds.width() + tile_ - 1) / tile_);
+    ny_ = std::max(1, (bounds.height() + tile_ - 1) / tile_);
+}
+
+int PilotImportance::tileOf(Vec2 p) const {
+    const int tx = std::clamp(int(std::floor((p.x - float(bounds_.x0)) / float(tile_))), 0, nx_ - 1);
+    const int ty = std::clamp(int(std::floor((p.y - float(bounds_.y0)) / float(tile_))), 0, ny_ - 1);
+    return ty * nx_ + tx;
+}
+
+void PilotImportance::finish(const std::vector<double>& sums, double floorFraction) {
+    brightness_.assign(size_t(tiles()), 0.0);
+    double total = 0, pixels = 0;
+    for (int ty = 0; ty < ny_; ++ty)
+        for (int tx = 0; tx < nx_; ++tx) {
+            // Edge tiles cover fewer pixels.
+            const int w = std::min(tile_, bounds_.width() - tx * tile_), h = std::min(tile_, bounds_.height() - ty * tile_);
+            const double n = double(std::max(1, w * h));
+            const size_t i = size_t(ty * nx_ + tx);
+            const double s = i < sums.size() && std::isfinite(sums[i]) ? std::max(0.0, sums[i]) : 0.0;
+            brightness_[i] = s / n;
+            total += s;
+            pixels += n;
+        }
+    const double mean = total / pixels;
+    // No light found at all: every tile alike (the plain target).
+    const double floor = mean > 0 ? floorFraction * mean : 1.0;
+    for (double& b : brightness_) b = std::max(b, floor);
+}
+
+}  // namespace ps

@@ -1,0 +1,42 @@
+// Two-stage MLT (Hoberock and Hart 2010, "arbitrary importance functions"): the chains'
+// target is the path's luminance divided by a pilot image's brightness where the path lands,
+// f*(x) = f(x) / B(pixel of x). Plain MLT spends its mutations in proportion to brightness,
+// so a pixel's relative error grows as it darkens; with f* every tile of the image gets about
+// as many mutations, and the relative error is even over the image.
+//
+// Unbiased whatever B is, as long as B > 0 wherever f > 0: b is estimated as the integral of
+// f* by the same bootstrap, each splat is divided by f* instead of f, and the image is b*
+// over the mutations as before. B comes from pilot samples of their own (bootstrap samples
+// past the bootstrap's index range), so b's estimate does not depend on it.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "film/film.h"
+#include "math/vec.h"
+
+namespace ps {
+
+class PilotImportance {
+public:
+    // A grid of square tiles over the pixel bounds, each of about `samplesPerTile` of the
+    // pilot's `pilotSamples`.
+    PilotImportance(const PixelBounds& bounds, int64_t pilotSamples, double samplesPerTile = 400);
+    int tiles() const { return nx_ * ny_; }
+    // The tile a film position falls in (positions past the bounds: the nearest tile).
+    int tileOf(Vec2 pRaster) const;
+    // From the pilot's luminance per tile (its sum of f / p): each tile's mean per pixel,
+    // raised to at least `floorFraction` of the image's mean (a tile the pilot found dark or
+    // empty may still hold light; the floor bounds how much more often the chains visit it).
+    void finish(const std::vector<double>& luminanceSums, double floorFraction = 0.1);
+    // B at a film position (1 before finish).
+    double at(Vec2 pRaster) const { return brightness_.empty() ? 1.0 : brightness_[size_t(tileOf(pRaster))]; }
+    int tileSize() const { return tile_; }
+
+private:
+    PixelBounds bounds_;
+    int tile_ = 1, nx_ = 1, ny_ = 1;
+    std::vector<double> brightness_;
+};
+
+}  // namespace ps

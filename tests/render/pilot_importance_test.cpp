@@ -1,0 +1,45 @@
+// Two-stage MLT's pilot image (transport/mlt/veach/pilot_importance.h): its tiles and the
+// brightness it divides the chains' target by.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "transport/mlt/veach/pilot_importance.h"
+
+using namespace ps;
+
+// About samplesPerTile pilot samples per tile: 100 x 60 pixels, 6000 samples (one a pixel)
+// at 400 a tile: tiles of 20 x 20 pixels, 5 x 3 of them.
+TEST(PilotImportance, TilesHoldAboutTheSamplesAsked) {
+    const PixelBounds bounds{0, 100, 0, 60};
+    PilotImportance p(bounds, 6000, 400);
+    EXPECT_EQ(p.tileSize(), 20);
+    EXPECT_EQ(p.tiles(), 15);
+    EXPECT_EQ(p.tileOf(Vec2(0.5f, 0.5f)), 0);
+    EXPECT_EQ(p.tileOf(Vec2(99.5f, 59.5f)), 14);
+    EXPECT_EQ(p.tileOf(Vec2(25.f, 45.f)), 2 * 5 + 1);
+    // Splats reach past the pixel bounds by the filter's radius: the nearest tile.
+    EXPECT_EQ(p.tileOf(Vec2(-1.f, -1.f)), 0);
+    EXPECT_EQ(p.tileOf(Vec2(101.f, 61.f)), 14);
+    // A crop window's tiles start at its corner.
+    PilotImportance crop(PixelBounds{40, 140, 10, 70}, 6000, 400);
+    EXPECT_EQ(crop.tileOf(Vec2(40.5f, 10.5f)), 0);
+    EXPECT_EQ(crop.tileOf(Vec2(39.f, 9.f)), 0);
+}
+
+TEST(PilotImportance, BrightnessIsEachTilesMeanPerPixelWithAFloor) {
+    // 30 x 20 pixels in tiles of 20: 2 x 1 tiles, the second 10 pixels wide.
+    PilotImportance p(PixelBounds{0, 30, 0, 20}, 600, 400);
+    ASSERT_EQ(p.tileSize(), 20);
+    ASSERT_EQ(p.tiles(), 2);
+    EXPECT_EQ(p.at(Vec2(5.f, 5.f)), 1.0);  // before the pilot: the plain target
+    p.finish({400.0, 2.0}, 0.1);
+    // Per pixel: 400 / 400 = 1 and 2 / 200 = 0.01; the image mean is 402 / 600 = 0.67,
+    // whose tenth, 0.067, lifts the dark tile.
+    EXPECT_DOUBLE_EQ(p.at(Vec2(5.f, 5.f)), 1.0);
+    EXPECT_DOUBLE_EQ(p.at(Vec2(25.f, 5.f)), 0.1 * 402.0 / 600.0);
+    // A pilot that found no light leaves every tile alike.
+    p.finish({0.0, 0.0}, 0.1);
+    EXPECT_EQ(p.at(Vec2(5.f, 5.f)), p.at(Vec2(25.f, 5.f)));
+    EXPECT_GT(p.at(Vec2(5.f, 5.f)), 0.0);
+}
