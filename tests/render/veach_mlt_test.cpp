@@ -61,14 +61,15 @@ TEST(VeachMLT, AgreesWithBDPTOnADiffuseBox) {
 // Two-stage MLT (pilot_importance.h, `pilot=F`): the target divided by a pilot image's
 // brightness. Each splat's luminance is then B of its tile, not 1, so the image mean also
 // depends on where the chains are: four times the chains, each as long (16 in spectral
-// mode, whose wavelengths add to the spread of the splats' luminance). (On the glass caustic
+// mode, whose wavelengths add to the spread of the splats' luminance), and a 3% bias to
+// detect (the image mean's sigma was 0.40-0.64% over two builds). (On the glass caustic
 // the image mean's sigma was 2.4% with the scene's chains and 1.4% with four times them,
 // against BDPT's 0.24%: two-stage MLT spends on the dim floor what plain MLT spent on the
 // bright caustic, which carries the image mean.)
 TEST(VeachMLT, TwoStageAgreesWithBDPT) {
     const int k = defaultSpectral() ? 4 * kMoreChains : kMoreChains;
     expectAgreement(AgreementCase{"diffuse box, two-stage", withChainsTimes(box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), k),
-                                  {"bdpt", "mlt:pilot=0.5"}, 16, 16, {{"mlt:pilot=0.5", k * 64}}, 0.02});
+                                  {"bdpt", "mlt:pilot=0.5"}, 16, 16, {{"mlt:pilot=0.5", k * 64}}, 0.03});
 }
 
 // Saturated colours: the target is luminance, the splats RGB; each channel against BDPT.
