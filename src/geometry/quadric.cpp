@@ -217,7 +217,8 @@ std::optional<ShapeSample> Sphere::sampleToward(int prim, Vec3 ref, Vec2 u) cons
     float oneMinusCosMax = sin2Max / (1 + cosMax);  // stable for tiny cones
     float omc = u.x * oneMinusCosMax;
     float cosT = 1 - omc;
-    float sinT = safeSqrt(omc * (2 - omc));
+    float sin2T = omc * (2 - omc);
+    float sinT = safeSqrt(sin2T);
     float phi = 2 * kPi * u.y;
     Frame f = Frame::fromNormal(toC / dc);
     Vec3 w = f.toWorld({sinT * std::cos(phi), sinT * std::sin(phi), cosT});
@@ -225,7 +226,7 @@ std::optional<ShapeSample> Sphere::sampleToward(int prim, Vec3 ref, Vec2 u) cons
     // dc2 sin^2(theta), not dc2 - b^2: that difference of two large numbers lost the
     // discriminant near the silhouette of a small, distant sphere, and the point then fell
     // inside the sphere, which blocked the shadow ray to it.
-    float disc = r2 - dc2 * (omc * (2 - omc));
+    float disc = r2 - dc2 * sin2T;
     float t = dc * cosT - safeSqrt(disc);
     ShapeSample s;
     s.p = ref + w * t;

@@ -30,12 +30,15 @@ void expectWithin4Sigma(const RegionStats& r, const double expected[3], double m
 
 double product(double a, double b) { return a * b; }
 
-// The grey diffuse surfaces below (albedo 0.5) lit by "rgb L" or "rgb I" [ 2 3 4 ] with the
+// The grey diffuse surfaces below (albedo 0.5) lit by "rgb L" or "rgb I" `L` with the
 // geometric factor g: rho g L, per channel or per wavelength.
-std::array<double, 3> greyLitBy234(double g, bool spectral = defaultSpectral()) {
+std::array<double, 3> greyLitBy(double g, std::array<float, 3> L, bool spectral = defaultSpectral()) {
     return exactPixel(
-        spectral, [g](double rho, double L) { return rho * g * L; }, reflectance({0.5f, 0.5f, 0.5f}), emission({2, 3, 4}));
+        spectral, [g](double rho, double Le) { return rho * g * Le; }, reflectance({0.5f, 0.5f, 0.5f}), emission(L));
 }
+
+// The same lit by [ 2 3 4 ].
+std::array<double, 3> greyLitBy234(double g, bool spectral = defaultSpectral()) { return greyLitBy(g, {2, 3, 4}, spectral); }
 
 // Irradiance below the centre of a parallel rectangle of radiance L, 2a x 2b at height h:
 // four corner form factors F = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + (X<->Y)].
@@ -310,10 +313,7 @@ TEST(ExactScenes, DiffusePlaneUnderASmallDistantSphere) {
             "integer indices" [ 0 1 2 0 2 3 ]
     )";
     const bool spectral = defaultSpectral();
-    const double g = 0.02 * 0.02 / (20.0 * 20.0);
-    const auto exact = exactPixel(
-        spectral, [g](double rho, double L) { return rho * g * L; }, reflectance({0.5f, 0.5f, 0.5f}),
-        emission({500000, 750000, 1000000}));
+    const auto exact = greyLitBy(0.02 * 0.02 / (20.0 * 20.0), {500000, 750000, 1000000}, spectral);
     for (const char* integrator : {"path", "bdpt"}) {
         SCOPED_TRACE(integrator);
         expectWithin4Sigma(wholeImage(renderString(scene, spectral ? 256 : 64, 7, 0, integrator).image), exact.data());

@@ -204,9 +204,9 @@ INSTANTIATE_TEST_SUITE_P(
         Reference{.scene = "grey-box.pbrt", .image = "grey-box-path-16384spp.pfm", .spp = 256, .renders = 8, .inRepository = true,
                   .spectral = false},
         Reference{.scene = "veach-mis/scene-v4-320x180.pbrt", .image = "veach-mis-path-4096spp.pfm", .spp = 16, .renders = 32,
-                  .allowance = 0, .noise = "veach-mis-path-4096spp.pfm"},
+                  .noise = "veach-mis-path-4096spp.pfm"},
         Reference{.scene = "veach-bidir/scene-v4-256.pbrt", .image = "veach-bidir-bdpt-512spp.pfm", .spp = 4, .renders = 32,
-                  .allowance = 0, .noise = "veach-bidir-bdpt-512spp.pfm"},
+                  .noise = "veach-bidir-bdpt-512spp.pfm"},
         Reference{.scene = "caustic-glass/caustic-glass-v4-210x300.pbrt", .image = "caustic-glass-bdpt-1024spp.pfm", .spp = 16,
                   .renders = 8, .luminanceRatio = 0.9815, .allowance = 0.035, .noise = "caustic-glass-bdpt-1024spp.pfm"}),
     [](const ::testing::TestParamInfo<Reference>& i) {

@@ -55,7 +55,8 @@ VeachMutations parseMutationWeights(const std::string& spec) {
                                                  : nullptr;
         if (!target)
             throw InputError("--mlt-mutations: unknown mutation \"" + key +
-                             "\" (available: bidirectional, lens-subpath, lens, multi-chain, caustic, wavelengths)");
+                             "\" (available: bidirectional, lens-subpath, lens, multi-chain, caustic, wavelengths; and "
+                             "direct, pilot)");
         const std::string value = eq == std::string::npos ? "" : item.substr(eq + 1);
         char* end = nullptr;
         const double v = std::strtod(value.c_str(), &end);

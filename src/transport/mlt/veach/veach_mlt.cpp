@@ -310,13 +310,13 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         constexpr int64_t kPilotBlocks = 64;
         const size_t tiles = size_t(importance.tiles());
         std::vector<double> blockSums(size_t(kPilotBlocks) * tiles, 0.0);
-        const PilotImportance plain(bounds, nPilot);  // B = 1: the pilot measures f itself
+        // Before finish, B is 1: the pilot measures the luminance itself.
         arena.execute([&] {
             tbb::parallel_for(int64_t(0), kPilotBlocks, [&](int64_t block) {
                 if (!chain_ranks::ownsBlock(block)) return;
                 PathState& s = scratchStates.local();
                 for (int64_t j = block * nPilot / kPilotBlocks; j < (block + 1) * nPilot / kPilotBlocks; ++j)
-                    bootstrapSample(integrator, plain, options.seed, nBoot + j, threadStats.local(), s, -1,
+                    bootstrapSample(integrator, importance, options.seed, nBoot + j, threadStats.local(), s, -1,
                                     blockSums.data() + size_t(block) * tiles);
             });
         });
