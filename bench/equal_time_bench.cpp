@@ -108,10 +108,9 @@ int main(int argc, char** argv) {
                     "relMSE", "mean/ref", "acceptance", "relMSE ratio to first");
         double firstRelMse = 0;
         for (const std::string& name : integrators) {
-            // "mlt:WEIGHTS": mlt with --mlt-mutations WEIGHTS (for the mutations' ablation).
-            const bool weighted = name.rfind("mlt:", 0) == 0;
-            scene->settings().mltMutations = weighted ? name.substr(4) : "";
-            auto integrator = createIntegrator(weighted ? "mlt" : name, *scene);
+            // "mlt:WEIGHTS": mlt with --mlt-mutations WEIGHTS (for the mutations' ablation);
+            // "NAME:two-stage=F": with --two-stage F.
+            auto integrator = createIntegrator(applyIntegratorVariant(name, scene->settings()), *scene);
             double sumRelMse = 0, sumMean = 0, sumMean2 = 0;
             for (int k = 1; k <= seeds; ++k) {
                 RenderOptions o;

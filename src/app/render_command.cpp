@@ -236,12 +236,17 @@ void RenderCommand::attach(CLI::App& app) {
                      "to choose each path depth and strategy and how to split the bootstrap among the depths (default 0.1; "
                      "0: no pilot, every depth and strategy equally)")
         ->check(probabilityCheck());
+    cmd_->add_option("--two-stage", twoStage_,
+                     "Metropolis (pssmlt, mmlt, mlt) only: two-stage MLT. F times the bootstrap's samples make a pilot "
+                     "image, and the chains' target is the path's luminance over that image's brightness where the path "
+                     "lands, so that dark parts of the image get about as many mutations as bright ones (default 0: "
+                     "off, the target is the luminance)")
+        ->check(numberCheck(true));
     cmd_->add_option("--mlt-mutations", mltMutations_,
                      "mlt only: the mutations' weights, KEY=VALUE,... with keys bidirectional, lens-subpath, lens, "
                      "multi-chain, caustic, wavelengths (spectral mode) (default 1 each; a mutation is chosen among those that apply to the path in "
                      "proportion to its weight; 0 switches one off; bidirectional must stay > 0); also direct=N "
-                     "(as --mlt-direct) and pilot=F: two-stage MLT, the target divided by a pilot image made of F "
-                     "times the bootstrap's samples (default 0: off)");
+                     "(as --mlt-direct)");
     cmd_->add_option("--color", color_,
                      "spectral (default): each camera sample follows four wavelengths and the film's sensor (cie1931, "
                      "\"whitebalance\") makes colour, as pbrt-v4 renders; rgb: paths carry linear RGB (faster; saturated "
@@ -294,10 +299,11 @@ void RenderCommand::load(Job& job) {
         throw InputError("--large-step-probability, --camera-step-probability and --sigma are parameters of the "
                          "primary-sample-space Metropolis integrators (pssmlt, mmlt); mlt's mutations change paths, "
                          "not random numbers");
-    if (chains_ > 0 || bootstrap_ > 0 || largeStepProbability_ >= 0 || sigma_ > 0 || cameraStepProbability_ >= 0) {
+    if (chains_ > 0 || bootstrap_ > 0 || largeStepProbability_ >= 0 || sigma_ > 0 || cameraStepProbability_ >= 0 ||
+        twoStage_ >= 0) {
         if (settings.integrator != "pssmlt" && settings.integrator != "mmlt" && settings.integrator != "mlt")
-            throw InputError("--chains, --bootstrap, --large-step-probability, --camera-step-probability and --sigma are "
-                             "Metropolis parameters: "
+            throw InputError("--chains, --bootstrap, --large-step-probability, --camera-step-probability, --sigma and "
+                             "--two-stage are Metropolis parameters: "
                              "they need --integrator pssmlt, mmlt or mlt (the integrator here is \"" + settings.integrator +
                              "\")");
         if (chains_ > 0) settings.mltChains = chains_;
@@ -305,6 +311,7 @@ void RenderCommand::load(Job& job) {
         if (largeStepProbability_ >= 0) settings.mltLargeStepProbability = float(largeStepProbability_);
         if (sigma_ > 0) settings.mltSigma = float(sigma_);
         if (cameraStepProbability_ >= 0) settings.mltCameraStepProbability = float(cameraStepProbability_);
+        if (twoStage_ >= 0) settings.mltTwoStage = float(twoStage_);
     }
     if (!crop_.empty()) {
         int W = scene->camera().params().xRes, H = scene->camera().params().yRes;
@@ -361,6 +368,7 @@ void RenderCommand::load(Job& job) {
         checkpointSettings["camera_step_probability"] = settings.mltCameraStepProbability;
         checkpointSettings["strategy_pilot"] = settings.mltStrategyPilot;
         checkpointSettings["mlt_mutations"] = settings.mltMutations;
+        if (settings.mltTwoStage > 0) checkpointSettings["two_stage"] = settings.mltTwoStage;
     }
     RenderOptions& opts = job.opts;
     opts.spp = settings.spp;
@@ -526,6 +534,7 @@ int RenderCommand::run() {
             {"b", ms.b},
             {"bootstrap_samples", ms.bootstrapSamples},
             {"pilot_samples", ms.pilotSamples},
+            {"two_stage_samples", ms.twoStageSamples},
             {"chains", ms.chains},
             {"large_step_probability", settings.mltLargeStepProbability},
             {"sigma", settings.mltSigma},

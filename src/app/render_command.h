@@ -46,6 +46,7 @@ private:
     double largeStepProbability_ = -1;
     double cameraStepProbability_ = -1;
     double strategyPilot_ = -1;
+    double twoStage_ = -1;
     double sigma_ = -1;
     int mltDirect_ = -1;        // --mlt-direct N
     std::string mltMutations_;  // --mlt-mutations KEY=VALUE,...  // --max-memory SIZE, checked by parseByteSize

@@ -17,7 +17,7 @@ namespace {
 constexpr char kMagic[8] = {'P', 'S', 'C', 'K', 'P', 'T', '\n', '\0'};
 // 2: the partial pass; 3: the chains' state; 4: the film's sums in units of 2^-40 (2^-64
 // before), which an earlier file's sums cannot be read as, so it is refused.
-constexpr uint32_t kVersion = 4;
+constexpr uint32_t kVersion = 5;
 constexpr uint32_t kByteOrder = 0x01020304;  // read back otherwise on a machine of the other order
 
 struct Header {
@@ -139,8 +139,8 @@ CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& se
     if (h.byteOrder != kByteOrder) refuse(path, "written on a machine of the other byte order");
     if (h.version != kVersion)
         refuse(path, "format version " + std::to_string(h.version) + ", this pathspace reads version " +
-                         std::to_string(kVersion) + (h.version < kVersion ? " only (an earlier pathspace kept the film's "
-                                                                            "sums in other units): render again without --resume"
+                         std::to_string(kVersion) + (h.version < kVersion ? " only (an earlier pathspace wrote another "
+                                                                            "layout): render again without --resume"
                                                                           : " only"));
     const size_t headerBytes = sizeof h;
     if (bytes.size() < headerBytes) refuse(path, "truncated or damaged: shorter than its header");

@@ -8,6 +8,9 @@
 #include "transport/path_tracer.h"
 #include "util/error.h"
 
+#include <cstdlib>
+#include <sstream>
+
 namespace ps {
 
 std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scene& scene, const std::string& mis) {
@@ -27,6 +30,7 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
             MetropolisParams mp{st.mltBootstrapSamples, st.mltChains, st.mltLargeStepProbability, st.mltSigma,
                                 st.mltStrategyPilot};
             mp.cameraStepProbability = st.mltCameraStepProbability;
+            mp.twoStage = st.mltTwoStage;
             if (name == "mlt")
                 return std::make_unique<VeachMLTIntegrator>(scene, maxDepth, mp, parseMutationWeights(st.mltMutations));
             if (name == "mmlt") return std::make_unique<MMLTIntegrator>(scene, maxDepth, mp, heuristic);
@@ -35,6 +39,32 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
         return std::make_unique<BDPTIntegrator>(scene, maxDepth, heuristic);
     }
     throw InputError("unknown integrator \"" + name + "\" (available: path, light, bdpt, pssmlt, mmlt, mlt)");
+}
+
+std::string applyIntegratorVariant(const std::string& spec, RenderSettings& st) {
+    const size_t colon = spec.find(':');
+    const std::string name = spec.substr(0, colon);
+    const RenderSettings defaults;
+    st.mltMutations = defaults.mltMutations;
+    st.mltTwoStage = defaults.mltTwoStage;
+    if (colon == std::string::npos) return name;
+    std::string rest;
+    std::stringstream in(spec.substr(colon + 1));
+    for (std::string item; std::getline(in, item, ',');) {
+        if (item.rfind("two-stage=", 0) == 0) {
+            char* end = nullptr;
+            const std::string value = item.substr(10);
+            st.mltTwoStage = std::strtof(value.c_str(), &end);
+            if (value.empty() || *end != '\0' || !(st.mltTwoStage >= 0))
+                throw InputError("\"" + spec + "\": two-stage needs a fraction >= 0");
+        } else {
+            rest += (rest.empty() ? "" : ",") + item;
+        }
+    }
+    if (!rest.empty() && name != "mlt")
+        throw InputError("\"" + spec + "\": only mlt takes mutation weights (" + rest + ")");
+    st.mltMutations = rest;
+    return name;
 }
 
 }  // namespace ps

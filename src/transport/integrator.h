@@ -97,4 +97,8 @@ public:
 std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scene& scene,
                                              const std::string& mis = "power");
 
+// For benchmarks and tests: "NAME" or "NAME:KEY=VALUE,..." with mlt's --mlt-mutations keys and
+// two-stage=F (--two-stage, pssmlt, mmlt and mlt), set in `st` (the others reset); returns NAME.
+std::string applyIntegratorVariant(const std::string& spec, RenderSettings& st);
+
 }  // namespace ps

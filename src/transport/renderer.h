@@ -51,6 +51,7 @@ struct MetropolisStats {
     int chains = 0;
     long long bootstrapSamples = 0, mutations = 0;
     long long pilotSamples = 0;  // multiplexed MLT: samples that learned the strategy choice
+    long long twoStageSamples = 0;  // two-stage MLT: the pilot image's samples
     long long proposedLarge = 0, acceptedLarge = 0, proposedSmall = 0, acceptedSmall = 0;
     long long invalidProposals = 0;  // zero, negative or non-finite target: rejected, never splatted
     double bRelativeError = 0;      // standard error of b from the bootstrap, relative to b

@@ -441,6 +441,20 @@ TEST_F(Cli, PbrtMltIntegratorIsMultiplexedMLT) {
                        (dir / "m.pfm").string());
     EXPECT_NE(other.status, 0);
     EXPECT_NE(other.out.find("needs --integrator mmlt"), std::string::npos) << other.out;
+    // Two-stage MLT: its pilot image's samples, F times "bootstrapsamples"; the depths'
+    // shares of the image still sum to 1 (each splat's luminance is B there, not 1).
+    Result two = run("render --quiet --two-stage 0.5 --spp 1 " + scene + " -o " + (dir / "m.pfm").string() +
+                     " --stats " + json.string());
+    ASSERT_EQ(two.status, 0) << two.out;
+    j = nlohmann::json::parse(std::ifstream(json));
+    EXPECT_EQ(j["metropolis"]["two_stage_samples"], 150);
+    share = 0;
+    for (const auto& d : j["metropolis"]["depths"]) share += d["share"].get<double>();
+    EXPECT_NEAR(share, 1.0, 1e-9);
+    Result notChains = run("render --quiet --two-stage 0.5 --integrator path " + scene + " -o " +
+                           (dir / "m.pfm").string());
+    EXPECT_NE(notChains.status, 0);
+    EXPECT_NE(notChains.out.find("--two-stage are Metropolis parameters"), std::string::npos) << notChains.out;
 }
 
 // --color spectral: every integrator renders it (path tracing, light tracing, BDPT, pssmlt, mmlt

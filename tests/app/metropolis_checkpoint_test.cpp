@@ -58,6 +58,9 @@ const std::vector<std::string> kIntegrators{"pssmlt", "mmlt", "mlt"};
 TEST_F(MetropolisCheckpoint, ResumedEqualsUninterrupted) {
     std::vector<std::string> configurations = kIntegrators;
     configurations.push_back("mlt --mlt-direct 2");
+    // Two-stage MLT: the pilot image is made again on resuming, the same bits.
+    configurations.push_back("mmlt --two-stage 0.5");
+    configurations.push_back("mlt --two-stage 0.5");
     for (const std::string& integrator : configurations) {
         SCOPED_TRACE(integrator);
         ASSERT_EQ(render("plain", integrator, "--spp 64 --threads 2").status, 0);

@@ -239,11 +239,13 @@ double imageMean(const ps::Image& img) {
 TEST_F(Mpi, MetropolisImageIndependentOfProcesses) {
     PS_SKIP_WITHOUT_MPI();
     const std::string furnace = write("furnace.pbrt", kFurnace);
-    for (const std::string integrator : {"pssmlt", "mmlt", "mlt"}) {
-        SCOPED_TRACE(integrator);
+    // Two-stage MLT's pilot image too, its blocks split among the processes.
+    for (const std::string configuration : {"pssmlt", "mmlt", "mlt", "mmlt --two-stage 0.5"}) {
+        SCOPED_TRACE(configuration);
+        const std::string integrator = configuration == "mmlt --two-stage 0.5" ? "mmlt-two-stage" : configuration;
         auto run = [&](int k, const std::string& name, int threads) {
             std::string args = "render --quiet " + (integrator == "mlt" ? furnace : scene()) + " --spp 8 --bootstrap 3000 "
-                               "--chains 13 --integrator " + integrator + " --threads " + std::to_string(threads) +
+                               "--chains 13 --integrator " + configuration + " --threads " + std::to_string(threads) +
                                " --aov variance -o " + path(name + ".pfm") + " --stats " + path(name + ".json");
             Result r = k == 0 ? runPathspace(args) : runMpi(k, args);
             ASSERT_EQ(r.status, 0) << r.out;

@@ -82,6 +82,17 @@ TEST_P(Metropolis, AgreesWithBDPTOnADiffuseBox) {
                                   0.02});
 }
 
+// Two-stage MLT (--two-stage, pilot_importance.h): the target is the luminance over a pilot
+// image's brightness per tile, so each splat's luminance is B, not 1, and the image mean
+// depends on where the chains are: four times the chains, each as long, and a 3% bias to
+// detect (VeachMLT.TwoStageAgreesWithBDPT's); mmlt three times pssmlt's mutations.
+TEST_P(Metropolis, TwoStageAgreesWithBDPT) {
+    const int k = kMoreChains;
+    const std::string twoStage = GetParam() + ":two-stage=0.5";
+    expectAgreement(AgreementCase{"diffuse box, two-stage", withChainsTimes(box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), k),
+                                  {"bdpt", twoStage}, 16, 16, {{twoStage, k * mutations(64, 6)}}, 0.03});
+}
+
 // Saturated colours: red and blue walls under a blue light. The target is luminance, the
 // splats RGB: each channel's image mean against BDPT's (a chain that splatted the target's
 // luminance as grey, or weighted the channels by it, keeps the luminance right and fails

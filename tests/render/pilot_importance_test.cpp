@@ -1,10 +1,10 @@
-// Two-stage MLT's pilot image (transport/mlt/veach/pilot_importance.h): its tiles and the
+// Two-stage MLT's pilot image (transport/mlt/pilot_importance.h): its tiles and the
 // brightness it divides the chains' target by.
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "transport/mlt/veach/pilot_importance.h"
+#include "transport/mlt/pilot_importance.h"
 
 using namespace ps;
 

@@ -26,8 +26,8 @@ inline bool defaultSpectral() {
     return mode && std::string(mode) == "spectral";
 }
 
-// Renders with `options`, taking the sampler from the scene; progress off. An integrator
-// "mlt:WEIGHTS" is mlt with --mlt-mutations WEIGHTS. `spectral`: --color spectral (unset: the
+// Renders with `options`, taking the sampler from the scene; progress off. The integrator
+// may name a variant (applyIntegratorVariant: "mlt:lens=0", "mmlt:two-stage=0.25"). `spectral`: --color spectral (unset: the
 // tests' default mode).
 inline RenderResult renderWith(const std::string& text, RenderOptions opts, const std::string& integrator = "",
                                std::optional<bool> spectralMode = std::nullopt) {
@@ -35,11 +35,7 @@ inline RenderResult renderWith(const std::string& text, RenderOptions opts, cons
     setWarningsQuiet(true);
     SceneDescription desc = parseSceneString(text, ".", "<test>");
     auto scene = buildScene(desc, spectral);
-    if (!integrator.empty()) scene->settings().integrator = integrator;
-    if (integrator.rfind("mlt:", 0) == 0) {
-        scene->settings().integrator = "mlt";
-        scene->settings().mltMutations = integrator.substr(4);
-    }
+    if (!integrator.empty()) scene->settings().integrator = applyIntegratorVariant(integrator, scene->settings());
     scene->settings().spectral = spectral;
     auto integ = createIntegrator(scene->settings().integrator, *scene);
     opts.sampler = scene->settings().sampler;

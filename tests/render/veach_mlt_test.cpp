@@ -58,7 +58,7 @@ TEST(VeachMLT, AgreesWithBDPTOnADiffuseBox) {
                                   {{"mlt", 64}}, 0.02});
 }
 
-// Two-stage MLT (pilot_importance.h, `pilot=F`): the target divided by a pilot image's
+// Two-stage MLT (pilot_importance.h, `--two-stage F`): the target divided by a pilot image's
 // brightness. Each splat's luminance is then B of its tile, not 1, so the image mean also
 // depends on where the chains are: four times the chains, each as long (16 in spectral
 // mode, whose wavelengths add to the spread of the splats' luminance), and a 3% bias to
@@ -69,7 +69,7 @@ TEST(VeachMLT, AgreesWithBDPTOnADiffuseBox) {
 TEST(VeachMLT, TwoStageAgreesWithBDPT) {
     const int k = defaultSpectral() ? 4 * kMoreChains : kMoreChains;
     expectAgreement(AgreementCase{"diffuse box, two-stage", withChainsTimes(box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), k),
-                                  {"bdpt", "mlt:pilot=0.5"}, 16, 16, {{"mlt:pilot=0.5", k * 64}}, 0.03});
+                                  {"bdpt", "mlt:two-stage=0.5"}, 16, 16, {{"mlt:two-stage=0.5", k * 64}}, 0.03});
 }
 
 // Saturated colours: the target is luminance, the splats RGB; each channel against BDPT.

@@ -142,11 +142,15 @@ int BootstrapAllocation::groupOf(int64_t j) const {
     return int(std::upper_bound(start.begin(), start.end(), j) - start.begin()) - 1;
 }
 
+int64_t bootstrapIndexCount(const MetropolisIntegrator& integrator) {
+    return std::max<int64_t>(std::max(1, integrator.bootstrapGroups()), integrator.bootstrapCount());
+}
+
 Bootstrap runBootstrap(const BootstrapContext& ctx) {
     const MetropolisIntegrator& integrator = ctx.integrator;
     const MetropolisParams& mp = integrator.params();
     const int groups = std::max(1, integrator.bootstrapGroups());
-    const int64_t nAll = std::max<int64_t>(groups, integrator.bootstrapCount());
+    const int64_t nAll = bootstrapIndexCount(integrator);
     Bootstrap boot;
     boot.choice = integrator.defaultChoice();
     std::atomic<bool> cancelled{false};
@@ -184,6 +188,19 @@ Bootstrap runBootstrap(const BootstrapContext& ctx) {
     }
     boot.bRelativeError = boot.b > 0 ? std::sqrt(variance) / boot.b : 0.0;
     return boot;
+}
+
+void runImportancePilot(const BootstrapContext& ctx, int64_t first, int64_t count, PilotImportance& importance) {
+    tbb::enumerable_thread_specific<std::vector<BDPTIntegrator::PathContribution>> splats;
+    importance.learn(ctx.arena, count, [&](int64_t j, double* sums) {
+        if (ctx.cancel && ctx.cancel->load(std::memory_order_relaxed)) return;
+        std::vector<BDPTIntegrator::PathContribution>& x = splats.local();
+        PrimarySampleSampler sampler(bootstrapSeed(ctx.seed, first + j), ctx.pss);
+        sampler.startIteration();
+        ctx.integrator.bdptSample(sampler, ctx.evaluators.local(), x);
+        for (const BDPTIntegrator::PathContribution& c : x)
+            if (const double y = c.L.luminance(); std::isfinite(y)) sums[importance.tileOf(c.pRaster)] += y;
+    });
 }
 
 bool startChain(const BootstrapContext& ctx, const Bootstrap& boot, Rng& rng,

@@ -66,6 +66,15 @@ struct BootstrapContext {
 
 Bootstrap runBootstrap(const BootstrapContext& ctx);
 
+// The indices the bootstrap's samples (its pilot's included) may take: 0 .. this - 1.
+int64_t bootstrapIndexCount(const MetropolisIntegrator& integrator);
+
+// Two-stage MLT's pilot (pilot_importance.h): `count` independent BDPT samples (every
+// depth and strategy: a multiplexed sample of one strategy would leave B too noisy) from
+// index `first` on (past the bootstrap's), each contribution's luminance added to the tile
+// it lands in (PilotImportance::learn). Made before the bootstrap, whose weights it divides.
+void runImportancePilot(const BootstrapContext& ctx, int64_t first, int64_t count, PilotImportance& importance);
+
 // The key of bootstrap sample i's random stream. The seed is mixed before the index enters:
 // keyed on seed ^ constant directly, nearby seeds would give largely the same set of keys
 // over a range of indices (shifted), and renders with different seeds would share most of

@@ -62,6 +62,16 @@ SampledWavelengths* MetropolisIntegrator::wavelengths(PrimarySampleSampler& samp
     return &ev.lambdaAfterWalks;
 }
 
+void MetropolisIntegrator::bdptSample(PrimarySampleSampler& sampler, ChainEvaluator& ev,
+                                      std::vector<BDPTIntegrator::PathContribution>& out) const {
+    CameraSample cs = filmSample(sampler);
+    SampledWavelengths* lambda = wavelengths(sampler, ev);
+    Ray ray = scene_.camera().generateRay(cs);
+    bdpt_.contributions(ray, cs.pFilm, sampler, ev.scratch, ev.stats, out, -1, lambda);
+    ev.scratch.reset();
+    for (BDPTIntegrator::PathContribution& c : out) c.L = toRendering(c, ev);
+}
+
 namespace {
 
 using PathContribution = BDPTIntegrator::PathContribution;
@@ -174,7 +184,7 @@ void loadChain(ByteReader in, const PrimarySampleParams& pss, size_t depths, Cha
 }
 
 // What the chains and the statistics need of the bootstrap, for a checkpoint, and back.
-std::vector<char> saveBootstrap(const Bootstrap& boot, int64_t samples) {
+std::vector<char> saveBootstrap(const Bootstrap& boot, int64_t samples, const PilotImportance& importance) {
     ByteWriter out;
     out.put(boot.b);
     out.put(boot.bRelativeError);
@@ -182,10 +192,12 @@ std::vector<char> saveBootstrap(const Bootstrap& boot, int64_t samples) {
     out.put(boot.pilotSamples);
     out.putVector(boot.choice.weights());
     out.putVector(boot.groups.count);
+    importance.save(out);
     return std::move(out.bytes());
 }
 
-Bootstrap loadBootstrap(ByteReader in, const MetropolisIntegrator& integrator, int64_t& samples) {
+Bootstrap loadBootstrap(ByteReader in, const MetropolisIntegrator& integrator, int64_t& samples,
+                        PilotImportance& importance) {
     Bootstrap boot;
     boot.b = in.get<double>();
     boot.bRelativeError = in.get<double>();
@@ -193,6 +205,7 @@ Bootstrap loadBootstrap(ByteReader in, const MetropolisIntegrator& integrator, i
     boot.pilotSamples = in.get<int64_t>();
     const std::vector<float> weights = in.getVector<float>();
     boot.groups.count = in.getVector<int64_t>();
+    importance.load(in);
     boot.choice = integrator.defaultChoice();
     if (int(weights.size()) != boot.choice.size() || !in.atEnd()) in.fail();
     if (!weights.empty()) boot.choice = boot.choice.withWeights(weights);
@@ -245,7 +258,15 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                         {1u << BDPTIntegrator::kLightStream | kConnection, mp.sigma}};
 
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-    tbb::enumerable_thread_specific<ChainEvaluator> evaluators;
+    // Two-stage MLT: the pilot image every evaluator divides the target by (at() is 1 until
+    // the pilot has made it).
+    const int64_t nPilot = int64_t(std::ceil(mp.twoStage * double(std::max(1, mp.bootstrapSamples))));
+    PilotImportance importance(bounds, nPilot);
+    tbb::enumerable_thread_specific<ChainEvaluator> evaluators([&importance] {
+        ChainEvaluator ev;
+        ev.importance = &importance;
+        return ev;
+    });
     tbb::enumerable_thread_specific<ChainState> proposals;
 
     RenderResult result;
@@ -265,9 +286,12 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     const auto startTime = std::chrono::steady_clock::now();
     const BootstrapContext bctx{integrator, pss, options.seed, options.cancel, arena, evaluators};
     int64_t nBoot = 0;
-    const Bootstrap boot = checkpoints.resuming() ? loadBootstrap(checkpoints.bootstrap(), integrator, nBoot) : runBootstrap(bctx);
+    if (!checkpoints.resuming()) runImportancePilot(bctx, bootstrapIndexCount(integrator), nPilot, importance);
+    ms.twoStageSamples = nPilot;
+    const Bootstrap boot = checkpoints.resuming() ? loadBootstrap(checkpoints.bootstrap(), integrator, nBoot, importance)
+                                                  : runBootstrap(bctx);
     if (!checkpoints.resuming()) nBoot = int64_t(boot.weights.size());
-    const std::vector<char> bootBytes = options.checkpoint ? saveBootstrap(boot, nBoot) : std::vector<char>();
+    const std::vector<char> bootBytes = options.checkpoint ? saveBootstrap(boot, nBoot, importance) : std::vector<char>();
     const StrategyChoice& choice = boot.choice;
     const bool bootstrapCancelled = boot.cancelled;
     ms.bootstrapSamples = nBoot;
@@ -435,7 +459,10 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
             ms.depths[d].share += cc.shareAt[d];
         }
     }
-    for (MetropolisStats::Depth& d : ms.depths) d.share = ms.mutations > 0 ? d.share / double(ms.mutations) : 0.0;
+    // Each iteration's shares sum to 1 with the plain target, to B with the two-stage one.
+    double shares = 0;
+    for (const MetropolisStats::Depth& d : ms.depths) shares += d.share;
+    for (MetropolisStats::Depth& d : ms.depths) d.share = shares > 0 ? d.share / shares : 0.0;
     std::vector<long long> chainDone, chainAccepted, chainProposed;
     for (const ChainCounts& cc : counts) {
         chainDone.push_back(cc.done);

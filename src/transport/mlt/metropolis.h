@@ -24,6 +24,7 @@
 #include "mc/primary_sample_sampler.h"
 #include "transport/bdpt.h"
 #include "transport/integrator.h"
+#include "transport/mlt/pilot_importance.h"
 #include "transport/mlt/strategy_choice.h"
 #include "transport/renderer.h"
 #include "transport/spectral_film.h"
@@ -44,6 +45,9 @@ struct MetropolisParams {
     // The share of small steps that move only the camera subpath and the connection (a lens
     // perturbation in primary sample space).
     double cameraStepProbability = 0.5;
+    // Two-stage MLT (pilot_importance.h): pilot samples, as a fraction of the bootstrap's,
+    // make an image whose brightness per tile divides the target; 0: the plain target.
+    double twoStage = 0;
 };
 
 // A sample of a chain: its splats (each strategy's share of the path, at its film position)
@@ -72,6 +76,9 @@ struct ChainEvaluator {
     // Spectral mode: the wavelengths of the sample under evaluation, as drawn and as its
     // walks left them (a dispersive vertex terminates the secondary ones).
     SampledWavelengths lambda, lambdaAfterWalks;
+    // Two-stage MLT: the pilot image whose brightness divides the target (null: none).
+    const PilotImportance* importance = nullptr;
+    double brightness(Vec2 pRaster) const { return importance ? importance->at(pRaster) : 1.0; }
 };
 
 class MetropolisIntegrator : public Integrator {
@@ -119,6 +126,12 @@ public:
     // decides the kind, so the kernel stays symmetric.
     enum PartialStepKind : size_t { kCameraSteps = 0, kLightSteps = 1 };
     virtual PartialStepKind partialStepKind(const ChainState&) const { return kCameraSteps; }
+
+    // A whole BDPT sample from the sampler (every depth, every strategy, each contribution
+    // in the rendering space's RGB at its film position): pssmlt's state, and two-stage MLT's
+    // pilot samples for every variant.
+    void bdptSample(PrimarySampleSampler& sampler, ChainEvaluator& ev,
+                    std::vector<BDPTIntegrator::PathContribution>& out) const;
 
     const BDPTIntegrator& bdpt() const { return bdpt_; }
     int maxDepth() const { return bdpt_.subpaths().maxDepth(); }

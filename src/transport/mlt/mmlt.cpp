@@ -39,9 +39,10 @@ void MMLTIntegrator::bootstrapSample(PrimarySampleSampler& sampler, int depth, d
     for (BDPTIntegrator::PathContribution& c : ev.contributions) {
         c.L = toRendering(c, ev);
         const int k = firstOfDepth_[size_t(depth)] + c.s;
-        const double weight = scale * c.L.luminance();
+        const double B = ev.brightness(c.pRaster);
+        const double weight = scale * c.L.luminance() / B;
         c.L /= choice.pmf(k);  // as evaluate scales it
-        const double f = c.L.luminance();
+        const double f = c.L.luminance() / B;
         if (std::isfinite(weight) && weight > 0 && std::isfinite(f) && f > 0) out.push_back({k, weight, f});
     }
 }
@@ -80,7 +81,7 @@ void MMLTIntegrator::evaluate(PrimarySampleSampler& sampler, const StrategyChoic
     BDPTIntegrator::PathContribution c;
     if (pmf > 0 && bdpt_.strategyContribution(ray, cs.pFilm, s, t, sampler, ev.scratch, ev.stats, c, lambda)) {
         c.L = toRendering(c, ev) / pmf;
-        double f = c.L.luminance();
+        const double f = c.L.luminance() / ev.brightness(c.pRaster);
         if (std::isfinite(f) && f > 0) {
             out.f = f;
             out.splats.push_back(c);

@@ -51,12 +51,11 @@ VeachMutations parseMutationWeights(const std::string& spec) {
                          : key == "caustic"      ? &w.caustic
                          : key == "wavelengths"  ? &w.wavelengths
                          : key == "direct"       ? &w.direct
-                         : key == "pilot"        ? &w.pilot
                                                  : nullptr;
         if (!target)
             throw InputError("--mlt-mutations: unknown mutation \"" + key +
                              "\" (available: bidirectional, lens-subpath, lens, multi-chain, caustic, wavelengths; and "
-                             "direct, pilot)");
+                             "direct)");
         const std::string value = eq == std::string::npos ? "" : item.substr(eq + 1);
         char* end = nullptr;
         const double v = std::strtod(value.c_str(), &end);

@@ -25,15 +25,12 @@ struct VeachMutations {
     // bounce, rendered apart from the chains (veach_mlt.h; key "direct", --mlt-direct N;
     // 0: the chains render them).
     double direct = 0;
-    // Not a mutation: two-stage MLT's pilot (pilot_importance.h), its samples as a fraction
-    // of the bootstrap's (key "pilot"; 0, the default: the plain target, the luminance).
-    double pilot = 0;
     double weight(Mutation m) const;
 };
 
 // Weights from "KEY=VALUE,..." (keys bidirectional, lens-subpath, lens, multi-chain, caustic,
-// wavelengths; values >= 0; unnamed keys keep their defaults; and direct=N, whole, and
-// pilot=F); InputError on anything else. The
+// wavelengths; values >= 0; unnamed keys keep their defaults; and direct=N, whole);
+// InputError on anything else. The
 // bidirectional mutation must keep a positive weight: the others alone cannot reach every
 // path (they keep a path's length and specular structure).
 VeachMutations parseMutationWeights(const std::string& spec);

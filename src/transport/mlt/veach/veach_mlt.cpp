@@ -1,5 +1,5 @@
 #include "transport/mlt/veach/veach_mlt.h"
-#include "transport/mlt/veach/pilot_importance.h"
+#include "transport/mlt/pilot_importance.h"
 
 #include <algorithm>
 #include <atomic>
@@ -301,34 +301,16 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     const auto startTime = std::chrono::steady_clock::now();
 
     // Two-stage MLT (pilot_importance.h): the pilot's own samples, past the bootstrap's
-    // indices, in a fixed number of blocks summed in order (the same map for any thread or
-    // process count, and again on resuming).
+    // indices (a resumed render takes the map from its checkpoint).
     const int64_t nBoot = std::max(1, mp.bootstrapSamples);
-    const int64_t nPilot = int64_t(std::ceil(integrator.mutations().pilot * double(nBoot)));
+    const int64_t nPilot = int64_t(std::ceil(mp.twoStage * double(nBoot)));
     PilotImportance importance(bounds, nPilot);
-    if (nPilot > 0) {
-        constexpr int64_t kPilotBlocks = 64;
-        const size_t tiles = size_t(importance.tiles());
-        std::vector<double> blockSums(size_t(kPilotBlocks) * tiles, 0.0);
-        // Before finish, B is 1: the pilot measures the luminance itself.
-        arena.execute([&] {
-            tbb::parallel_for(int64_t(0), kPilotBlocks, [&](int64_t block) {
-                if (!chain_ranks::ownsBlock(block)) return;
-                PathState& s = scratchStates.local();
-                for (int64_t j = block * nPilot / kPilotBlocks; j < (block + 1) * nPilot / kPilotBlocks; ++j)
-                    bootstrapSample(integrator, importance, options.seed, nBoot + j, threadStats.local(), s, -1,
-                                    blockSums.data() + size_t(block) * tiles);
-            });
+    if (!checkpoints.resuming())
+        importance.learn(arena, nPilot, [&](int64_t j, double* sums) {
+            bootstrapSample(integrator, importance, options.seed, nBoot + j, threadStats.local(), scratchStates.local(),
+                            -1, sums);
         });
-        {
-            distributed::Purpose purpose("pilot merge");
-            distributed::mergeDisjoint(blockSums);
-        }
-        std::vector<double> sums(tiles, 0.0);
-        for (int64_t block = 0; block < kPilotBlocks; ++block)
-            for (size_t t = 0; t < tiles; ++t) sums[t] += blockSums[size_t(block) * tiles + t];
-        importance.finish(sums);
-    }
+    ms.twoStageSamples = nPilot;
 
     // Bootstrap: b and the weights of the candidate initial states, each process taking its
     // blocks of samples and every process getting all the weights (chain_ranks.h).
@@ -366,11 +348,13 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         ByteReader in = checkpoints.bootstrap();
         ms.b = in.get<double>();
         ms.bRelativeError = in.get<double>();
+        importance.load(in);
         if (!in.atEnd()) in.fail();
     }
     ByteWriter bootBytes;
     bootBytes.put(ms.b);
     bootBytes.put(ms.bRelativeError);
+    importance.save(bootBytes);
     // Every process learns whether any met a surface the path space cannot sample, and all
     // refuse together (rank 0 reports it once).
     distributed::refuseTogether(integrator.space().sawUnsupportedSurface(), kUnsupportedCoating);

@@ -10,10 +10,14 @@
 // past the bootstrap's index range), so b's estimate does not depend on it.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
+
+#include <tbb/task_arena.h>
 
 #include "film/film.h"
 #include "math/vec.h"
+#include "util/byte_stream.h"
 
 namespace ps {
 
@@ -29,6 +33,14 @@ public:
     // raised to at least `floorFraction` of the image's mean (a tile the pilot found dark or
     // empty may still hold light; the floor bounds how much more often the chains visit it).
     void finish(const std::vector<double>& luminanceSums, double floorFraction = 0.1);
+    // Makes the map from `count` pilot samples: sample(j, sums) adds sample j's luminance over
+    // its density to sums[tileOf(its film position)]. The samples run in a fixed number of
+    // blocks over the arena's threads and the processes' blocks (chain_ranks.h), summed in
+    // order: the same map for any thread or process count. Then finish.
+    void learn(tbb::task_arena& arena, int64_t count, const std::function<void(int64_t, double*)>& sample);
+    // The map, for a checkpoint, and back (a resumed render makes no pilot).
+    void save(ByteWriter& out) const { out.putVector(brightness_); }
+    void load(ByteReader& in);
     // B at a film position (1 before finish).
     double at(Vec2 pRaster) const { return brightness_.empty() ? 1.0 : brightness_[size_t(tileOf(pRaster))]; }
     int tileSize() const { return tile_; }

@@ -1,7 +1,12 @@
-#include "transport/mlt/veach/pilot_importance.h"
+#include "transport/mlt/pilot_importance.h"
 
 #include <algorithm>
 #include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "render/distributed.h"
+#include "transport/mlt/chain_ranks.h"
 
 namespace ps {
 
@@ -38,6 +43,35 @@ void PilotImportance::finish(const std::vector<double>& sums, double floorFracti
     // No light found at all: every tile alike (the plain target).
     const double floor = mean > 0 ? floorFraction * mean : 1.0;
     for (double& b : brightness_) b = std::max(b, floor);
+}
+
+void PilotImportance::learn(tbb::task_arena& arena, int64_t count,
+                            const std::function<void(int64_t, double*)>& sample) {
+    if (count <= 0) return;
+    constexpr int64_t kBlocks = 64;
+    const size_t n = size_t(tiles());
+    std::vector<double> blockSums(size_t(kBlocks) * n, 0.0);
+    // Before finish, B is 1: the samples' target is the luminance itself.
+    arena.execute([&] {
+        tbb::parallel_for(int64_t(0), kBlocks, [&](int64_t block) {
+            if (!chain_ranks::ownsBlock(block)) return;
+            for (int64_t j = block * count / kBlocks; j < (block + 1) * count / kBlocks; ++j)
+                sample(j, &blockSums[size_t(block) * n]);
+        });
+    });
+    {
+        distributed::Purpose purpose("pilot merge");
+        distributed::mergeDisjoint(blockSums);
+    }
+    std::vector<double> sums(n, 0.0);
+    for (int64_t block = 0; block < kBlocks; ++block)
+        for (size_t t = 0; t < n; ++t) sums[t] += blockSums[size_t(block) * n + t];
+    finish(sums);
+}
+
+void PilotImportance::load(ByteReader& in) {
+    brightness_ = in.getVector<double>();
+    if (!brightness_.empty() && brightness_.size() != size_t(tiles())) in.fail();
 }
 
 }  // namespace ps
