@@ -260,7 +260,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     // Two-stage MLT: the pilot image every evaluator divides the target by (at() is 1 until
     // the pilot has made it).
-    const int64_t nPilot = int64_t(std::ceil(mp.twoStage * double(std::max(1, mp.bootstrapSamples))));
+    const int64_t nPilot = mp.twoStageSamples();
     PilotImportance importance(bounds, nPilot);
     tbb::enumerable_thread_specific<ChainEvaluator> evaluators([&importance] {
         ChainEvaluator ev;

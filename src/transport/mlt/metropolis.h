@@ -18,6 +18,8 @@
 //  - the chains' even and odd halves fill the film's two half-buffers, whose difference
 //    gives the error estimate (independent chains, unlike the correlated samples of one).
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -48,6 +50,8 @@ struct MetropolisParams {
     // Two-stage MLT (pilot_importance.h): pilot samples, as a fraction of the bootstrap's,
     // make an image whose brightness per tile divides the target; 0: the plain target.
     double twoStage = 0;
+    // The pilot image's samples: twoStage times the bootstrap's.
+    int64_t twoStageSamples() const { return int64_t(std::ceil(twoStage * double(std::max(1, bootstrapSamples)))); }
 };
 
 // A sample of a chain: its splats (each strategy's share of the path, at its film position)

@@ -303,7 +303,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     // Two-stage MLT (pilot_importance.h): the pilot's own samples, past the bootstrap's
     // indices (a resumed render takes the map from its checkpoint).
     const int64_t nBoot = std::max(1, mp.bootstrapSamples);
-    const int64_t nPilot = int64_t(std::ceil(mp.twoStage * double(nBoot)));
+    const int64_t nPilot = mp.twoStageSamples();
     PilotImportance importance(bounds, nPilot);
     if (!checkpoints.resuming())
         importance.learn(arena, nPilot, [&](int64_t j, double* sums) {
