@@ -242,6 +242,12 @@ void RenderCommand::attach(CLI::App& app) {
                      "lands, so that dark parts of the image get about as many mutations as bright ones (default 0: "
                      "off, the target is the luminance)")
         ->check(numberCheck(true));
+    cmd_->add_option("--two-stage-black-level", twoStageBlackLevel_,
+                     "two-stage MLT only: the pixel luminance L0 below which the chains spend their mutations as the "
+                     "plain target does; the target's divisor is sqrt(B^2 + L0^2), which evens the error relative to "
+                     "max(pixel, L0), as the relative MSE with the regulariser L0^2 measures it (default 0.1; 0: "
+                     "relative error everywhere)")
+        ->check(numberCheck(true));
     cmd_->add_option("--mlt-mutations", mltMutations_,
                      "mlt only: the mutations' weights, KEY=VALUE,... with keys bidirectional, lens-subpath, lens, "
                      "multi-chain, caustic, wavelengths (spectral mode) (default 1 each; a mutation is chosen among those that apply to the path in "
@@ -300,7 +306,7 @@ void RenderCommand::load(Job& job) {
                          "primary-sample-space Metropolis integrators (pssmlt, mmlt); mlt's mutations change paths, "
                          "not random numbers");
     if (chains_ > 0 || bootstrap_ > 0 || largeStepProbability_ >= 0 || sigma_ > 0 || cameraStepProbability_ >= 0 ||
-        twoStage_ >= 0) {
+        twoStage_ >= 0 || twoStageBlackLevel_ >= 0) {
         if (settings.integrator != "pssmlt" && settings.integrator != "mmlt" && settings.integrator != "mlt")
             throw InputError("--chains, --bootstrap, --large-step-probability, --camera-step-probability, --sigma and "
                              "--two-stage are Metropolis parameters: "
@@ -312,6 +318,7 @@ void RenderCommand::load(Job& job) {
         if (sigma_ > 0) settings.mltSigma = float(sigma_);
         if (cameraStepProbability_ >= 0) settings.mltCameraStepProbability = float(cameraStepProbability_);
         if (twoStage_ >= 0) settings.mltTwoStage = float(twoStage_);
+        if (twoStageBlackLevel_ >= 0) settings.mltTwoStageBlackLevel = float(twoStageBlackLevel_);
     }
     if (!crop_.empty()) {
         int W = scene->camera().params().xRes, H = scene->camera().params().yRes;
@@ -368,7 +375,10 @@ void RenderCommand::load(Job& job) {
         checkpointSettings["camera_step_probability"] = settings.mltCameraStepProbability;
         checkpointSettings["strategy_pilot"] = settings.mltStrategyPilot;
         checkpointSettings["mlt_mutations"] = settings.mltMutations;
-        if (settings.mltTwoStage > 0) checkpointSettings["two_stage"] = settings.mltTwoStage;
+        if (settings.mltTwoStage > 0) {
+            checkpointSettings["two_stage"] = settings.mltTwoStage;
+            checkpointSettings["two_stage_black_level"] = settings.mltTwoStageBlackLevel;
+        }
     }
     RenderOptions& opts = job.opts;
     opts.spp = settings.spp;

@@ -47,6 +47,7 @@ private:
     double cameraStepProbability_ = -1;
     double strategyPilot_ = -1;
     double twoStage_ = -1;
+    double twoStageBlackLevel_ = -1;
     double sigma_ = -1;
     int mltDirect_ = -1;        // --mlt-direct N
     std::string mltMutations_;  // --mlt-mutations KEY=VALUE,...  // --max-memory SIZE, checked by parseByteSize

@@ -31,6 +31,7 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
                                 st.mltStrategyPilot};
             mp.cameraStepProbability = st.mltCameraStepProbability;
             mp.twoStage = st.mltTwoStage;
+            mp.twoStageBlackLevel = st.mltTwoStageBlackLevel;
             if (name == "mlt")
                 return std::make_unique<VeachMLTIntegrator>(scene, maxDepth, mp, parseMutationWeights(st.mltMutations));
             if (name == "mmlt") return std::make_unique<MMLTIntegrator>(scene, maxDepth, mp, heuristic);
@@ -47,6 +48,7 @@ std::string applyIntegratorVariant(const std::string& spec, RenderSettings& st) 
     const RenderSettings defaults;
     st.mltMutations = defaults.mltMutations;
     st.mltTwoStage = defaults.mltTwoStage;
+    st.mltTwoStageBlackLevel = defaults.mltTwoStageBlackLevel;
     if (colon == std::string::npos) return name;
     std::string rest;
     std::stringstream in(spec.substr(colon + 1));
@@ -57,6 +59,12 @@ std::string applyIntegratorVariant(const std::string& spec, RenderSettings& st) 
             st.mltTwoStage = std::strtof(value.c_str(), &end);
             if (value.empty() || *end != '\0' || !(st.mltTwoStage >= 0))
                 throw InputError("\"" + spec + "\": two-stage needs a fraction >= 0");
+        } else if (item.rfind("black-level=", 0) == 0) {
+            char* end = nullptr;
+            const std::string value = item.substr(12);
+            st.mltTwoStageBlackLevel = std::strtof(value.c_str(), &end);
+            if (value.empty() || *end != '\0' || !(st.mltTwoStageBlackLevel >= 0))
+                throw InputError("\"" + spec + "\": black-level needs a luminance >= 0");
         } else {
             rest += (rest.empty() ? "" : ",") + item;
         }

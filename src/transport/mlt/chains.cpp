@@ -261,7 +261,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     // Two-stage MLT: the pilot image every evaluator divides the target by (at() is 1 until
     // the pilot has made it).
     const int64_t nPilot = mp.twoStageSamples();
-    PilotImportance importance(bounds, nPilot);
+    PilotImportance importance(bounds, nPilot, mp.twoStageBlackLevel, scene.settings().imagingRatio);
     tbb::enumerable_thread_specific<ChainEvaluator> evaluators([&importance] {
         ChainEvaluator ev;
         ev.importance = &importance;

@@ -50,6 +50,9 @@ struct MetropolisParams {
     // Two-stage MLT (pilot_importance.h): pilot samples, as a fraction of the bootstrap's,
     // make an image whose brightness per tile divides the target; 0: the plain target.
     double twoStage = 0;
+    // Its black level (pilot_importance.h), in pixel luminance: the target evens the relative
+    // error above it and leaves the absolute error below it as the plain target does.
+    double twoStageBlackLevel = 0.1;
     // The pilot image's samples: twoStage times the bootstrap's.
     int64_t twoStageSamples() const { return int64_t(std::ceil(twoStage * double(std::max(1, bootstrapSamples)))); }
 };

@@ -10,10 +10,13 @@
 
 namespace ps {
 
-PilotImportance::PilotImportance(const PixelBounds& bounds, int64_t pilotSamples, double samplesPerTile)
+PilotImportance::PilotImportance(const PixelBounds& bounds, int64_t pilotSamples, double blackLevel,
+                                 double imagingRatio, double samplesPerTile)
     : bounds_(bounds) {
     const double area = double(std::max(1LL, bounds.area()));
     const double perPixel = double(std::max<int64_t>(1, pilotSamples)) / area;
+    // A pixel's sums add up perPixel samples' luminance.
+    blackLevel_ = imagingRatio > 0 ? std::max(0.0, blackLevel) / imagingRatio * perPixel : 0.0;
     tile_ = std::max(1, int(std::ceil(std::sqrt(samplesPerTile / perPixel))));
     nx_ = std::max(1, (bounds.width() + tile_ - 1) / tile_);
     ny_ = std::max(1, (bounds.height() + tile_ - 1) / tile_);
@@ -42,7 +45,7 @@ void PilotImportance::finish(const std::vector<double>& sums, double floorFracti
     const double mean = total / pixels;
     // No light found at all: every tile alike (the plain target).
     const double floor = mean > 0 ? floorFraction * mean : 1.0;
-    for (double& b : brightness_) b = std::max(b, floor);
+    for (double& b : brightness_) b = std::hypot(std::max(b, floor), blackLevel_);
 }
 
 void PilotImportance::learn(tbb::task_arena& arena, int64_t count,

@@ -8,6 +8,13 @@
 // f* by the same bootstrap, each splat is divided by f* instead of f, and the image is b*
 // over the mutations as before. B comes from pilot samples of their own (bootstrap samples
 // past the bootstrap's index range), so b's estimate does not depend on it.
+//
+// A black level L0 makes the divisor sqrt(B^2 + L0^2): relative error where the image is
+// brighter than L0, absolute error where it is darker. That is the target that minimises the
+// relative MSE with a regulariser, sum (x - ref)^2 / (ref^2 + L0^2): with n_j of the N
+// mutations in pixel j, its variance goes as I_j^2 / n_j, and at n_j ~ I_j / w_j the error
+// (sum_j I_j w_j / (I_j^2 + L0^2)) (sum_j I_j / w_j) / N is least (Cauchy-Schwarz) for
+// w_j ~ sqrt(I_j^2 + L0^2). L0 = 0 is Hoberock and Hart's target; large L0 the plain one.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -24,14 +31,17 @@ namespace ps {
 class PilotImportance {
 public:
     // A grid of square tiles over the pixel bounds, each of about `samplesPerTile` of the
-    // pilot's `pilotSamples`.
-    PilotImportance(const PixelBounds& bounds, int64_t pilotSamples, double samplesPerTile = 400);
+    // pilot's `pilotSamples`. `blackLevel`: L0 above, in pixel luminance (a pixel's value is
+    // its samples' mean luminance over their density times the imaging ratio).
+    PilotImportance(const PixelBounds& bounds, int64_t pilotSamples, double blackLevel = 0, double imagingRatio = 1,
+                    double samplesPerTile = 400);
     int tiles() const { return nx_ * ny_; }
     // The tile a film position falls in (positions past the bounds: the nearest tile).
     int tileOf(Vec2 pRaster) const;
     // From the pilot's luminance per tile (its sum of f / p): each tile's mean per pixel,
     // raised to at least `floorFraction` of the image's mean (a tile the pilot found dark or
-    // empty may still hold light; the floor bounds how much more often the chains visit it).
+    // empty may still hold light; the floor bounds how much more often the chains visit it),
+    // then combined with the black level.
     void finish(const std::vector<double>& luminanceSums, double floorFraction = 0.1);
     // Makes the map from `count` pilot samples: sample(j, sums) adds sample j's luminance over
     // its density to sums[tileOf(its film position)]. The samples run in a fixed number of
@@ -48,6 +58,7 @@ public:
 private:
     PixelBounds bounds_;
     int tile_ = 1, nx_ = 1, ny_ = 1;
+    double blackLevel_ = 0;  // in the sums' unit per pixel
     std::vector<double> brightness_;
 };
 

@@ -304,7 +304,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     // indices (a resumed render takes the map from its checkpoint).
     const int64_t nBoot = std::max(1, mp.bootstrapSamples);
     const int64_t nPilot = mp.twoStageSamples();
-    PilotImportance importance(bounds, nPilot);
+    PilotImportance importance(bounds, nPilot, mp.twoStageBlackLevel, scene.settings().imagingRatio);
     if (!checkpoints.resuming())
         importance.learn(arena, nPilot, [&](int64_t j, double* sums) {
             bootstrapSample(integrator, importance, options.seed, nBoot + j, threadStats.local(), scratchStates.local(),
