@@ -9,21 +9,19 @@
 
 namespace ps {
 
-Spectrum ImageLookup::texel(int x, int y) const {
-    const int w = img_->width, h = img_->height;
+int ImageLookup::wrap(int i, int n) const {
     switch (wrap_) {
-        case WrapMode::Repeat:
-            x = ((x % w) + w) % w;
-            y = ((y % h) + h) % h;
-            break;
-        case WrapMode::Clamp:
-            x = std::clamp(x, 0, w - 1);
-            y = std::clamp(y, 0, h - 1);
-            break;
-        case WrapMode::Black:
-            if (x < 0 || y < 0 || x >= w || y >= h) return {};
-            break;
+        case WrapMode::Repeat: return ((i % n) + n) % n;
+        case WrapMode::Clamp: return std::clamp(i, 0, n - 1);
+        case WrapMode::Black: return i >= 0 && i < n ? i : -1;
     }
+    return -1;
+}
+
+Spectrum ImageLookup::texel(int x, int y) const {
+    // Already wrapped; -1: outside a black-bordered image.
+    if (x < 0 || y < 0) return {};
+    const int w = img_->width;
     switch (channels_) {
         case ImageChannels::RGB: return img_->get(x, y);
         case ImageChannels::Average: return Spectrum(img_->get(x, y).average());
@@ -37,10 +35,15 @@ Spectrum ImageLookup::bilinear(Vec2 st) const {
     float x = st.x * img_->width - 0.5f, y = (1 - st.y) * img_->height - 0.5f;
     // Non-finite or absurd coordinates (beyond exact int conversion) read as black.
     if (!(std::fabs(x) < 1e8f) || !(std::fabs(y) < 1e8f)) return {};
-    int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-    float fx = x - x0, fy = y - y0;
-    return (texel(x0, y0) * (1 - fx) + texel(x0 + 1, y0) * fx) * (1 - fy) +
-           (texel(x0, y0 + 1) * (1 - fx) + texel(x0 + 1, y0 + 1) * fx) * fy;
+    const int xi = int(std::floor(x)), yi = int(std::floor(y));
+    const float fx = x - xi, fy = y - yi;
+    // Each axis wrapped once (the modulo per texel cost more than the lookups).
+    const int w = img_->width, h = img_->height;
+    const int x0 = wrap(xi, w), y0 = wrap(yi, h);
+    const int x1 = wrap_ == WrapMode::Repeat ? (x0 + 1 == w ? 0 : x0 + 1) : wrap(xi + 1, w);
+    const int y1 = wrap_ == WrapMode::Repeat ? (y0 + 1 == h ? 0 : y0 + 1) : wrap(yi + 1, h);
+    return (texel(x0, y0) * (1 - fx) + texel(x1, y0) * fx) * (1 - fy) +
+           (texel(x0, y1) * (1 - fx) + texel(x1, y1) * fx) * fy;
 }
 
 Spectrum ImageLookup::evaluate(const TextureEvalContext& ctx) const {

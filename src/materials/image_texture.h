@@ -31,7 +31,8 @@ public:
     Spectrum bilinear(Vec2 st) const;
 
 private:
-    Spectrum texel(int x, int y) const;
+    Spectrum texel(int x, int y) const;  // x, y wrapped; -1: black
+    int wrap(int i, int n) const;         // by the wrap mode; -1: outside a black border
     std::shared_ptr<const Image> img_;
     TextureMapping2D map_;
     WrapMode wrap_;

@@ -1,6 +1,7 @@
 #include "transport/mlt/veach/bidirectional_mutation.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 
 namespace ps {
@@ -10,9 +11,12 @@ namespace {
 // Unnormalised weights: deleting one vertex is most likely, then each more vertex half as
 // likely (thesis §11.4.2); deleting none (a pure insertion) and deleting all (a path made
 // afresh, the move that keeps the chain ergodic) get a fixed share whatever the length.
+// 2^-m, exactly (std::ldexp's library call cost more than the rest of the weights).
+double halfPower(int m) { return m < 64 ? 1.0 / double(uint64_t(1) << m) : std::ldexp(1.0, -m); }
+
 double deletionWeight(int d, int n) {
     if (d == 0 || d == n) return 0.25;
-    return std::ldexp(1.0, -d);
+    return halfPower(d);
 }
 
 }  // namespace
@@ -36,20 +40,25 @@ bool BidirectionalMutation::splitAllowed(int c, int a, int lo, int n) const {
     return true;
 }
 
-double BidirectionalMutation::insertionPmf(int a, int d, int lo, int n) const {
-    auto weight = [&](int k) {
-        const int n2 = n - d + k;
-        if (k < 0 || n2 < 2 || n2 > space_.maxVertices()) return 0.0;
-        if (k == 0 && (d == 0 || lo == 0 || lo + d == n)) return 0.0;  // nothing to join, or an endpoint lost
-        bool any = false;
-        for (int c = 0; c <= k && !any; ++c) any = splitAllowed(c, k, lo, n2);
-        return any ? std::ldexp(1.0, -std::abs(k - d)) : 0.0;
-    };
-    const double w = weight(a);
-    if (!(w > 0)) return 0;
+double BidirectionalMutation::insertionWeights(int d, int lo, int n, double* weights) const {
     double sum = 0;
-    for (int k = 0; k <= space_.maxVertices() - n + d; ++k) sum += weight(k);
-    return w / sum;
+    for (int k = 0; k <= space_.maxVertices() - n + d; ++k) {
+        const int n2 = n - d + k;
+        bool any = false;
+        // Nothing to join, or an endpoint lost: no pure deletion there.
+        if (n2 >= 2 && !(k == 0 && (d == 0 || lo == 0 || lo + d == n)))
+            for (int c = 0; c <= k && !any; ++c) any = splitAllowed(c, k, lo, n2);
+        weights[k] = any ? halfPower(std::abs(k - d)) : 0.0;
+        sum += weights[k];
+    }
+    return sum;
+}
+
+double BidirectionalMutation::insertionPmf(int a, int d, int lo, int n) const {
+    if (a < 0 || a > space_.maxVertices() - n + d) return 0;
+    double weights[kMaxVertices + 1];
+    const double sum = insertionWeights(d, lo, n, weights);
+    return weights[a] > 0 ? weights[a] / sum : 0.0;
 }
 
 double BidirectionalMutation::insertedDensity(const MltPath& z, int lo, int a) const {
@@ -115,10 +124,12 @@ bool BidirectionalMutation::propose(const MltPath& x, Rng& rng, ScratchBuffer& a
     }
     const int lo = d >= 1 ? int(rng.uniformInt(uint32_t(n - d + 1))) : 1 + int(rng.uniformInt(uint32_t(n - 1)));
     const int aMax = space_.maxVertices() - n + d;
+    double weights[kMaxVertices + 1];
+    const double sum = insertionWeights(d, lo, n, weights);
     int a = -1;
     double u = rng.uniformDouble();
     for (int k = 0; k <= aMax; ++k) {
-        const double p = insertionPmf(k, d, lo, n);
+        const double p = weights[k] > 0 ? weights[k] / sum : 0.0;
         if (p > 0) {
             a = k;
             if ((u -= p) < 0) break;

@@ -51,6 +51,9 @@ public:
     static constexpr int kMaxVertices = 256;
 
 private:
+    // Every insertion's unnormalised weight after deleting d of n at lo (weights[0..
+    // maxVertices - n + d]), and their sum.
+    double insertionWeights(int d, int lo, int n, double* weights) const;
     // Generates vertices [lo, lo + a) of a path of n vertices between a kept prefix (lo
     // vertices) and suffix, with c of them from the light side; y receives the path.
     bool insert(const MltPath& x, int lo, int d, int a, int c, Rng& rng, ScratchBuffer& arena, PathStats& stats,
