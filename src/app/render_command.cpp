@@ -20,6 +20,7 @@
 #include "scene/parser.h"
 #include "transport/bdpt.h"
 #include "transport/checkpoint.h"
+#include "transport/integrator.h"
 #include "transport/renderer.h"
 #include "util/error.h"
 #include "util/input_files.h"
@@ -239,8 +240,8 @@ void RenderCommand::attach(CLI::App& app) {
     cmd_->add_option("--two-stage", twoStage_,
                      "Metropolis (pssmlt, mmlt, mlt) only: two-stage MLT. F times the bootstrap's samples make a pilot "
                      "image, and the chains' target is the path's luminance over that image's brightness where the path "
-                     "lands, so that dark parts of the image get about as many mutations as bright ones (default 0: "
-                     "off, the target is the luminance)")
+                     "lands, so that dark parts of the image get about as many mutations as bright ones (default 1 for "
+                     "pssmlt and mmlt, 0.25 for mlt; 0: off, the target is the luminance, as pbrt-v4's)")
         ->check(numberCheck(true));
     cmd_->add_option("--two-stage-black-level", twoStageBlackLevel_,
                      "two-stage MLT only: the pixel luminance L0 below which the chains spend their mutations as the "
@@ -250,7 +251,7 @@ void RenderCommand::attach(CLI::App& app) {
         ->check(numberCheck(true));
     cmd_->add_option("--mlt-mutations", mltMutations_,
                      "mlt only: the mutations' weights, KEY=VALUE,... with keys bidirectional, lens-subpath, lens, "
-                     "multi-chain, caustic, wavelengths (spectral mode) (default 1 each; a mutation is chosen among those that apply to the path in "
+                     "multi-chain, caustic, wavelengths (spectral mode) (default 1 each, wavelengths 0.25; a mutation is chosen among those that apply to the path in "
                      "proportion to its weight; 0 switches one off; bidirectional must stay > 0); also direct=N "
                      "(as --mlt-direct)");
     cmd_->add_option("--color", color_,
@@ -375,8 +376,8 @@ void RenderCommand::load(Job& job) {
         checkpointSettings["camera_step_probability"] = settings.mltCameraStepProbability;
         checkpointSettings["strategy_pilot"] = settings.mltStrategyPilot;
         checkpointSettings["mlt_mutations"] = settings.mltMutations;
-        if (settings.mltTwoStage > 0) {
-            checkpointSettings["two_stage"] = settings.mltTwoStage;
+        if (const double twoStage = metropolisTwoStage(settings.integrator, settings.mltTwoStage); twoStage > 0) {
+            checkpointSettings["two_stage"] = twoStage;
             checkpointSettings["two_stage_black_level"] = settings.mltTwoStageBlackLevel;
         }
     }

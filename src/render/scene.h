@@ -37,7 +37,8 @@ struct RenderSettings {
     float mltSigma = 0.01f;                // "sigma"
     float mltCameraStepProbability = 0.5f; // --camera-step-probability (no pbrt-v4 parameter)
     float mltStrategyPilot = 0.1f;         // mmlt: the bootstrap's share spent on its pilot
-    float mltTwoStage = 0;                 // --two-stage: the pilot image's samples per bootstrap sample
+    float mltTwoStage = -1;                // --two-stage: the pilot image's samples per bootstrap sample
+                                           // (below 0: the integrator's default, metropolisTwoStage)
     float mltTwoStageBlackLevel = 0.1f;    // --two-stage-black-level: pixel luminance
     std::string mltMutations;              // mlt: the mutations' weights, "KEY=VALUE,..." (--mlt-mutations)
     SourceLoc filmLoc;       // the Film directive, for errors found when the film is made

@@ -272,6 +272,7 @@ std::vector<RunningStats> bdptDepthMeans(const std::string& text, int maxDepth, 
 RenderResult renderDepths(const std::string& text, const std::string& integrator, int mutations, uint64_t seed) {
     setWarningsQuiet(true);
     auto scene = buildScene(parseSceneString(text, ".", "<test>"));
+    scene->settings().mltTwoStage = 0;  // the plain target's depth shares (render_helpers.h)
     auto integ = createIntegrator(integrator, *scene);
     auto* mlt = dynamic_cast<MetropolisIntegrator*>(integ.get());
     mlt->params().depthImages = true;

@@ -36,6 +36,9 @@ inline RenderResult renderWith(const std::string& text, RenderOptions opts, cons
     SceneDescription desc = parseSceneString(text, ".", "<test>");
     auto scene = buildScene(desc, spectral);
     if (!integrator.empty()) scene->settings().integrator = applyIntegratorVariant(integrator, scene->settings());
+    // The Metropolis tests check the plain target unless they name two-stage MLT (the
+    // renderer's default), which has tests of its own.
+    if (integrator.find("two-stage=") == std::string::npos) scene->settings().mltTwoStage = 0;
     scene->settings().spectral = spectral;
     auto integ = createIntegrator(scene->settings().integrator, *scene);
     opts.sampler = scene->settings().sampler;

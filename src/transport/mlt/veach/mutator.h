@@ -13,10 +13,13 @@ namespace ps {
 enum class Mutation : int { Bidirectional, LensSubpath, Lens, MultiChain, Caustic, Wavelengths, Regenerate, Count };
 const char* mutationName(Mutation m);
 
-// The mutations' weights (documented defaults: each equally, over those that apply).
+// The mutations' weights (over those that apply).
 struct VeachMutations {
     // `wavelengths` applies in spectral mode only.
-    double bidirectional = 1, lensSubpath = 1, lens = 1, multiChain = 1, caustic = 1, wavelengths = 1;
+    // The wavelength mutation moves the colour alone (the lens and caustic perturbations move
+    // the wavelengths too): at a quarter of the others' weight, the path's own mutations get
+    // more of the proposals (bench/README, "In spectral mode").
+    double bidirectional = 1, lensSubpath = 1, lens = 1, multiChain = 1, caustic = 1, wavelengths = 0.25;
     // For tests: only an independent path generated from nothing (T(x -> y) = its
     // generation density): the image must be BDPT's whatever the other mutations'
     // densities are, a check of the chain's bookkeeping alone.
