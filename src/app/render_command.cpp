@@ -309,8 +309,8 @@ void RenderCommand::load(Job& job) {
     if (chains_ > 0 || bootstrap_ > 0 || largeStepProbability_ >= 0 || sigma_ > 0 || cameraStepProbability_ >= 0 ||
         twoStage_ >= 0 || twoStageBlackLevel_ >= 0) {
         if (settings.integrator != "pssmlt" && settings.integrator != "mmlt" && settings.integrator != "mlt")
-            throw InputError("--chains, --bootstrap, --large-step-probability, --camera-step-probability, --sigma and "
-                             "--two-stage are Metropolis parameters: "
+            throw InputError("--chains, --bootstrap, --large-step-probability, --camera-step-probability, --sigma, "
+                             "--two-stage and --two-stage-black-level are Metropolis parameters: "
                              "they need --integrator pssmlt, mmlt or mlt (the integrator here is \"" + settings.integrator +
                              "\")");
         if (chains_ > 0) settings.mltChains = chains_;
@@ -319,7 +319,11 @@ void RenderCommand::load(Job& job) {
         if (sigma_ > 0) settings.mltSigma = float(sigma_);
         if (cameraStepProbability_ >= 0) settings.mltCameraStepProbability = float(cameraStepProbability_);
         if (twoStage_ >= 0) settings.mltTwoStage = float(twoStage_);
-        if (twoStageBlackLevel_ >= 0) settings.mltTwoStageBlackLevel = float(twoStageBlackLevel_);
+        if (twoStageBlackLevel_ >= 0) {
+            if (metropolisTwoStage(settings.integrator, settings.mltTwoStage) == 0)
+                throw InputError("--two-stage-black-level needs two-stage MLT, which --two-stage 0 switches off");
+            settings.mltTwoStageBlackLevel = float(twoStageBlackLevel_);
+        }
     }
     if (!crop_.empty()) {
         int W = scene->camera().params().xRes, H = scene->camera().params().yRes;

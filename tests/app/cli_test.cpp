@@ -424,6 +424,7 @@ TEST_F(Cli, PbrtMltIntegratorIsMultiplexedMLT) {
     j = nlohmann::json::parse(std::ifstream(json));
     EXPECT_EQ(j["metropolis"]["chains"], 5);
     EXPECT_EQ(j["spp_target"], 1);
+    EXPECT_EQ(j["metropolis"]["two_stage_samples"], 300);  // two-stage MLT by default: F = 1
     // Without a pilot every bootstrap sample is the bootstrap's, and each depth is chosen
     // equally often.
     Result u = run("render --quiet --strategy-pilot 0 --spp 1 " + scene + " -o " + (dir / "m.pfm").string() +
@@ -454,7 +455,17 @@ TEST_F(Cli, PbrtMltIntegratorIsMultiplexedMLT) {
     Result notChains = run("render --quiet --two-stage 0.5 --integrator path " + scene + " -o " +
                            (dir / "m.pfm").string());
     EXPECT_NE(notChains.status, 0);
-    EXPECT_NE(notChains.out.find("--two-stage are Metropolis parameters"), std::string::npos) << notChains.out;
+    EXPECT_NE(notChains.out.find("--two-stage-black-level are Metropolis parameters"), std::string::npos) << notChains.out;
+    // --two-stage 0: the plain target, no pilot; a black level then has nothing to act on.
+    Result plain = run("render --quiet --two-stage 0 --spp 1 " + scene + " -o " + (dir / "m.pfm").string() +
+                       " --stats " + json.string());
+    ASSERT_EQ(plain.status, 0) << plain.out;
+    j = nlohmann::json::parse(std::ifstream(json));
+    EXPECT_EQ(j["metropolis"]["two_stage_samples"], 0);
+    Result level = run("render --quiet --two-stage 0 --two-stage-black-level 0.5 " + scene + " -o " +
+                       (dir / "m.pfm").string());
+    EXPECT_NE(level.status, 0);
+    EXPECT_NE(level.out.find("--two-stage-black-level needs two-stage MLT"), std::string::npos) << level.out;
 }
 
 // --color spectral: every integrator renders it (path tracing, light tracing, BDPT, pssmlt, mmlt
