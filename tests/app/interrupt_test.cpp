@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -95,6 +96,28 @@ TEST_F(CliStop, InterruptDuringTwoStagePilotWritesNormalisedImage) {
     ASSERT_EQ(renderAndSignal(SIGINT, {"--adaptive", "twostage"}, cpuSeconds(0.3)), 130);
     expectExactSkyImage(ps::readImage(out()), "SIGINT in the two-stage pilot");
     EXPECT_LT(readStats()["spp_mean"].get<double>(), 1e8 / 4) << "the stop was not in the pilot";
+}
+
+// Two-stage MLT's pilot (on by default) stops at a Ctrl-C as the bootstrap does: a pilot of
+// 2 x 10^8 samples, minutes of work, must end within seconds of the signal, with the black
+// image of a stop before the chains (b unknown).
+TEST_F(CliStop, InterruptDuringMetropolisPilotStopsIt) {
+    for (const char* integrator : {"mmlt", "mlt"}) {
+        SCOPED_TRACE(integrator);
+        fs::remove(out());
+        fs::remove(stats());
+        RunningPathspace p({"render", "--quiet", "--spp", "1", "--stats", stats(), write("s.pbrt", kSkyScene), "-o", out(),
+                            "--integrator", integrator, "--bootstrap", "20000", "--chains", "64", "--two-stage", "10000"});
+        ASSERT_TRUE(p.waitUntilRendering(cpuSeconds(0.5))) << "pathspace exited or hung before rendering";
+        const auto sent = std::chrono::steady_clock::now();
+        ASSERT_TRUE(p.signalAndWaitTaken(SIGINT));
+        EXPECT_EQ(p.wait(), 130);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+        EXPECT_LT(seconds, cpuSeconds(10.0)) << "the pilot did not stop at the signal";
+        const nlohmann::json j = readStats();
+        EXPECT_TRUE(j["interrupted"].get<bool>());
+        EXPECT_EQ(j["metropolis"]["mutations"].get<long long>(), 0);
+    }
 }
 
 // The time budget is not an interruption (status 0). A uniform render stops between passes;

@@ -193,14 +193,13 @@ Bootstrap runBootstrap(const BootstrapContext& ctx) {
 void runImportancePilot(const BootstrapContext& ctx, int64_t first, int64_t count, PilotImportance& importance) {
     tbb::enumerable_thread_specific<std::vector<BDPTIntegrator::PathContribution>> splats;
     importance.learn(ctx.arena, count, [&](int64_t j, double* sums) {
-        if (ctx.cancel && ctx.cancel->load(std::memory_order_relaxed)) return;
         std::vector<BDPTIntegrator::PathContribution>& x = splats.local();
         PrimarySampleSampler sampler(bootstrapSeed(ctx.seed, first + j), ctx.pss);
         sampler.startIteration();
         ctx.integrator.bdptSample(sampler, ctx.evaluators.local(), x);
         for (const BDPTIntegrator::PathContribution& c : x)
             if (const double y = c.L.luminance(); std::isfinite(y)) sums[importance.tileOf(c.pRaster)] += y;
-    });
+    }, ctx.cancel);
 }
 
 bool startChain(const BootstrapContext& ctx, const Bootstrap& boot, Rng& rng,

@@ -48,8 +48,8 @@ void PilotImportance::finish(const std::vector<double>& sums, double floorFracti
     for (double& b : brightness_) b = std::hypot(std::max(b, floor), blackLevel_);
 }
 
-void PilotImportance::learn(tbb::task_arena& arena, int64_t count,
-                            const std::function<void(int64_t, double*)>& sample) {
+void PilotImportance::learn(tbb::task_arena& arena, int64_t count, const std::function<void(int64_t, double*)>& sample,
+                            const std::atomic<bool>* cancel) {
     if (count <= 0) return;
     constexpr int64_t kBlocks = 64;
     const size_t n = size_t(tiles());
@@ -58,8 +58,10 @@ void PilotImportance::learn(tbb::task_arena& arena, int64_t count,
     arena.execute([&] {
         tbb::parallel_for(int64_t(0), kBlocks, [&](int64_t block) {
             if (!chain_ranks::ownsBlock(block)) return;
-            for (int64_t j = block * count / kBlocks; j < (block + 1) * count / kBlocks; ++j)
+            for (int64_t j = block * count / kBlocks; j < (block + 1) * count / kBlocks; ++j) {
+                if (cancel && cancel->load(std::memory_order_relaxed)) return;
                 sample(j, &blockSums[size_t(block) * n]);
+            }
         });
     });
     {

@@ -16,6 +16,7 @@
 // (sum_j I_j w_j / (I_j^2 + L0^2)) (sum_j I_j / w_j) / N is least (Cauchy-Schwarz) for
 // w_j ~ sqrt(I_j^2 + L0^2). L0 = 0 is Hoberock and Hart's target; large L0 the plain one.
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -46,8 +47,10 @@ public:
     // Makes the map from `count` pilot samples: sample(j, sums) adds sample j's luminance over
     // its density to sums[tileOf(its film position)]. The samples run in a fixed number of
     // blocks over the arena's threads and the processes' blocks (chain_ranks.h), summed in
-    // order: the same map for any thread or process count. Then finish.
-    void learn(tbb::task_arena& arena, int64_t count, const std::function<void(int64_t, double*)>& sample);
+    // order: the same map for any thread or process count. Then finish. A cancellation (Ctrl-C)
+    // skips the samples left (the bootstrap after it stops too, and the image is black).
+    void learn(tbb::task_arena& arena, int64_t count, const std::function<void(int64_t, double*)>& sample,
+               const std::atomic<bool>* cancel = nullptr);
     // The map, for a checkpoint, and back (a resumed render makes no pilot).
     void save(ByteWriter& out) const { out.putVector(brightness_); }
     void load(ByteReader& in);

@@ -309,7 +309,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         importance.learn(arena, nPilot, [&](int64_t j, double* sums) {
             bootstrapSample(integrator, importance, options.seed, nBoot + j, threadStats.local(), scratchStates.local(),
                             -1, sums);
-        });
+        }, options.cancel);
     ms.twoStageSamples = nPilot;
 
     // Bootstrap: b and the weights of the candidate initial states, each process taking its
