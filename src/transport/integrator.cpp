@@ -61,22 +61,27 @@ std::string applyIntegratorVariant(const std::string& spec, RenderSettings& st) 
     if (colon == std::string::npos) return name;
     std::string rest;
     std::stringstream in(spec.substr(colon + 1));
+    // Two-stage MLT's keys, each a number >= 0; the rest are mlt's mutation weights.
+    struct Key {
+        std::string name;
+        float* value;
+        const char* what;
+    };
+    const Key keys[] = {{"two-stage", &st.mltTwoStage, "a fraction"},
+                        {"black-level", &st.mltTwoStageBlackLevel, "a luminance"}};
     for (std::string item; std::getline(in, item, ',');) {
-        if (item.rfind("two-stage=", 0) == 0) {
-            char* end = nullptr;
-            const std::string value = item.substr(10);
-            st.mltTwoStage = std::strtof(value.c_str(), &end);
-            if (value.empty() || *end != '\0' || !(st.mltTwoStage >= 0))
-                throw InputError("\"" + spec + "\": two-stage needs a fraction >= 0");
-        } else if (item.rfind("black-level=", 0) == 0) {
-            char* end = nullptr;
-            const std::string value = item.substr(12);
-            st.mltTwoStageBlackLevel = std::strtof(value.c_str(), &end);
-            if (value.empty() || *end != '\0' || !(st.mltTwoStageBlackLevel >= 0))
-                throw InputError("\"" + spec + "\": black-level needs a luminance >= 0");
-        } else {
+        const Key* key = nullptr;
+        for (const Key& k : keys)
+            if (item.rfind(k.name + "=", 0) == 0) key = &k;
+        if (!key) {
             rest += (rest.empty() ? "" : ",") + item;
+            continue;
         }
+        char* end = nullptr;
+        const std::string value = item.substr(key->name.size() + 1);
+        *key->value = std::strtof(value.c_str(), &end);
+        if (value.empty() || *end != '\0' || !(*key->value >= 0))
+            throw InputError("\"" + spec + "\": " + key->name + " needs " + key->what + " >= 0");
     }
     if (!rest.empty() && name != "mlt")
         throw InputError("\"" + spec + "\": only mlt takes mutation weights (" + rest + ")");

@@ -97,11 +97,12 @@ public:
 std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scene& scene,
                                              const std::string& mis = "power");
 
-// For benchmarks and tests: "NAME" or "NAME:KEY=VALUE,..." with mlt's --mlt-mutations keys and
-// two-stage=F (--two-stage, pssmlt, mmlt and mlt), set in `st` (the others reset); returns NAME.
 // --two-stage's fraction for a Metropolis integrator: `setting` if >= 0, else its default.
 double metropolisTwoStage(const std::string& name, double setting);
 
+// For benchmarks and tests: "NAME" or "NAME:KEY=VALUE,..." with mlt's --mlt-mutations keys,
+// two-stage=F (--two-stage, pssmlt, mmlt and mlt) and black-level=L0
+// (--two-stage-black-level), set in `st` (the others reset); returns NAME.
 std::string applyIntegratorVariant(const std::string& spec, RenderSettings& st);
 
 }  // namespace ps

@@ -8,12 +8,12 @@ namespace ps {
 
 namespace {
 
-// Unnormalised weights: deleting one vertex is most likely, then each more vertex half as
-// likely (thesis §11.4.2); deleting none (a pure insertion) and deleting all (a path made
-// afresh, the move that keeps the chain ergodic) get a fixed share whatever the length.
 // 2^-m, exactly (std::ldexp's library call cost more than the rest of the weights).
 double halfPower(int m) { return m < 64 ? 1.0 / double(uint64_t(1) << m) : std::ldexp(1.0, -m); }
 
+// Unnormalised weights: deleting one vertex is most likely, then each more vertex half as
+// likely (thesis §11.4.2); deleting none (a pure insertion) and deleting all (a path made
+// afresh, the move that keeps the chain ergodic) get a fixed share whatever the length.
 double deletionWeight(int d, int n) {
     if (d == 0 || d == n) return 0.25;
     return halfPower(d);
