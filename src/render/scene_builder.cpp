@@ -149,6 +149,12 @@ void SceneBuilder::addAreaLights(const ShapeEntity& e, Shape& shape) {
     }
 }
 
+// An `interface` shape only marks where a medium begins: it neither scatters nor emits, so
+// no ray of any integrator (camera, shadow, connection) may stop at it. Media are not
+// supported yet, so such a shape is left out of the geometry altogether; kept, it blocked
+// every shadow and connection ray through it (the agreement matrix's Interface cells).
+static bool boundsMediumOnly(const Shape& shape) { return shape.material && shape.material->isInterface(); }
+
 unsigned SceneBuilder::attach(RTCScene target, const Shape& shape) {
     RTCGeometry g = shape.buildGeometry(scene_.device_);
     unsigned id = rtcAttachGeometry(target, g);
@@ -166,6 +172,7 @@ void SceneBuilder::addWorldShapes() {
         if (!shape || shape->primitiveCount() == 0) continue;
         shape->material = materialFor(e);
         addAreaLights(e, *shape);
+        if (boundsMediumOnly(*shape)) continue;
         unsigned id = attach(scene_.scene_, *shape);
         if (scene_.worldGeometry_.size() <= id) {
             scene_.worldGeometry_.resize(id + 1, nullptr);
@@ -191,6 +198,7 @@ int SceneBuilder::buildPrototype(const InstanceDefinition& def, const Transform&
         std::unique_ptr<Shape> shape = createShape(e, prototypeFromInstance * e.worldFromObject, desc_.baseDirectory, textures_);
         if (!shape || shape->primitiveCount() == 0) continue;
         shape->material = materialFor(e);
+        if (boundsMediumOnly(*shape)) continue;
         unsigned id = attach(proto, *shape);
         std::vector<const Shape*>& geoms = scene_.prototypeGeometry_[size_t(index)];
         if (geoms.size() <= id) geoms.resize(id + 1, nullptr);
