@@ -35,8 +35,22 @@ Samples sampleIndependently(const BootstrapContext& ctx, int64_t first, const Bo
     constexpr int64_t kBlock = 1024;
     const int64_t count = alloc.total, blocks = (count + kBlock - 1) / kBlock;
     const size_t strategies = size_t(choice.size()), groups = alloc.count.size();
-    const size_t stride = strategies + 2 * groups;
-    std::vector<double> blockSums(learn ? size_t(blocks) * stride : 0, 0.0);
+    // A block's sums: the strategies its samples can reach, then each group's sum and sum of
+    // squares. The groups are contiguous runs of samples and, where the choice has a group
+    // per bootstrap group (mmlt: a depth), a block reaches only its groups' strategies: a
+    // dense row over every strategy per block took (maxdepth^2 / 2) x blocks doubles, 39 GB
+    // at maxdepth 1000.
+    const bool perGroup = int(groups) == choice.groups();
+    std::vector<size_t> rowStart(size_t(blocks) + 1, 0);
+    std::vector<int> firstStrategy(size_t(blocks), 0);
+    for (int64_t block = 0; learn && block < blocks; ++block) {
+        const int g0 = alloc.groupOf(block * kBlock), g1 = alloc.groupOf(std::min(count, (block + 1) * kBlock) - 1);
+        const int lo = perGroup ? choice.groupBegin(g0) : 0;
+        const int hi = perGroup ? choice.groupBegin(g1 + 1) : int(strategies);
+        firstStrategy[size_t(block)] = lo;
+        rowStart[size_t(block) + 1] = rowStart[size_t(block)] + size_t(hi - lo) + 2 * groups;
+    }
+    std::vector<double> blockSums(learn ? rowStart.back() : 0, 0.0);
     Samples out;
     out.weight.assign(size_t(count), 0.0);
     tbb::enumerable_thread_specific<std::vector<BootstrapState>> found;
@@ -46,7 +60,10 @@ Samples sampleIndependently(const BootstrapContext& ctx, int64_t first, const Bo
             if (ctx.cancel && ctx.cancel->load()) cancelled = true;
             if (cancelled.load(std::memory_order_relaxed)) return;
             std::vector<BootstrapState>& states = found.local();
-            double* sums = learn ? &blockSums[size_t(block) * stride] : nullptr;
+            double* sums = learn ? &blockSums[rowStart[size_t(block)]] : nullptr;
+            const int lo = firstStrategy[size_t(block)];
+            const size_t reach = learn ? rowStart[size_t(block) + 1] - rowStart[size_t(block)] - 2 * groups : 0;
+            double* groupSums = sums ? sums + reach : nullptr;
             for (int64_t j = block * kBlock; j < std::min(count, (block + 1) * kBlock); ++j) {
                 const int g = alloc.groupOf(j);
                 PrimarySampleSampler sampler(bootstrapSeed(ctx.seed, first + j), ctx.pss);
@@ -55,13 +72,13 @@ Samples sampleIndependently(const BootstrapContext& ctx, int64_t first, const Bo
                 double w = 0;
                 for (const BootstrapState& st : states) {
                     w += st.weight;
-                    if (sums && st.strategy >= 0 && size_t(st.strategy) < strategies) sums[st.strategy] += st.weight;
+                    if (sums && st.strategy >= lo && size_t(st.strategy - lo) < reach) sums[st.strategy - lo] += st.weight;
                 }
                 out.weight[size_t(j)] = w;
-                if (sums) {
+                if (groupSums) {
                     const double v = w / alloc.scale(g);
-                    sums[strategies + size_t(g)] += v;
-                    sums[strategies + groups + size_t(g)] += v * v;
+                    groupSums[size_t(g)] += v;
+                    groupSums[groups + size_t(g)] += v * v;
                 }
             }
         });
@@ -73,12 +90,18 @@ Samples sampleIndependently(const BootstrapContext& ctx, int64_t first, const Bo
         cancelled = distributed::anyOf(cancelled.load());
     }
     if (learn) {
-        std::vector<double> total(stride, 0.0);
-        for (int64_t block = 0; block < blocks; ++block)
-            for (size_t k = 0; k < stride; ++k) total[k] += blockSums[size_t(block) * stride + k];
-        out.parts.assign(total.begin(), total.begin() + std::ptrdiff_t(strategies));
-        out.groupSum.assign(total.begin() + std::ptrdiff_t(strategies), total.begin() + std::ptrdiff_t(strategies + groups));
-        out.groupSumSquares.assign(total.begin() + std::ptrdiff_t(strategies + groups), total.end());
+        out.parts.assign(strategies, 0.0);
+        out.groupSum.assign(groups, 0.0);
+        out.groupSumSquares.assign(groups, 0.0);
+        for (int64_t block = 0; block < blocks; ++block) {
+            const double* row = &blockSums[rowStart[size_t(block)]];
+            const size_t reach = rowStart[size_t(block) + 1] - rowStart[size_t(block)] - 2 * groups;
+            for (size_t k = 0; k < reach; ++k) out.parts[size_t(firstStrategy[size_t(block)]) + k] += row[k];
+            for (size_t g = 0; g < groups; ++g) {
+                out.groupSum[g] += row[reach + g];
+                out.groupSumSquares[g] += row[reach + groups + g];
+            }
+        }
     }
     return out;
 }

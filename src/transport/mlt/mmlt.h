@@ -18,6 +18,7 @@
 // (each depth equally, then each of its strategies equally) wastes most large steps on
 // depths and strategies that carry almost nothing.
 #pragma once
+#include <algorithm>
 #include <utility>
 #include <vector>
 #include "transport/mlt/metropolis.h"
@@ -38,8 +39,14 @@ public:
     // The depth and strategy are drawn from a stream of their own.
     static constexpr int kStrategyStream = BDPTIntegrator::kStreamCount;
     int streamCount() const override { return BDPTIntegrator::kStreamCount + 1; }
-    // As the bootstrap of a chain per depth would: the parameter's count per depth.
-    int64_t bootstrapCount() const override { return int64_t(params_.bootstrapSamples) * (maxDepth() + 1); }
+    // As the bootstrap of a chain per depth would: the parameter's count per depth, up to
+    // kBootstrapDepths depths; past them the same total is shared by all (the pilot's
+    // allocation gives most to the depths that carry the image). pbrt-v4 takes the count
+    // per depth at any depth: 10^8 paths at maxdepth 1000, out of memory and hours long.
+    static constexpr int kBootstrapDepths = 16;
+    int64_t bootstrapCount() const override {
+        return int64_t(params_.bootstrapSamples) * std::min(maxDepth() + 1, kBootstrapDepths);
+    }
     bool choosesDepth() const override { return true; }
     PartialStepKind partialStepKind(const ChainState& x) const override;
     // A bootstrap sample of a depth stands for every strategy of that depth, from one

@@ -24,6 +24,9 @@ public:
     // The probability of strategy k, as sample() reports it.
     float pmf(int k) const;
     int groupOf(int k) const { return groupOf_[size_t(k)]; }
+    int groups() const { return int(groupStart_.size()); }
+    // The strategies of group g: groupBegin(g) .. groupBegin(g + 1) - 1 (g = groups(): size()).
+    int groupBegin(int g) const { return g < groups() ? groupStart_[size_t(g)] : size(); }
     // Strategy from two values in [0,1), and its probability.
     int sample(float u1, float u2, float* pmf) const;
     // Values (u1, u2) that choose strategy k: each at u (in [0,1)) within its interval.
