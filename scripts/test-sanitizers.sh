@@ -24,6 +24,9 @@ skip='PbrtReference|PbrtColourReference|EstimatorAgreement\.(SmoothNormals|Glass
 # the other colour mode; the spectral code paths are covered here by the spectral tests.
 skip+='|/spectral$'
 skip+='|Metropolis\.(AgreesWith|ClosedFurnace|PointLight|EachDepth)|VeachMLT\.(AgreesWith|ClosedFurnace|PointLight|Regenerating|DirectLighting)|VeachMutation\.|VeachMLTInfinityMutation\.|MovingCamera\.(PrimarySample|VeachMLT)|BdptStrategies\.|ErrorEstimate\.'
+# The agreement matrix's cells (tests/agreement/) repeat the base cell's code paths on other
+# scenes, at minutes each under the sanitizers: only the base cell and the statistics run here.
+skip+='|AgreementMatrix\.EveryIntegratorAgrees/[a-z]+_'
 exclude=()
 [ "${PS_SANITIZE_ALL:-0}" = 1 ] || exclude=(-E "$skip")
 cd build-asan

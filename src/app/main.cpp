@@ -11,6 +11,7 @@
 #include "app/exit_codes.h"
 #include "app/mc_command.h"
 #include "app/render_command.h"
+#include "app/verify_command.h"
 #include "render/distributed.h"
 #include "util/error.h"
 
@@ -42,6 +43,8 @@ int main(int argc, char** argv) {
     render.attach(app);
     ps::McCommand mc;
     mc.attach(app);
+    ps::VerifyCommand verify;
+    verify.attach(app);
     // The command line is every process's: an error in it (or --help) is met by all, and rank
     // 0 alone prints it (distributed::failedEverywhere: if only some met it, the job aborts).
     std::exception_ptr parseError;
@@ -61,8 +64,10 @@ int main(int argc, char** argv) {
         }
     }
     try {
-        if (mc.parsed() && ps::distributed::size() > 1)
-            throw ps::distributed::JobInputError("mc runs in one process: start it without mpirun");
+        if ((mc.parsed() || verify.parsed()) && ps::distributed::size() > 1)
+            throw ps::distributed::JobInputError(std::string(mc.parsed() ? "mc" : "verify") +
+                                                 " runs in one process: start it without mpirun");
+        if (verify.parsed()) return ps::distributed::finish(verify.run());
         return ps::distributed::finish(mc.parsed() ? mc.run() : render.run());
     } catch (const ps::distributed::JobInputError& e) {
         // Raised by every process at once: one report, and no process aborts the others.

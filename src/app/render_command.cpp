@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "app/exit_codes.h"
+#include "app/output_checks.h"
 #include "image/image.h"
 #include "mc/sampler.h"
 #include "render/distributed.h"
@@ -20,6 +21,7 @@
 #include "scene/parser.h"
 #include "transport/bdpt.h"
 #include "transport/checkpoint.h"
+#include "transport/coverage.h"
 #include "transport/integrator.h"
 #include "transport/renderer.h"
 #include "util/error.h"
@@ -35,19 +37,6 @@ std::atomic<bool> gInterrupt{false};
 // First signal: stop and write what we have. Second: leave at once.
 extern "C" void onSignal(int) {
     if (gInterrupt.exchange(true)) _exit(kExitInterrupted);
-}
-
-// Fail before rendering if an output cannot be written: create and remove a probe file.
-void checkWritable(const std::string& path) {
-    if (!isWritableImageExtension(path))
-        throw InputError("output \"" + path + "\": unsupported extension (use .exr, .png or .pfm)");
-    std::filesystem::path p(path);
-    std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
-    std::filesystem::path probe = dir / (".pathspace-probe-" + std::to_string(getpid()));
-    std::FILE* f = std::fopen(probe.c_str(), "wb");
-    if (!f) throw InputError("output \"" + path + "\": cannot write to directory \"" + dir.string() + "\"");
-    std::fclose(f);
-    std::filesystem::remove(probe);
 }
 
 // CLI11's own range checks print the range's limits as 300-digit numbers; these say it plainly.
@@ -336,6 +325,9 @@ void RenderCommand::load(Job& job) {
     job.writeVariance = std::find(aovs_.begin(), aovs_.end(), "variance") != aovs_.end();
     std::unique_ptr<Integrator>& integrator = job.integrator;
     integrator = createIntegrator(settings.integrator, *scene, mis_);
+    // A darker image with no word of why is a wrong answer (missingPaths says which light).
+    if (const std::string why = missingPaths(*scene, settings.integrator); !why.empty())
+        warning("integrator \"" + settings.integrator + "\" will render part of this scene's light black: " + why);
     const AdaptiveMode adaptive = parseAdaptiveMode(adaptive_);
     if (adaptive != AdaptiveMode::None && integrator->splats())
         throw InputError("--adaptive " + adaptive_ + " needs --integrator path: light tracing, BDPT and Metropolis "

@@ -1,0 +1,68 @@
+#include "transport/coverage.h"
+
+#include <set>
+
+#include "materials/bxdf.h"
+
+namespace ps {
+
+namespace {
+
+// Whether a material may scatter through a delta lobe: a mirror, smooth glass, or a smooth
+// coating over anything. Judged from the BxDF at one point (a textured roughness is assumed
+// the same everywhere; a mix by the member it resolves to there).
+bool mayScatterSpecularly(const Material& m) {
+    MaterialEvalContext ctx;
+    ctx.p = Vec3(0, 0, 0);
+    ctx.n = Vec3(0, 0, 1);
+    ctx.uv = Vec2(0.5f, 0.5f);
+    ctx.wo = Vec3(0, 0, 1);
+    ctx.dpdu = Vec3(1, 0, 0);
+    const Material* resolved = m.resolve(ctx);
+    if (!resolved) return false;
+    ScratchBuffer scratch(4096);
+    const BxDF* b = resolved->constantBxDF();
+    if (!b) b = resolved->bxdf(ctx, scratch);
+    if (!b) return false;
+    return (b->flags() & kSpecular) || b->coatingMirrorReflectance(Vec3(0, 0, 1)) > 0 || b->specularThroughCoating();
+}
+
+struct SceneTraits {
+    bool specular = false, deltaLight = false, infinite = false;
+};
+
+SceneTraits traitsOf(const Scene& scene) {
+    SceneTraits t;
+    std::set<const Material*> seen;
+    for (const Shape* shape : scene.shapes())
+        if (shape->material && seen.insert(shape->material).second)
+            t.specular = t.specular || mayScatterSpecularly(*shape->material);
+    for (const auto& light : scene.lights()) {
+        t.deltaLight = t.deltaLight || light->type() == LightType::DeltaPosition || light->type() == LightType::DeltaDirection;
+        t.infinite = t.infinite || light->type() == LightType::Infinite;
+    }
+    return t;
+}
+
+}  // namespace
+
+std::string missingPaths(const Scene& scene, const std::string& integrator) {
+    const bool lens = integrator == "light" || integrator == "bdpt" || integrator == "pssmlt" || integrator == "mmlt" ||
+                      integrator == "mlt";
+    if (lens && !scene.camera().hasImportance())
+        return "it connects light paths to the lens and needs a perspective camera";
+    if (integrator != "light" && integrator != "path") return "";
+    const SceneTraits t = traitsOf(scene);
+    if (integrator == "path")
+        return t.deltaLight && t.specular
+                   ? "path tracing cannot reach a point, spot, goniometric, projection or distant light through a "
+                     "specular surface (their caustics are black); use bdpt"
+                   : "";
+    if (t.infinite) return "light tracing cannot show the environment seen directly; use path or bdpt";
+    if (t.specular)
+        return "light tracing cannot show what the camera sees in a specular surface (mirror, smooth glass or "
+               "coating); use path or bdpt";
+    return "";
+}
+
+}  // namespace ps

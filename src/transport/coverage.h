@@ -1,0 +1,18 @@
+// Which light paths an estimator cannot sample in a scene (thesis §10.2: each sampling
+// technique covers only the paths whose vertices it can generate; a path with a specular
+// vertex next to the eye, or a delta light seen through a specular surface, lies outside
+// some techniques altogether). Such an integrator renders those paths black: an image darker
+// than the others, not a noisier one. Users are warned, and `pathspace verify` and the
+// agreement matrix leave the integrator out of that scene's comparisons.
+#pragma once
+#include <string>
+
+#include "render/scene.h"
+
+namespace ps {
+
+// Why `integrator` cannot render all of the scene's light, or "" when it can (or when the
+// name is unknown: createIntegrator reports that).
+std::string missingPaths(const Scene& scene, const std::string& integrator);
+
+}  // namespace ps

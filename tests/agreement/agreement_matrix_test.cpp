@@ -1,0 +1,125 @@
+// The agreement matrix: every variant of variants.cpp rendered by every integrator that can
+// sample it, each compared (verify/block_statistics.h) with a reference that trusts no single
+// integrator. A cell fails when its integrator differs from the reference by more than its
+// measured spread allows, when the comparison could not catch a 2% bias, or when an integrator
+// that should sample the variant is left out (or one that cannot is not).
+//
+// PATHSPACE_AGREEMENT_SCALE=K runs every cell with K times the samples (a longer tier, outside
+// CI: docs/agreement-matrix.md).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+
+#include "render/scene_builder.h"
+#include "scene/parser.h"
+#include "transport/coverage.h"
+#include "util/error.h"
+#include "variants.h"
+#include "verify/verify.h"
+
+namespace ps::test {
+namespace {
+
+const std::string& dataDir() {
+    static const std::string dir = (std::filesystem::temp_directory_path() / "pathspace-agreement-data").string();
+    return dir;
+}
+
+const std::vector<Variant>& variants() {
+    static const std::vector<Variant> v = agreementVariants(dataDir());
+    return v;
+}
+
+// The smallest uniform relative bias each cell must be able to catch.
+constexpr double kDetectable = 0.02;
+
+int scale() {
+    const char* s = std::getenv("PATHSPACE_AGREEMENT_SCALE");
+    return s ? std::max(1, std::atoi(s)) : 1;
+}
+
+// Samples per pixel of one run (mutations per pixel for Metropolis), chosen so that 16 runs
+// resolve a 2% bias on the base scene with room to spare. More runs of fewer samples cost
+// the same and make the standard errors' own error smaller (Student's t with more degrees
+// of freedom: a narrower bound for the same false-alarm rate).
+verify::VerifyOptions options(const Variant& v, uint64_t seed) {
+    verify::VerifyOptions o;
+    o.runs = 16;
+    o.seed = seed;
+    const int k = v.sppScale * scale();
+    o.spp = 32 * k;
+    // The bootstrap's estimate of b scales a Metropolis image: its error is most of the image
+    // mean's spread. pssmlt's samples (whole BDPT samples) spread most; mmlt's are per depth.
+    o.configure = [k](const std::string& name, RenderSettings& st) {
+        st.mltBootstrapSamples = (name == "pssmlt" ? 60000 : name == "mmlt" ? 25000 : 15000) * k;
+    };
+    return o;
+}
+
+// The Metropolis integrators run with 64 chains, with the plain target: two-stage MLT's image mean moves far more between
+// seeds (mmlt's by 10% at these sizes), which would hide a 2% bias; its own row below.
+std::unique_ptr<Scene> load(const std::string& text, bool spectral) {
+    setWarningsQuiet(true);
+    SceneDescription desc = parseSceneString(text, ".", "<variant>");
+    auto scene = buildScene(desc, spectral);
+    scene->settings().mltChains = 64;
+    scene->settings().mltTwoStage = 0;
+    return scene;
+}
+
+class AgreementMatrix : public ::testing::TestWithParam<size_t> {};
+
+TEST_P(AgreementMatrix, EveryIntegratorAgrees) {
+    const Variant& v = variants()[GetParam()];
+    auto scene = load(v.scene, v.spectral);
+
+    // Coverage: exactly the integrators the variant names cannot sample it.
+    std::set<std::string> cannot;
+    for (const std::string& name : verify::allIntegrators())
+        if (!missingPaths(*scene, name).empty()) cannot.insert(name);
+    EXPECT_EQ(cannot, v.cannot) << v.name << ": the integrators that cannot sample it changed";
+
+    std::unique_ptr<verify::Reference> reference;
+    if (v.exact >= 0) {
+        reference = std::make_unique<verify::Reference>(verify::exactReference(v.exact, 16));
+    } else if (!v.sameAs.empty()) {
+        auto without = load(v.sameAs, v.spectral);
+        verify::VerifyOptions o = options(v, 1000);
+        o.integrators = {"path", "bdpt"};
+        verify::VerifyReport r = verify::verifyScene(*without, o);
+        reference = std::make_unique<verify::Reference>(
+            verify::pooledOf({&r.results[0].runs, &r.results[1].runs}, "the scene without the feature"));
+    }
+    const verify::VerifyReport report = verify::verifyScene(*scene, options(v, 1), reference.get());
+
+    std::string row = v.name + (v.spectral ? "" : " (rgb)") + ":";
+    for (const verify::IntegratorResult& r : report.results) {
+        char cell[96];
+        if (!r.skipped.empty()) std::snprintf(cell, sizeof cell, " %s -", r.name.c_str());
+        else std::snprintf(cell, sizeof cell, " | %s %.4f %+.1fs res %.1f%% chi2 %.0f/%.0f %.1fs", r.name.c_str(),
+                           r.verdict.ratio, r.verdict.imageZ, 100 * r.verdict.resolution, r.verdict.chi2,
+                           r.verdict.chi2Limit, r.seconds);
+        row += cell;
+    }
+    std::printf("MATRIX %s\n", row.c_str());
+
+    for (const verify::IntegratorResult& r : report.results) {
+        if (!r.skipped.empty()) continue;
+        ASSERT_TRUE(r.compared) << v.name << ": " << r.name << " has nothing to be compared with";
+        EXPECT_GT(r.runs.image().mean, 0.01) << v.name << ": " << r.name << ": the variant must be lit";
+        EXPECT_TRUE(r.verdict.agrees) << v.name << ": " << r.name << " vs " << r.reference << ": " << r.verdict.why;
+        EXPECT_LT(r.verdict.resolution, kDetectable)
+            << v.name << ": " << r.name << " too noisy to catch a " << 100 * kDetectable << "% bias ("
+            << 100 * r.verdict.resolution << "%)";
+    }
+}
+
+std::string nameOf(const ::testing::TestParamInfo<size_t>& info) { return testName(variants()[info.param].name); }
+
+INSTANTIATE_TEST_SUITE_P(Variants, AgreementMatrix, ::testing::Range<size_t>(0, variants().size()), nameOf);
+
+}  // namespace
+}  // namespace ps::test

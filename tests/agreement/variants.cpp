@@ -1,0 +1,374 @@
+#include "variants.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "image/image.h"
+
+namespace ps::test {
+
+namespace {
+
+// The base scene: a 1 x 1 x 1 box open towards the camera, lit by a quad under its ceiling,
+// with coloured side walls and a sphere on the floor. Each field is one feature's place.
+struct Box {
+    std::string camera = R"(LookAt 0 0.5 2.2  0 0.5 0  0 1 0
+Camera "perspective" "float fov" [ 30 ])";
+    int maxDepth = 5;
+    std::string environment;  // infinite and distant lights
+    std::string light = R"(AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 5 5 5 ]
+  Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
+AttributeEnd)";
+    std::string floorMaterial = R"(Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ])";
+    std::string objectMaterial = R"(Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ])";
+    std::string object = R"(AttributeBegin
+  Translate 0 0.25 0
+  Shape "sphere" "float radius" [ 0.25 ]
+AttributeEnd)";
+    std::string extra;
+
+    std::string text() const {
+        return camera + R"(
+Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+PixelFilter "box"
+Integrator "path" "integer maxdepth" [ )" +
+               std::to_string(maxDepth) + R"( ]
+WorldBegin
+)" + environment + "\n" + light +
+               "\n" + floorMaterial + R"(
+Shape "bilinearmesh" "point3 P" [ -0.5 0 0.5   0.5 0 0.5   -0.5 0 -0.5   0.5 0 -0.5 ]
+Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]
+Shape "bilinearmesh" "point3 P" [ -0.5 1 -0.5   0.5 1 -0.5   -0.5 1 0.5   0.5 1 0.5 ]
+Shape "bilinearmesh" "point3 P" [ -0.5 0 -0.5   0.5 0 -0.5   -0.5 1 -0.5   0.5 1 -0.5 ]
+Material "diffuse" "rgb reflectance" [ 0.7 0.2 0.2 ]
+Shape "bilinearmesh" "point3 P" [ -0.5 0 0.5   -0.5 0 -0.5   -0.5 1 0.5   -0.5 1 -0.5 ]
+Material "diffuse" "rgb reflectance" [ 0.2 0.7 0.2 ]
+Shape "bilinearmesh" "point3 P" [ 0.5 0 -0.5   0.5 0 0.5   0.5 1 -0.5   0.5 1 0.5 ]
+)" + objectMaterial +
+               "\n" + object + "\n" + extra + "\n";
+    }
+};
+
+// A sphere lit from inside by its own emission (reflectance `albedo`): every pixel sees
+// Le sum_{k <= maxdepth} albedo^k, whatever the camera (inside the sphere).
+std::string furnace(const std::string& camera, double albedo, int maxDepth) {
+    return camera + R"(
+Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+PixelFilter "box"
+Integrator "path" "integer maxdepth" [ )" +
+           std::to_string(maxDepth) + R"( ]
+WorldBegin
+AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+Material "diffuse" "rgb reflectance" [ )" +
+           std::to_string(albedo) + " " + std::to_string(albedo) + " " + std::to_string(albedo) + R"( ]
+ReverseOrientation
+Shape "sphere" "float radius" [ 3 ]
+)";
+}
+double furnaceValue(double albedo, int maxDepth) {
+    double v = 0;
+    for (int k = 0; k <= maxDepth; ++k) v += std::pow(albedo, k);
+    return v;
+}
+
+// A sphere-shaped emitter of radius 0.1 under the ceiling, with `material`.
+std::string emissiveSphere(const std::string& material) {
+    return "AttributeBegin\n  " + material + R"(
+  AreaLightSource "diffuse" "rgb L" [ 10 10 10 ]
+  Translate 0 0.8 0
+  Shape "sphere" "float radius" [ 0.1 ]
+AttributeEnd)";
+}
+
+// An n x n grid of triangles facing down at height y, spanning [-h, h] in x and z.
+std::string triangleGrid(int n, double h, double y) {
+    std::string P, idx;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i)
+            P += std::to_string(-h + 2 * h * i / n) + " " + std::to_string(y) + " " + std::to_string(-h + 2 * h * j / n) + "  ";
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+            // (b - a) x (c - a) points down: the emitting side faces the room.
+            idx += std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "  " + std::to_string(b) +
+                   " " + std::to_string(d) + " " + std::to_string(c) + "  ";
+        }
+    return "Shape \"trianglemesh\" \"point3 P\" [ " + P + "] \"integer indices\" [ " + idx + "]";
+}
+
+// Small images the scenes read, written once per process.
+void writeData(const std::string& dir) {
+    std::filesystem::create_directories(dir);
+    Image env(16, 16), slide(8, 8), checker(8, 8), gonio(8, 8);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            env.set(x, y, Spectrum(0.2f + 0.8f * x / 15, 0.3f + 0.5f * y / 15, 0.6f));
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            const bool on = (x / 2 + y / 2) % 2;
+            slide.set(x, y, on ? Spectrum(1, 0.8f, 0.4f) : Spectrum(0.2f, 0.3f, 0.9f));
+            checker.set(x, y, on ? Spectrum(0.8f, 0.6f, 0.2f) : Spectrum(0.1f, 0.4f, 0.6f));
+            gonio.set(x, y, Spectrum(0.3f + 0.7f * float(x + y) / 14));
+        }
+    writeImage(dir + "/env.pfm", env);
+    writeImage(dir + "/slide.pfm", slide);
+    writeImage(dir + "/checker.pfm", checker);
+    writeImage(dir + "/gonio.pfm", gonio);
+}
+
+}  // namespace
+
+std::string testName(const std::string& variant) {
+    std::string s;
+    for (char c : variant) s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    return s;
+}
+
+std::vector<Variant> agreementVariants(const std::string& dir) {
+    writeData(dir);
+    const std::string data = std::string(PATHSPACE_SOURCE_DIR) + "/tests/data";
+    std::vector<Variant> v;
+    const Box base;
+    auto box = [&](const std::string& name, auto&& change, std::set<std::string> cannot = {}) {
+        Box b;
+        change(b);
+        Variant var;
+        var.name = name;
+        var.scene = b.text();
+        var.cannot = std::move(cannot);
+        v.push_back(var);
+        return &v.back();
+    };
+    auto none = [](Box&) {};
+    const std::set<std::string> noLight{"light"};
+    const std::set<std::string> lensless{"light", "bdpt", "pssmlt", "mmlt", "mlt"};
+
+    // ---- lights ----
+    box("base", none);
+    box("light/area-two-sided", [](Box& b) {
+        b.light = R"(AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 4 4 4 ] "bool twosided" true
+  Shape "bilinearmesh" "point3 P" [ -0.2 0.9 -0.2   0.2 0.9 -0.2   -0.2 0.9 0.2   0.2 0.9 0.2 ]
+AttributeEnd)";
+    });
+    // The base light's quad wound the other way, its emitting side turned back to the room.
+    box("light/area-reversed", [](Box& b) {
+        b.light = R"(AttributeBegin
+  ReverseOrientation
+  AreaLightSource "diffuse" "rgb L" [ 5 5 5 ]
+  Shape "bilinearmesh" "point3 P" [ -0.2 0.99 0.2   0.2 0.99 0.2   -0.2 0.99 -0.2   0.2 0.99 -0.2 ]
+AttributeEnd)";
+    })->sameAs = base.text();
+    // The same emission through "scale": the image must not change.
+    box("light/scale", [](Box& b) {
+        b.light = R"(AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 2 2 2 ] "float scale" [ 2.5 ]
+  Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
+AttributeEnd)";
+    })->sameAs = base.text();
+    box("light/power", [](Box& b) {
+        b.light = R"(AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 1 0.8 0.6 ] "float power" [ 2 ]
+  Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
+AttributeEnd)";
+    });
+    box("light/blackbody", [](Box& b) {
+        b.light = R"(AttributeBegin
+  AreaLightSource "diffuse" "blackbody L" [ 3000 ] "float scale" [ 5 ]
+  Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
+AttributeEnd)";
+    });
+    box("light/named-spectrum", [](Box& b) {
+        b.light = R"(AttributeBegin
+  AreaLightSource "diffuse" "spectrum L" "stdillum-F4" "float scale" [ 5 ]
+  Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
+AttributeEnd)";
+    });
+    // Small emitters: a Metropolis bootstrap finds them less often (b's error is larger).
+    box("light/sphere-black-material", [](Box& b) {
+        b.light = emissiveSphere(R"(Material "diffuse" "rgb reflectance" [ 0 0 0 ])");
+    })->sppScale = 2;
+    box("light/sphere-coloured-material", [](Box& b) {
+        b.light = emissiveSphere(R"(Material "diffuse" "rgb reflectance" [ 0.6 0.4 0.2 ])");
+    })->sppScale = 2;
+    box("light/cylinder", [](Box& b) {
+        b.light = R"(AttributeBegin
+  Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+  AreaLightSource "diffuse" "rgb L" [ 8 8 8 ]
+  Translate 0 0.8 0
+  Rotate 90 0 1 0
+  Shape "cylinder" "float radius" [ 0.05 ] "float zmin" [ -0.25 ] "float zmax" [ 0.25 ]
+AttributeEnd)";
+    })->sppScale = 2;
+    box("light/disk", [](Box& b) {
+        b.light = R"(AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 5 5 5 ]
+  Translate 0 0.95 0
+  Rotate 90 1 0 0
+  Shape "disk" "float radius" [ 0.22 ]
+AttributeEnd)";
+    })->sppScale = 2;
+    box("light/triangle-mesh", [](Box& b) {
+        b.light = "AttributeBegin\n  AreaLightSource \"diffuse\" \"rgb L\" [ 5 5 5 ]\n  " + triangleGrid(4, 0.2, 0.99) +
+                  "\nAttributeEnd";
+    });
+    box("light/point", [](Box& b) {
+        b.light = R"(LightSource "point" "point3 from" [ 0 0.8 0 ] "rgb I" [ 0.6 0.6 0.6 ])";
+    });
+    box("light/spot", [](Box& b) {
+        b.light = R"(LightSource "spot" "point3 from" [ 0 0.95 0 ] "point3 to" [ 0 0 0 ] "float coneangle" [ 40 ]
+  "float conedelta" [ 10 ] "rgb I" [ 1.5 1.5 1.5 ])";
+    })->sppScale = 2;
+    box("light/goniometric", [&](Box& b) {
+        b.light = R"(AttributeBegin
+  Translate 0 0.8 0
+  LightSource "goniometric" "string filename" [ ")" + dir + R"(/gonio.pfm" ] "rgb I" [ 1 1 1 ]
+AttributeEnd)";
+    });
+    box("light/projection", [&](Box& b) {
+        b.light = R"(AttributeBegin
+  Translate 0 0.5 1.5
+  Rotate 180 0 1 0
+  LightSource "projection" "string filename" [ ")" + dir + R"(/slide.pfm" ] "float fov" [ 30 ] "float scale" [ 3 ]
+AttributeEnd)";
+    });
+    box("light/distant", [](Box& b) {
+        b.light = R"(LightSource "distant" "point3 from" [ 0.3 1 3 ] "point3 to" [ 0 0.5 0 ] "rgb L" [ 2 2 2 ])";
+    });
+    box(
+        "light/infinite-uniform", [](Box& b) { b.environment = R"(LightSource "infinite" "rgb L" [ 0.4 0.4 0.4 ])"; },
+        noLight);
+    box(
+        "light/infinite-image",
+        [&](Box& b) {
+            b.environment = R"(AttributeBegin
+  Rotate -90 1 0 0
+  LightSource "infinite" "string filename" [ ")" + dir + R"(/env.pfm" ]
+AttributeEnd)";
+        },
+        noLight);
+
+    // ---- interface shapes: they bound media and must change nothing here ----
+    const std::string pointLight = R"(LightSource "point" "point3 from" [ 0 0.9 0 ] "rgb I" [ 0.6 0.6 0.6 ])";
+    Box pointLit;
+    pointLit.light = pointLight;
+    box("interface/between-point-light-and-floor", [&](Box& b) {
+        b.light = pointLight;
+        b.extra = R"(AttributeBegin
+  Material "interface"
+  Shape "bilinearmesh" "point3 P" [ -0.5 0.8 -0.5   0.5 0.8 -0.5   -0.5 0.8 0.5   0.5 0.8 0.5 ]
+AttributeEnd)";
+    })->sameAs = pointLit.text();
+    box("interface/in-front-of-camera", [](Box& b) {
+        b.extra = R"(AttributeBegin
+  Material "interface"
+  Shape "bilinearmesh" "point3 P" [ -2 -2 1   2 -2 1   -2 2 1   2 2 1 ]
+AttributeEnd)";
+    })->sameAs = base.text();
+    box("interface/box-around-sphere", [](Box& b) {
+        b.extra = R"(AttributeBegin
+  Material "interface"
+  Translate 0 0.25 0
+  Scale 0.3 0.3 0.3
+  Shape "bilinearmesh" "point3 P" [ -1 -1 1  1 -1 1  -1 1 1  1 1 1 ]
+  Shape "bilinearmesh" "point3 P" [ -1 -1 -1  1 -1 -1  -1 1 -1  1 1 -1 ]
+  Shape "bilinearmesh" "point3 P" [ -1 -1 -1  -1 1 -1  -1 -1 1  -1 1 1 ]
+  Shape "bilinearmesh" "point3 P" [ 1 -1 -1  1 1 -1  1 -1 1  1 1 1 ]
+  Shape "bilinearmesh" "point3 P" [ -1 1 -1  1 1 -1  -1 1 1  1 1 1 ]
+AttributeEnd)";
+    })->sameAs = base.text();
+
+    // ---- materials (the sphere's) ----
+    auto material = [&](const std::string& name, const std::string& m, std::set<std::string> cannot = {}) {
+        return box(
+            "material/" + name, [&](Box& b) { b.objectMaterial = m; }, std::move(cannot));
+    };
+    material("conductor-smooth", R"(Material "conductor" "float roughness" [ 0 ])", noLight);
+    material("conductor-rough", R"(Material "conductor" "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k"
+  "float roughness" [ 0.25 ])");
+    material("conductor-anisotropic", R"(Material "conductor" "float uroughness" [ 0.05 ] "float vroughness" [ 0.4 ])");
+    material("dielectric-smooth", R"(Material "dielectric" "float eta" [ 1.5 ])", noLight);
+    material("dielectric-rough", R"(Material "dielectric" "float eta" [ 1.5 ] "float roughness" [ 0.3 ])");
+    material("dielectric-dispersive", R"(Material "dielectric" "spectrum eta" "glass-BK7")", noLight)->sppScale = 2;
+    material("thindielectric", R"(Material "thindielectric" "float eta" [ 1.5 ])", noLight);
+    material("coateddiffuse-smooth", R"(Material "coateddiffuse" "rgb reflectance" [ 0.6 0.3 0.2 ])", noLight);
+    material("coateddiffuse-rough",
+             R"(Material "coateddiffuse" "rgb reflectance" [ 0.6 0.3 0.2 ] "float roughness" [ 0.3 ])");
+    material("coatedconductor",
+             R"(Material "coatedconductor" "float interface.roughness" [ 0.2 ] "float conductor.roughness" [ 0.2 ])");
+    material("diffusetransmission",
+             R"(Material "diffusetransmission" "rgb reflectance" [ 0.4 0.4 0.4 ] "rgb transmittance" [ 0.4 0.5 0.3 ])");
+    material("mix", R"(MakeNamedMaterial "a" "string type" "diffuse" "rgb reflectance" [ 0.8 0.2 0.2 ]
+MakeNamedMaterial "b" "string type" "conductor" "float roughness" [ 0.2 ]
+Material "mix" "string materials" [ "a" "b" ] "float amount" [ 0.4 ])");
+    material("measured", "Material \"measured\" \"string filename\" [ \"" + data + "/pbrt-v4/measured/ggx-spectral.bsdf\" ]");
+
+    // ---- textures and cut-outs ----
+    box("texture/checkerboard", [](Box& b) {
+        b.floorMaterial = R"(Texture "c" "spectrum" "checkerboard" "float uscale" [ 4 ] "float vscale" [ 4 ]
+  "rgb tex1" [ 0.8 0.8 0.2 ] "rgb tex2" [ 0.1 0.3 0.7 ]
+Material "diffuse" "texture reflectance" "c")";
+    });
+    box("texture/imagemap", [&](Box& b) {
+        b.floorMaterial = R"(Texture "i" "spectrum" "imagemap" "string filename" [ ")" + dir + R"(/checker.pfm" ]
+Material "diffuse" "texture reflectance" "i")";
+    });
+    box("texture/bump", [](Box& b) {
+        b.objectMaterial = R"(Texture "bumps" "float" "wrinkled" "float scale" [ 20 ]
+Texture "d" "float" "scale" "texture tex" "bumps" "float scale" [ 0.01 ]
+Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ] "texture displacement" "d")";
+    });
+    box("texture/alpha-cutout", [](Box& b) {
+        b.extra = R"(AttributeBegin
+  Texture "holes" "float" "checkerboard" "float uscale" [ 4 ] "float vscale" [ 4 ] "float tex1" [ 1 ] "float tex2" [ 0 ]
+  Material "diffuse" "rgb reflectance" [ 0.8 0.8 0.8 ]
+  Shape "bilinearmesh" "point3 P" [ -0.4 0.1 0.3   0.4 0.1 0.3   -0.4 0.9 0.3   0.4 0.9 0.3 ] "texture alpha" "holes"
+AttributeEnd)";
+    });
+
+    // ---- cameras ----
+    box("camera/thin-lens", [](Box& b) {
+        b.camera = R"(LookAt 0 0.5 2.2  0 0.5 0  0 1 0
+Camera "perspective" "float fov" [ 30 ] "float lensradius" [ 0.05 ] "float focaldistance" [ 2.2 ])";
+    });
+    auto exactFurnace = [&](const std::string& name, const std::string& camera, double albedo, int maxDepth,
+                            std::set<std::string> cannot) {
+        Variant var;
+        var.name = name;
+        var.scene = furnace(camera, albedo, maxDepth);
+        var.exact = furnaceValue(albedo, maxDepth);
+        var.cannot = std::move(cannot);
+        var.spectral = false;  // the exact answer is RGB's
+        var.sppScale = 2;      // 16 x 16 pixels, and light tracing's splats spread thinly
+        v.push_back(var);
+    };
+    const std::string inside = "LookAt 0 0 0  0 0 1  0 1 0\n";
+    exactFurnace("camera/pinhole-furnace", inside + R"(Camera "perspective" "float fov" [ 60 ])", 0.6, 5, {});
+    exactFurnace("camera/orthographic-furnace", inside + R"(Camera "orthographic")", 0.6, 5, lensless);
+    exactFurnace("camera/spherical-furnace", inside + R"(Camera "spherical" "string mapping" "equalarea")", 0.6, 5,
+                 lensless);
+    // The camera inside an emitter whose material is black sees exactly its emission.
+    exactFurnace("light/inside-black-emitter", inside + R"(Camera "perspective" "float fov" [ 60 ])", 0, 5, {});
+
+    // ---- path depth ----
+    box("depth/0", [](Box& b) { b.maxDepth = 0; })->sppScale = 8;
+    box("depth/1", [](Box& b) { b.maxDepth = 1; })->sppScale = 4;
+    box("depth/large", [](Box& b) { b.maxDepth = 100; });
+
+    // ---- the other colour mode ----
+    for (const char* name : {"base", "light/sphere-black-material", "material/dielectric-smooth",
+                             "interface/box-around-sphere"}) {
+        for (size_t i = 0; i < v.size(); ++i)
+            if (v[i].name == name) {
+                Variant rgb = v[i];
+                rgb.name = std::string("rgb/") + name;
+                rgb.spectral = false;
+                v.push_back(rgb);
+                break;
+            }
+    }
+    return v;
+}
+
+}  // namespace ps::test
