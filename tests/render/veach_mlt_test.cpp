@@ -136,6 +136,48 @@ TEST(VeachMLT, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
                                   32, 16, {{"mlt", k * 128}}, 0.02});
 }
 
+namespace {
+
+// A sphere that emits and does not scatter (black: pbrt-v4's usual pure emitter), with the
+// camera inside it: every pixel sees L = 1 (paths L E alone).
+std::string insideABlackEmitter() {
+    return std::string(R"(
+        LookAt 0 0 0  0 0 1  0 1 0
+        Camera "perspective" "float fov" [ 60 ]
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        PixelFilter "box"
+        )") + mltIntegrator() + R"(
+        WorldBegin
+        Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+        AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+        ReverseOrientation
+        Shape "sphere" "float radius" [ 1 ]
+    )";
+}
+
+// The diffuse box with its sphere a black emitter, seen directly and lighting the walls.
+std::string boxWithABlackEmitter() {
+    std::string scene = box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1");
+    const std::string from = R"(Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ])";
+    scene.replace(scene.find(from), from.size(),
+                  R"(Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+        AreaLightSource "diffuse" "rgb L" [ 2 2 2 ])");
+    return scene;
+}
+
+}  // namespace
+
+// An emitter whose BSDF has no diffuse or glossy lobe (black, or specular) is a surface of
+// specular role where a camera walk hits it, yet as x0 it is a light like any other: a path
+// that ends on it has the same f and densities whichever walk made it. (A camera walk's x0
+// was taken for a point light: a black sphere seen directly lost its camera-side share of
+// the balance heuristic: the image inside it was 0.084 of L, the box 7% dark.)
+TEST(VeachMLT, EmittersThatDoNotScatterAreLightsFromEitherSide) {
+    expectExact("inside a black emitter", greyMeans(insideABlackEmitter(), 64, 600, 16), 1.0);
+    expectAgreement(AgreementCase{"box with a black emitter", boxWithABlackEmitter(), {"bdpt", "mlt"}, 16, 16,
+                                  {{"mlt", 64}}, 0.02});
+}
+
 // Direct lighting apart (--mlt-direct): the path tracer's paths of at most one bounce plus the
 // chains' longer ones make BDPT's image, on a diffuse box, on the mirror scene, where the
 // light seen in the mirror (L S E, two edges) passes from the chains to the path tracer.

@@ -104,7 +104,7 @@ Spectrum PathSpace::contribution(const MltPath& x, Vec2* pRaster) const {
     if (k < 1 || !x[0].light || x[k].kind != MltVertex::Kind::Lens) return {};
     // A point light seen directly would be a point of finite energy on the film, which no
     // other integrator renders (a camera ray never hits it; BDPT has no such strategy).
-    if (k == 1 && x[0].delta) return {};
+    if (k == 1 && x[0].isDeltaLight()) return {};
     auto geometry = [](const MltVertex& a, const MltVertex& b) {
         // An edge to infinity: the cosine at its finite end alone (solid-angle measure).
         if (atInfinity(a)) return cosAt(b, a.ng);
@@ -149,7 +149,7 @@ double PathSpace::lightDensity(const MltPath& x, int i, Lobes lobes) const {
         v.light->pdfLe(v.p, v.ng, unitTo(v, x[1]), &pdfPos, &pdfDir);
         // A point light's position is a delta of unit weight (the light reports no density
         // there, as no other strategy can reach it).
-        if (pdfPos == 0 && v.delta) pdfPos = 1;
+        if (pdfPos == 0 && v.isDeltaLight()) pdfPos = 1;
         return double(scene_.lightPmf(v.light)) * pdfPos;
     }
     const MltVertex& u = x[size_t(i - 1)];
@@ -173,7 +173,7 @@ double PathSpace::cameraDensity(const MltPath& x, int i, Lobes lobes) const {
     if (i < 0 || i > k || k < 1) return 0;
     const MltVertex& v = x[size_t(i)];
     // Walks from the lens reach neither a point light nor the lens itself.
-    if ((v.kind == MltVertex::Kind::Light && v.delta) || (i < k && v.kind == MltVertex::Kind::Lens)) return 0;
+    if (v.isDeltaLight() || (i < k && v.kind == MltVertex::Kind::Lens)) return 0;
     if (i == k) {
         float pdfPos, pdfDir;
         scene_.camera().pdfWe(fromLens(v, x[size_t(k - 1)]), &pdfPos, &pdfDir);
@@ -204,7 +204,7 @@ bool PathSpace::connectible(const MltPath& x, int i) const {
 int PathSpace::specularChainEnd(const MltPath& x, int from) const {
     int m = from;
     while (m > 0 && x[size_t(m)].isSpecularSurface()) --m;
-    if (m == 0) return x[0].light && !x[0].delta ? 0 : -1;
+    if (m == 0) return x[0].light && !x[0].isDeltaLight() ? 0 : -1;
     return x[size_t(m)].isNonSpecularSurface() ? m : -1;
 }
 

@@ -50,7 +50,9 @@ namespace ps {
 struct MltVertex {
     enum class Kind : uint8_t { Light, Surface, Lens };
     Kind kind = Kind::Surface;
-    bool delta = false;  // surfaces: specular lobes only (or a mixed surface's mirror role); lights: a delta position or direction
+    // Surfaces: no diffuse or glossy lobe (specular ones only, or none: black), or a mixed
+    // surface's mirror role; lights: a delta position or direction (isDeltaLight).
+    bool delta = false;
     // A layered surface (BxDF::stochastic): sampled by PathSpace's own mixture of known
     // density, its coating's mirror reflection (probability R(wo), the Fresnel reflectance)
     // or a cosine lobe on wo's side. `delta` is then this path's choice at the vertex: the
@@ -79,6 +81,11 @@ struct MltVertex {
     const BxDF* bxdf = nullptr;    // surfaces, built in the owning path's arena
     SurfaceInteraction si;         // surfaces: the hit as traced, to rebuild bxdf in another arena
 
+    // A light vertex at a delta position or direction (a point, spot or distant light). Only a
+    // light vertex's `delta` says so: an emitter that a camera walk hits is a surface vertex,
+    // which is S wherever its BSDF has no diffuse or glossy lobe (a black one has none), but
+    // as x0 it is an area light like any other, whichever walk made it.
+    bool isDeltaLight() const { return kind == Kind::Light && delta; }
     // A scattering vertex with a diffuse or glossy lobe (D), or with specular lobes only (S).
     bool isNonSpecularSurface() const { return kind == Kind::Surface && bxdf && !delta; }
     bool isSpecularSurface() const { return kind == Kind::Surface && bxdf && delta; }
