@@ -56,7 +56,9 @@ public:
         return (top & kSpecular) && (top & kReflection) ? fresnelDielectric(std::fabs(wo.z), top_.eta()) : 0.0f;
     }
     bool specularThroughCoating() const override {
-        return (top_.flags() & kSpecular) && (bottom_.flags() & (kDiffuse | kGlossy)) == 0;
+        // A base of specular lobes only; a black one (flags() 0: no lobe) reflects nothing.
+        const uint8_t bottom = bottom_.flags();
+        return (top_.flags() & kSpecular) && (bottom & kSpecular) && !(bottom & (kDiffuse | kGlossy));
     }
 
 private:

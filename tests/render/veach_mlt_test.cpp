@@ -499,6 +499,10 @@ TEST(VeachMLT, RefusesWhatItCannotRenderExactly) {
                                         "Shape \"sphere\" \"float radius\" [ 0.2 ]\n",
                                  1, 1, 0, "mlt"));
     EXPECT_NO_THROW(renderString(base + "Material \"coateddiffuse\"\nShape \"sphere\" \"float radius\" [ 0.2 ]\n", 1, 1, 0, "mlt"));
+    // A black base has no lobe at all: nothing passes the smooth coating to be mirrored back.
+    EXPECT_NO_THROW(renderString(base + "Material \"coateddiffuse\" \"rgb reflectance\" [ 0 0 0 ]\nShape \"sphere\" "
+                                        "\"float radius\" [ 0.2 ]\n",
+                                 1, 1, 0, "mlt"));
     EXPECT_NO_THROW(renderString(base + "Material \"coatedconductor\" \"float conductor.roughness\" [ 0.2 ]\nShape \"sphere\" "
                                         "\"float radius\" [ 0.2 ]\n",
                                  1, 1, 0, "mlt"));
