@@ -51,6 +51,7 @@ verify::VerifyOptions options(const Variant& v, uint64_t seed) {
     o.seed = seed;
     const int k = v.sppScale * scale();
     o.spp = 32 * k;
+    for (const auto& [name, scale] : v.integratorScale) o.sppOf[name] = o.spp * scale;
     // The bootstrap's estimate of b scales a Metropolis image: its error is most of the image
     // mean's spread. pssmlt's samples (whole BDPT samples) spread most; mmlt's are per depth.
     o.configure = [k](const std::string& name, RenderSettings& st) {
@@ -110,6 +111,11 @@ TEST_P(AgreementMatrix, EveryIntegratorAgrees) {
     for (const verify::IntegratorResult& r : report.results) {
         if (!r.skipped.empty()) continue;
         ASSERT_TRUE(r.compared) << v.name << ": " << r.name << " has nothing to be compared with";
+        if (auto known = v.knownBias.find(r.name); known != v.knownBias.end()) {
+            std::printf("KNOWN %s: %s: %s\n", v.name.c_str(), r.name.c_str(), known->second.c_str());
+            EXPECT_FALSE(r.verdict.agrees) << v.name << ": " << r.name << " agrees now: remove its knownBias marker";
+            continue;
+        }
         EXPECT_GT(r.runs.image().mean, 0.01) << v.name << ": " << r.name << ": the variant must be lit";
         EXPECT_TRUE(r.verdict.agrees) << v.name << ": " << r.name << " vs " << r.reference << ": " << r.verdict.why;
         EXPECT_LT(r.verdict.resolution, kDetectable)

@@ -3,6 +3,7 @@
 // with a reference that trusts no single integrator: an exact answer, the same scene without
 // the feature where the feature must not change the image, or the median of the others.
 #pragma once
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -21,6 +22,10 @@ struct Variant {
     std::set<std::string> cannot;
     bool spectral = true;  // --color spectral (the renderer's default) or rgb
     int sppScale = 1;      // the variant's samples per pixel over the matrix's
+    std::map<std::string, int> integratorScale;  // and one integrator's over that
+    // Open bugs the matrix found: integrator -> what is wrong. Such a cell must still differ
+    // (it fails once the bug is fixed, so that the marker goes with it).
+    std::map<std::string, std::string> knownBias;
 };
 
 // Every variant, in the order docs/agreement-matrix.md lists them. Files the scenes read

@@ -48,7 +48,7 @@ TEST(CoverageCli, EveryIntegratorAtMaxDepth1000) {
     const SceneFile box(ps::test::withBootstrap(ps::test::box("5 5 5", "0.7 0.2 0.2", "0.2 0.7 0.2"), 1000), "deep");
     for (const char* integrator : {"path", "light", "bdpt", "pssmlt", "mmlt"}) {
         const auto r = ps::test::runPathspace(render(box, std::string("--integrator ") + integrator +
-                                                              " --maxdepth 1000 --spp 2 --chains 16 --quiet"));
+                                                              " --maxdepth 1000 --spp 2 --quiet"));
         EXPECT_EQ(r.status, 0) << integrator << ": " << r.out;
     }
     rusage children{};
