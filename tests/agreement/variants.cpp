@@ -9,6 +9,23 @@ namespace ps::test {
 
 namespace {
 
+// The base light's quad under the ceiling, facing down, with `emission` (AreaLightSource's
+// parameters).
+// The film, filter and Integrator lines every variant shares (an N x N film).
+std::string filmAndDepth(int n, int maxDepth) {
+    const std::string res = std::to_string(n);
+    return "Film \"rgb\" \"integer xresolution\" [ " + res + " ] \"integer yresolution\" [ " + res +
+           " ]\nPixelFilter \"box\"\nIntegrator \"path\" \"integer maxdepth\" [ " + std::to_string(maxDepth) +
+           " ]\nWorldBegin\n";
+}
+
+std::string quadLight(const std::string& emission) {
+    return R"(AttributeBegin
+  AreaLightSource "diffuse" )" + emission + R"(
+  Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
+AttributeEnd)";
+}
+
 // The base scene: a 1 x 1 x 1 box open towards the camera, lit by a quad under its ceiling,
 // with coloured side walls and a sphere on the floor. Each field is one feature's place.
 struct Box {
@@ -16,10 +33,7 @@ struct Box {
 Camera "perspective" "float fov" [ 30 ])";
     int maxDepth = 5;
     std::string environment;  // infinite and distant lights
-    std::string light = R"(AttributeBegin
-  AreaLightSource "diffuse" "rgb L" [ 5 5 5 ]
-  Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
-AttributeEnd)";
+    std::string light = quadLight(R"("rgb L" [ 5 5 5 ])");
     std::string floorMaterial = R"(Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ])";
     std::string objectMaterial = R"(Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ])";
     std::string object = R"(AttributeBegin
@@ -29,13 +43,7 @@ AttributeEnd)";
     std::string extra;
 
     std::string text() const {
-        return camera + R"(
-Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
-PixelFilter "box"
-Integrator "path" "integer maxdepth" [ )" +
-               std::to_string(maxDepth) + R"( ]
-WorldBegin
-)" + environment + "\n" + light +
+        return camera + "\n" + filmAndDepth(24, maxDepth) + environment + "\n" + light +
                "\n" + floorMaterial + R"(
 Shape "bilinearmesh" "point3 P" [ -0.5 0 0.5   0.5 0 0.5   -0.5 0 -0.5   0.5 0 -0.5 ]
 Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]
@@ -53,13 +61,7 @@ Shape "bilinearmesh" "point3 P" [ 0.5 0 -0.5   0.5 0 0.5   0.5 1 -0.5   0.5 1 0.
 // A sphere lit from inside by its own emission (reflectance `albedo`): every pixel sees
 // Le sum_{k <= maxdepth} albedo^k, whatever the camera (inside the sphere).
 std::string furnace(const std::string& camera, double albedo, int maxDepth) {
-    return camera + R"(
-Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
-PixelFilter "box"
-Integrator "path" "integer maxdepth" [ )" +
-           std::to_string(maxDepth) + R"( ]
-WorldBegin
-AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+    return camera + "\n" + filmAndDepth(16, maxDepth) + R"(AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
 Material "diffuse" "rgb reflectance" [ )" +
            std::to_string(albedo) + " " + std::to_string(albedo) + " " + std::to_string(albedo) + R"( ]
 ReverseOrientation
@@ -170,28 +172,16 @@ AttributeEnd)";
     })->sameAs = base.text();
     // The same emission through "scale": the image must not change.
     box("light/scale", [](Box& b) {
-        b.light = R"(AttributeBegin
-  AreaLightSource "diffuse" "rgb L" [ 2 2 2 ] "float scale" [ 2.5 ]
-  Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
-AttributeEnd)";
+        b.light = quadLight(R"("rgb L" [ 2 2 2 ] "float scale" [ 2.5 ])");
     })->sameAs = base.text();
     box("light/power", [](Box& b) {
-        b.light = R"(AttributeBegin
-  AreaLightSource "diffuse" "rgb L" [ 1 0.8 0.6 ] "float power" [ 2 ]
-  Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
-AttributeEnd)";
+        b.light = quadLight(R"("rgb L" [ 1 0.8 0.6 ] "float power" [ 2 ])");
     });
     box("light/blackbody", [](Box& b) {
-        b.light = R"(AttributeBegin
-  AreaLightSource "diffuse" "blackbody L" [ 3000 ] "float scale" [ 5 ]
-  Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
-AttributeEnd)";
+        b.light = quadLight(R"("blackbody L" [ 3000 ] "float scale" [ 5 ])");
     });
     box("light/named-spectrum", [](Box& b) {
-        b.light = R"(AttributeBegin
-  AreaLightSource "diffuse" "spectrum L" "stdillum-F4" "float scale" [ 5 ]
-  Shape "bilinearmesh" "point3 P" [ -0.2 0.99 -0.2   0.2 0.99 -0.2   -0.2 0.99 0.2   0.2 0.99 0.2 ]
-AttributeEnd)";
+        b.light = quadLight(R"("spectrum L" "stdillum-F4" "float scale" [ 5 ])");
     });
     // Small emitters: a Metropolis bootstrap finds them less often (b's error is larger).
     box("light/sphere-black-material", [](Box& b) {
