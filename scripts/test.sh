@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Set up, build and run the whole test suite; then the same suite under ASan+UBSan, and a short
-# seeded fuzz run of each fuzz target (about 35 minutes in all on 2 cores; see README "Hardening").
+# seeded fuzz run of each fuzz target (about 45 minutes in all on 2 cores, 8 of them the
+# agreement matrix; see README "Hardening").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
