@@ -28,16 +28,6 @@ extern "C" void onVerifySignal(int) {
     if (gStop.exchange(true)) _exit(kExitInterrupted);
 }
 
-// The pixels block i covers (as verify::summarise assigns them).
-struct Rect {
-    int x0, x1, y0, y1;
-};
-Rect blockRect(int i, int nx, int ny, int w, int h) {
-    const int bx = i % nx, by = i / nx;
-    auto first = [](int b, int n, int size) { return (b * size + n - 1) / n; };  // smallest p with p*n/size >= b
-    return {first(bx, nx, w), first(bx + 1, nx, w), first(by, ny, h), first(by + 1, ny, h)};
-}
-
 std::string fixed(const char* f, double v) {
     char buf[64];
     std::snprintf(buf, sizeof buf, f, v);
@@ -64,7 +54,7 @@ Image disagreementMap(const verify::VerifyReport& report) {
                                   : a < 4 ? Spectrum(0.9f, 0.8f, 0.1f)
                                   : z > 0 ? Spectrum(1, 0.1f, 0.1f)
                                           : Spectrum(0.1f, 0.2f, 1);
-            const Rect b = blockRect(i, r.runs.blocksX(), r.runs.blocksY(), w, h);
+            const verify::BlockPixels b = verify::blockPixels(i, r.runs.blocksX(), r.runs.blocksY(), w, h);
             for (int y = b.y0; y < b.y1; ++y)
                 for (int x = b.x0; x < b.x1; ++x) {
                     const Spectrum c = img.get(x, y);
@@ -111,7 +101,7 @@ nlohmann::json toJson(const verify::VerifyReport& report, const std::string& sce
             e["chi2_limit"] = v.chi2Limit;
             e["block_z"] = v.blockZ;
             e["blocks"] = {r.runs.blocksX(), r.runs.blocksY()};
-            const Rect b = blockRect(v.worstBlock, r.runs.blocksX(), r.runs.blocksY(), width, height);
+            const verify::BlockPixels b = verify::blockPixels(v.worstBlock, r.runs.blocksX(), r.runs.blocksY(), width, height);
             e["worst_block"] = {{"index", v.worstBlock}, {"z", v.blockZ[size_t(v.worstBlock)]},
                                 {"pixels", {b.x0, b.y0, b.x1, b.y1}}};
         }
@@ -206,7 +196,7 @@ int VerifyCommand::run() {
         resolution = std::max(resolution, v.resolution);
         if (!v.agrees) differ.push_back(r.name);
         if (quiet_) continue;
-        const Rect b = blockRect(v.worstBlock, r.runs.blocksX(), r.runs.blocksY(), w, h);
+        const verify::BlockPixels b = verify::blockPixels(v.worstBlock, r.runs.blocksX(), r.runs.blocksY(), w, h);
         std::printf("  %-6s  %-7s image %.5g +- %.2g, %.4f of the reference (%+.1f sigma); worst block: pixels x %d-%d, "
                     "y %d-%d at %+.1f sigma; blocks' chi-square %.1f (bound %.1f)\n",
                     r.name.c_str(), v.agrees ? "agrees" : "DIFFERS", r.runs.image().mean, r.runs.image().stdErr,

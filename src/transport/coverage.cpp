@@ -47,9 +47,8 @@ SceneTraits traitsOf(const Scene& scene) {
 }  // namespace
 
 std::string missingPaths(const Scene& scene, const std::string& integrator) {
-    const bool lens = integrator == "light" || integrator == "bdpt" || integrator == "pssmlt" || integrator == "mmlt" ||
-                      integrator == "mlt";
-    if (lens && !scene.camera().hasImportance())
+    // Every integrator but the path tracer connects subpaths to the lens (createIntegrator).
+    if (integrator != "path" && !scene.camera().hasImportance())
         return "it connects light paths to the lens and needs a perspective camera";
     if (integrator != "light" && integrator != "path") return "";
     const SceneTraits t = traitsOf(scene);

@@ -11,8 +11,8 @@
 
 namespace ps {
 
-// Why `integrator` cannot render all of the scene's light, or "" when it can (or when the
-// name is unknown: createIntegrator reports that).
+// Why `integrator` cannot render all of the scene's light, or "" when it can. For a known
+// name: createIntegrator reports an unknown one.
 std::string missingPaths(const Scene& scene, const std::string& integrator);
 
 }  // namespace ps

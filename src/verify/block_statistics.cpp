@@ -30,6 +30,16 @@ Estimate pooledEstimate(const std::vector<double>& values, const std::vector<dou
     return sw > 0 ? Estimate{swx / sw, std::sqrt(1 / sw)} : Estimate{};
 }
 
+// The standard normal's upper quantile: the z with P(Z > z) = p, by bisection of erfc.
+double normalUpperQuantile(double p) {
+    double lo = 0, hi = 40;
+    for (int i = 0; i < 100; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (0.5 * std::erfc(mid / std::sqrt(2.0)) > p ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
 std::string fmt(const char* f, double a, double b = 0) {
     char buf[160];
     std::snprintf(buf, sizeof buf, f, a, b);
@@ -37,6 +47,15 @@ std::string fmt(const char* f, double a, double b = 0) {
 }
 
 }  // namespace
+
+int blockOf(int x, int y, int nx, int ny, int w, int h) { return (y * ny / h) * nx + x * nx / w; }
+
+BlockPixels blockPixels(int i, int nx, int ny, int w, int h) {
+    // The smallest p with p * n / size >= b: where block b's pixels begin.
+    auto first = [](int b, int n, int size) { return (b * size + n - 1) / n; };
+    const int bx = i % nx, by = i / nx;
+    return {first(bx, nx, w), first(bx + 1, nx, w), first(by, ny, h), first(by + 1, ny, h)};
+}
 
 ImageSummary summarise(const Image& img, int nx, int ny) {
     ImageSummary s;
@@ -46,7 +65,7 @@ ImageSummary summarise(const Image& img, int nx, int ny) {
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x) {
             const Spectrum v = img.get(x, y);
-            const int b = (y * ny / img.height) * nx + x * nx / img.width;
+            const int b = blockOf(x, y, nx, ny, img.width, img.height);
             s.blocks[size_t(b)] += luminance(v.r, v.g, v.b);
             ++counts[size_t(b)];
             sum[0] += v.r;
@@ -132,13 +151,7 @@ Reference pooledOf(const std::vector<const RunSet*>& others, const std::string& 
 }
 
 double chiSquareUpperQuantile(int dof, double p) {
-    // The standard normal's upper quantile at p, by bisection of erfc.
-    double lo = 0, hi = 40;
-    for (int i = 0; i < 100; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (0.5 * std::erfc(mid / std::sqrt(2.0)) > p ? lo : hi) = mid;
-    }
-    const double z = 0.5 * (lo + hi), k = std::max(1, dof), a = 2.0 / (9.0 * k);
+    const double z = normalUpperQuantile(p), k = std::max(1, dof), a = 2.0 / (9.0 * k);
     return k * std::pow(1 - a + z * std::sqrt(a), 3);
 }
 
@@ -181,13 +194,7 @@ namespace {
 // of freedom: block z-scores whose squares a chi-square bound can sum.
 double normalEquivalent(double t, double nu) {
     if (t == 0) return 0;
-    const double p = studentTwoSidedTail(t, nu);
-    double lo = 0, hi = 40;
-    for (int i = 0; i < 60; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (std::erfc(mid / std::sqrt(2.0)) > p ? lo : hi) = mid;
-    }
-    return std::copysign(0.5 * (lo + hi), t);
+    return std::copysign(normalUpperQuantile(0.5 * studentTwoSidedTail(t, nu)), t);
 }
 
 // Welch-Satterthwaite: the degrees of freedom of a difference of two means whose standard

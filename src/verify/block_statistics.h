@@ -24,6 +24,14 @@ struct ImageSummary {
 };
 ImageSummary summarise(const Image& img, int nx, int ny);
 
+// Which of nx x ny blocks pixel (x, y) of a w x h image falls in (row-major), and the pixels
+// block i covers, x0 <= x < x1 and y0 <= y < y1: the one assignment summarise() uses.
+int blockOf(int x, int y, int nx, int ny, int w, int h);
+struct BlockPixels {
+    int x0, x1, y0, y1;
+};
+BlockPixels blockPixels(int i, int nx, int ny, int w, int h);
+
 // K independent renders of one estimator.
 class RunSet {
 public:

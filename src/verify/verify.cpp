@@ -77,6 +77,29 @@ void renderRuns(Scene& scene, const VerifyOptions& o, int integratorsToRun, Inte
     }
 }
 
+// Without a reference, each is compared with the others that agree with one another: the
+// largest group whose every pair agrees, as a bit set over `rendered` (a broken estimator
+// among three would otherwise move the reference of the two good ones, and be hidden by them
+// in turn).
+unsigned largestAgreeingGroup(const std::vector<IntegratorResult*>& rendered, double blockFloor) {
+    const size_t n = rendered.size();
+    std::vector<std::vector<bool>> agree(n, std::vector<bool>(n, true));
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = 0; j < i; ++j)
+            agree[i][j] = agree[j][i] =
+                compare(rendered[i]->runs, referenceFrom(rendered[j]->runs, ""), blockFloor).agrees &&
+                compare(rendered[j]->runs, referenceFrom(rendered[i]->runs, ""), blockFloor).agrees;
+    unsigned best = 0;
+    for (unsigned set = 1; set < (1u << n) && n <= 16; ++set) {
+        bool clique = true;
+        for (size_t i = 0; i < n && clique; ++i)
+            for (size_t j = 0; j < i && clique; ++j)
+                if ((set >> i & 1) && (set >> j & 1) && !agree[i][j]) clique = false;
+        if (clique && __builtin_popcount(set) > __builtin_popcount(best)) best = set;
+    }
+    return best;
+}
+
 }  // namespace
 
 VerifyReport verifyScene(Scene& scene, const VerifyOptions& o, const Reference* reference) {
@@ -99,27 +122,11 @@ VerifyReport verifyScene(Scene& scene, const VerifyOptions& o, const Reference* 
             return report;
         }
     }
-    // Without a reference, each is compared with the others that agree with one another:
-    // the largest group whose every pair agrees (a broken estimator among three would
-    // otherwise move the reference of the two good ones, and be hidden by them in turn).
     std::vector<IntegratorResult*> rendered;
     for (IntegratorResult& r : report.results)
         if (r.skipped.empty() && r.runs.runs() >= 2) rendered.push_back(&r);
     const size_t n = rendered.size();
-    std::vector<std::vector<bool>> agree(n, std::vector<bool>(n, true));
-    for (size_t i = 0; i < n && !reference; ++i)
-        for (size_t j = 0; j < i; ++j)
-            agree[i][j] = agree[j][i] =
-                compare(rendered[i]->runs, referenceFrom(rendered[j]->runs, ""), o.blockFloor).agrees &&
-                compare(rendered[j]->runs, referenceFrom(rendered[i]->runs, ""), o.blockFloor).agrees;
-    unsigned best = 0;
-    for (unsigned set = 1; set < (1u << n) && n <= 16; ++set) {
-        bool clique = true;
-        for (size_t i = 0; i < n && clique; ++i)
-            for (size_t j = 0; j < i && clique; ++j)
-                if ((set >> i & 1) && (set >> j & 1) && !agree[i][j]) clique = false;
-        if (clique && __builtin_popcount(set) > __builtin_popcount(best)) best = set;
-    }
+    const unsigned best = reference ? 0 : largestAgreeingGroup(rendered, o.blockFloor);
     for (size_t i = 0; i < n; ++i) {
         IntegratorResult& r = *rendered[i];
         Reference ref;
