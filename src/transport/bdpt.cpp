@@ -337,7 +337,7 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
             int depth = s + t - 2;
             // (1,1) would see a light through the lens by sampling both ends; the camera
             // ray finding the light (0,2) covers those paths with weight 1.
-            if ((s == 1 && t == 1) || depth < 0 || depth > maxDepth || (onlyDepth >= 0 && depth != onlyDepth)) continue;
+            if ((s == 1 && t == 1) || (t == 1 && camera[0].delta) || depth < 0 || depth > maxDepth || (onlyDepth >= 0 && depth != onlyDepth)) continue;
             // Most camera vertices emit nothing: skip the call for the s = 0 strategy.
             if (s == 0 && !camera[t - 1].isLight()) continue;
             sampler.seekDimension(connectionDimension(s, t));

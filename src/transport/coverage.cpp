@@ -46,10 +46,14 @@ SceneTraits traitsOf(const Scene& scene) {
 
 }  // namespace
 
+std::string lensRequirement(const std::string& integrator) {
+    return integrator == "light" ? "connects every light path to the lens and needs a perspective camera"
+                                 : "mutates paths through the lens and needs a perspective camera";
+}
+
 std::string missingPaths(const Scene& scene, const std::string& integrator) {
-    // Every integrator but the path tracer connects subpaths to the lens (createIntegrator).
-    if (integrator != "path" && !scene.camera().hasImportance())
-        return "it connects light paths to the lens and needs a perspective camera";
+    if ((integrator == "light" || integrator == "mlt") && !scene.camera().hasImportance())
+        return "it " + lensRequirement(integrator);
     if (integrator != "light" && integrator != "path") return "";
     const SceneTraits t = traitsOf(scene);
     if (integrator == "path")

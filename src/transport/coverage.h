@@ -15,4 +15,8 @@ namespace ps {
 // name: createIntegrator reports an unknown one.
 std::string missingPaths(const Scene& scene, const std::string& integrator);
 
+// Why "light" or "mlt" cannot render through a camera without importance (orthographic,
+// spherical, realistic): a phrase that follows the integrator's name.
+std::string lensRequirement(const std::string& integrator);
+
 }  // namespace ps

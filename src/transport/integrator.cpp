@@ -1,6 +1,7 @@
 #include "transport/integrator.h"
 
 #include "transport/bdpt.h"
+#include "transport/coverage.h"
 #include "transport/light_tracer.h"
 #include "transport/mlt/mmlt.h"
 #include "transport/mlt/pssmlt.h"
@@ -22,8 +23,10 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
     if (name == "path") return std::make_unique<PathTracer>(scene, maxDepth);
     if (name == "light" || name == "bdpt" || name == "pssmlt" || name == "mmlt" ||
         name == "mlt") {
-        if (!scene.camera().hasImportance())
-            throw InputError("integrator \"" + name + "\" connects light paths to the lens and needs a perspective camera");
+        // Light tracing and Veach's lens mutations need the camera's importance; BDPT and the
+        // primary-sample chains do without its t = 1 strategies.
+        if ((name == "light" || name == "mlt") && !scene.camera().hasImportance())
+            throw InputError("integrator \"" + name + "\" " + lensRequirement(name));
         if (name == "light") return std::make_unique<LightTracer>(scene, maxDepth);
         if (name == "pssmlt" || name == "mmlt" || name == "mlt") {
             const RenderSettings& st = scene.settings();

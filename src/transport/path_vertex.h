@@ -17,7 +17,7 @@ enum class VertexKind : uint8_t { Camera, Light, Surface };
 struct PathVertex {
     VertexKind kind = VertexKind::Surface;
     TransportMode mode = TransportMode::Radiance;  // which subpath built it
-    bool delta = false;     // scattered by a specular lobe, or a delta light's position
+    bool delta = false;     // scattered by a specular lobe, a delta light's position, or a camera no connection reaches
     bool infinite = false;  // at infinity: a light vertex of an infinite or distant light,
                             // or where a camera ray escaped
     bool nonSpecular = false;  // surfaces: the BxDF has a diffuse or glossy lobe

@@ -115,7 +115,6 @@ void checkRenderable(const Scene& scene, const Integrator& integrator, const Ren
     if (scene.settings().spectral) requireSpectralSupport(integrator, scene.settings().integrator);
     requireFilmMemory(scene, integrator, options);
     if (auto* veach = dynamic_cast<const VeachMLTIntegrator*>(&integrator)) requireVeachMLTSupport(scene, *veach);
-    if (auto* mlt = dynamic_cast<const MetropolisIntegrator*>(&integrator)) requireMetropolisSupport(scene, *mlt);
 }
 
 RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options) {

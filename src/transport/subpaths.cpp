@@ -28,9 +28,18 @@ int Subpaths::cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, 
     cam.p = ray.o;
     cam.time = ray.time;
     cam.beta = Spectrum(1.0f);
-    float pdfDir = scene_.camera().generatedRayPdfDir(ray);
     ++stats.cameraPaths;
-    if (!(pdfDir > 0)) return 1;
+    float pdfDir = 1;
+    if (scene_.camera().hasImportance()) {
+        pdfDir = scene_.camera().generatedRayPdfDir(ray);
+        if (!(pdfDir > 0)) return 1;
+    } else {
+        // An orthographic, spherical or realistic camera cannot be reached by a connection
+        // (no strategy with t = 1): marked delta, the MIS weights leave those strategies out
+        // (thesis sec. 10.3.5), and the direction density, which only they would use, is a
+        // placeholder.
+        cam.delta = true;
+    }
     int n = maxVertices > 0 ? std::min(maxVertices, maxCameraVertices()) : maxCameraVertices();
     return 1 + randomWalk(ray, cam.beta, pdfDir, sampler, scratch, stats, path + 1, n - 1, TransportMode::Radiance,
                           kCameraStartDimensions, lambda);

@@ -144,7 +144,8 @@ std::vector<Variant> agreementVariants(const std::string& dir) {
     };
     auto none = [](Box&) {};
     const std::set<std::string> noLight{"light"};
-    const std::set<std::string> lensless{"light", "bdpt", "pssmlt", "mmlt", "mlt"};
+    // Cameras without importance: light tracing and Veach's lens mutations need it.
+    const std::set<std::string> lensless{"light", "mlt"};
 
     // ---- lights ----
     box("base", none);
@@ -343,6 +344,22 @@ AttributeEnd)";
         b.camera = R"(LookAt 0 0.5 2.2  0 0.5 0  0 1 0
 Camera "perspective" "float fov" [ 30 ] "float lensradius" [ 0.05 ] "float focaldistance" [ 2.2 ])";
     });
+    // The box through cameras that no connection reaches: BDPT and the chains without their
+    // t = 1 strategies against the path tracer.
+    box("camera/orthographic", [](Box& b) {
+        b.camera = R"(LookAt 0 0.5 2.2  0 0.5 0  0 1 0
+Camera "orthographic" "float screenwindow" [ -0.55 0.55 -0.55 0.55 ])";
+    }, lensless);
+    box("camera/spherical", [](Box& b) {
+        b.camera = R"(LookAt 0 0.5 0.3  0 0.5 0  0 1 0
+Camera "spherical" "string mapping" "equalarea")";
+    }, lensless);
+    box("camera/realistic", [&](Box& b) {
+        b.camera = R"(LookAt 0 0.5 2.2  0 0.5 0  0 1 0
+Camera "realistic" "string lensfile" [ ")" + data + R"(/lenses/dgauss.50mm.dat" ] "float aperturediameter" [ 8 ]
+  "float focusdistance" [ 2.2 ])";
+        b.light = quadLight(R"("rgb L" [ 125 125 125 ])");  // the lens passes 1/25 of a pinhole's light
+    }, lensless)->sppScale = 2;
     auto exactFurnace = [&](const std::string& name, const std::string& camera, double albedo, int maxDepth,
                             std::set<std::string> cannot) {
         Variant var;

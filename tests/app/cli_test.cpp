@@ -177,7 +177,7 @@ TEST_F(Cli, BdptStrategyImagesAndIntegratorChecks) {
     }
     ps::Image s = ps::readImage((strategies / "s1_t2.exr").string());
     EXPECT_EQ(s.width, 32);
-    // Strategy images only come from BDPT; light tracing and BDPT need a perspective camera.
+    // Strategy images only come from BDPT; light tracing needs a perspective camera.
     Result wrong = run("render --quiet --integrator path --bdpt-strategies " + strategies.string() + " " + scene);
     EXPECT_EQ(wrong.status, 2);
     EXPECT_NE(wrong.out.find("--integrator bdpt"), std::string::npos) << wrong.out;

@@ -64,9 +64,10 @@ TEST(VerifyCli, LeavesOutWhatCannotBeSampledAndRefusesBadInput) {
     std::string ortho = kBox;
     ortho.replace(ortho.find("Camera \"perspective\""), 20, "Camera \"orthographic\"");
     std::ofstream(d.dir / "ortho.pbrt") << ortho;
-    auto r = ps::test::runPathspace("verify " + (d.dir / "ortho.pbrt").string() + " --spp 4 --runs 3 --map " +
-                                    (d.dir / "m.png").string() + " --json " + (d.dir / "r.json").string());
-    EXPECT_EQ(r.status, 3) << r.out;  // only path can render it: nothing to compare
+    auto r = ps::test::runPathspace("verify " + (d.dir / "ortho.pbrt").string() +
+                                    " --integrators path,light --spp 4 --runs 3 --map " + (d.dir / "m.png").string() +
+                                    " --json " + (d.dir / "r.json").string());
+    EXPECT_EQ(r.status, 3) << r.out;  // only path can render it of these two: nothing to compare
     EXPECT_NE(r.out.find("needs a perspective camera"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("nothing to compare"), std::string::npos) << r.out;
     r = ps::test::runPathspace(d.args("--integrators path,nope"));

@@ -45,7 +45,7 @@ CameraSample MetropolisIntegrator::filmSample(PrimarySampleSampler& sampler) con
     CameraSample cs;
     cs.pFilm = {-margin_.x + u.x * filmSize_.x, -margin_.y + u.y * filmSize_.y};
     cs.pLens = sampler.get2D();
-    if (!(scene_.camera().params().lensRadius > 0)) cs.pLens = Vec2(0.5f, 0.5f);
+    if (!scene_.camera().usesLensSample()) cs.pLens = Vec2(0.5f, 0.5f);
     if (scene_.hasMotion()) {
         // The path's time: a camera-stream value past every block the camera walk reads.
         sampler.seekDimension(bdpt_.subpaths().timeDimension());
@@ -66,10 +66,12 @@ void MetropolisIntegrator::bdptSample(PrimarySampleSampler& sampler, ChainEvalua
                                       std::vector<BDPTIntegrator::PathContribution>& out) const {
     CameraSample cs = filmSample(sampler);
     SampledWavelengths* lambda = wavelengths(sampler, ev);
-    Ray ray = scene_.camera().generateRay(cs);
-    bdpt_.contributions(ray, cs.pFilm, sampler, ev.scratch, ev.stats, out, -1, lambda);
+    float weight = 1;
+    Ray ray = scene_.camera().generateRay(cs, &weight);
+    out.clear();
+    if (weight > 0) bdpt_.contributions(ray, cs.pFilm, sampler, ev.scratch, ev.stats, out, -1, lambda);
     ev.scratch.reset();
-    for (BDPTIntegrator::PathContribution& c : out) c.L = toRendering(c, ev);
+    for (BDPTIntegrator::PathContribution& c : out) c.L = toRendering(c, ev) * weight;
 }
 
 namespace {
@@ -222,15 +224,8 @@ void MetropolisIntegrator::bootstrapSample(PrimarySampleSampler& sampler, int, d
     if (ev.sample.f > 0) out.push_back({ev.sample.strategy, scale * ev.sample.f, ev.sample.f});
 }
 
-void requireMetropolisSupport(const Scene& scene, const MetropolisIntegrator& integrator) {
-    if (!scene.camera().hasImportance())
-        throw InputError(std::string("integrator \"") + integrator.name() +
-                         "\" splats every path onto the film and needs a perspective camera");
-}
-
 RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& integrator, const RenderOptions& options) {
     const std::string name = integrator.name();
-    requireMetropolisSupport(scene, integrator);
     const MetropolisParams& mp = integrator.params();
     const PixelBounds& bounds = scene.pixelBounds();
     const Camera::Params& cp = scene.camera().params();

@@ -178,7 +178,6 @@ double finishChains(const Scene& scene, const Film& film, const RenderOptions& o
 // The Markov-chain driver: options.spp is the number of mutations per film pixel (crop
 // region); threads, seed, time limit, cancellation and progress as for render().
 // Throws InputError for what the integrator does not render (before any work: every process alike).
-void requireMetropolisSupport(const Scene& scene, const MetropolisIntegrator& integrator);
 RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& integrator, const RenderOptions& options);
 
 }  // namespace ps

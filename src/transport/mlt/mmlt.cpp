@@ -22,8 +22,15 @@ MMLTIntegrator::MMLTIntegrator(const Scene& scene, int maxDepth, const Metropoli
 }
 
 StrategyChoice MMLTIntegrator::defaultChoice() const {
+    // A camera that no connection reaches has no t = 1 strategy (s = d + 1): it gets none of
+    // the samples of its depth.
+    const bool lensConnects = scene_.camera().hasImportance();
     std::vector<float> w;
-    for (const auto& [d, s] : strategies_) w.push_back(1.0f / float(strategiesOfDepth(d)));
+    for (const auto& [d, s] : strategies_) {
+        const bool reachesLens = d == 0 || s < d + 1 || lensConnects;
+        const int count = strategiesOfDepth(d) - (d > 0 && !lensConnects ? 1 : 0);
+        w.push_back(reachesLens ? 1.0f / float(count) : 0.0f);
+    }
     return {w, firstOfDepth_};
 }
 
@@ -33,11 +40,14 @@ void MMLTIntegrator::bootstrapSample(PrimarySampleSampler& sampler, int depth, d
     out.clear();
     CameraSample cs = filmSample(sampler);
     SampledWavelengths* lambda = wavelengths(sampler, ev);
-    Ray ray = scene_.camera().generateRay(cs);
-    bdpt_.contributions(ray, cs.pFilm, sampler, ev.scratch, ev.stats, ev.contributions, depth, lambda);
+    float cameraWeight = 1;
+    Ray ray = scene_.camera().generateRay(cs, &cameraWeight);
+    ev.contributions.clear();
+    if (cameraWeight > 0)
+        bdpt_.contributions(ray, cs.pFilm, sampler, ev.scratch, ev.stats, ev.contributions, depth, lambda);
     ev.scratch.reset();
     for (BDPTIntegrator::PathContribution& c : ev.contributions) {
-        c.L = toRendering(c, ev);
+        c.L = toRendering(c, ev) * cameraWeight;
         const int k = firstOfDepth_[size_t(depth)] + c.s;
         const double B = ev.brightness(c.pRaster);
         const double weight = scale * c.L.luminance() / B;
@@ -77,10 +87,12 @@ void MMLTIntegrator::evaluate(PrimarySampleSampler& sampler, const StrategyChoic
 
     CameraSample cs = filmSample(sampler);
     SampledWavelengths* lambda = wavelengths(sampler, ev);
-    Ray ray = scene_.camera().generateRay(cs);
+    float cameraWeight = 1;
+    Ray ray = scene_.camera().generateRay(cs, &cameraWeight);
     BDPTIntegrator::PathContribution c;
-    if (pmf > 0 && bdpt_.strategyContribution(ray, cs.pFilm, s, t, sampler, ev.scratch, ev.stats, c, lambda)) {
-        c.L = toRendering(c, ev) / pmf;
+    if (pmf > 0 && cameraWeight > 0 &&
+        bdpt_.strategyContribution(ray, cs.pFilm, s, t, sampler, ev.scratch, ev.stats, c, lambda)) {
+        c.L = toRendering(c, ev) * cameraWeight / pmf;
         const double f = c.L.luminance() / ev.brightness(c.pRaster);
         if (std::isfinite(f) && f > 0) {
             out.f = f;

@@ -1,4 +1,6 @@
 #include "transport/mlt/veach/veach_mlt.h"
+
+#include "transport/coverage.h"
 #include "transport/mlt/pilot_importance.h"
 
 #include <algorithm>
@@ -255,7 +257,7 @@ void loadChain(const PathCodec& codec, ByteReader in, Chain& ch) {
 
 void requireVeachMLTSupport(const Scene& scene, const VeachMLTIntegrator& integrator) {
     if (!scene.camera().hasImportance())
-        throw InputError("integrator \"mlt\" splats every path onto the film and needs a perspective camera");
+        throw InputError("integrator \"mlt\" " + lensRequirement("mlt"));
     if (integrator.space().maxVertices() > BidirectionalMutation::kMaxVertices)
         throw InputError("integrator \"mlt\" supports maxdepth up to " +
                          std::to_string(BidirectionalMutation::kMaxVertices - 2));
