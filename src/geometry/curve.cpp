@@ -277,6 +277,9 @@ int Curve::interaction(const Ray& r, float t, int embreePrim, float u, float v, 
     si.ns = n;
     si.dpdu = dcdu;
     si.tangentIsFrameAxis = false;
+    si.fibre = type_ == CurveType::Flat       ? FibreKind::FacingRay
+               : type_ == CurveType::Cylinder ? (flip_ ? FibreKind::TubeInward : FibreKind::Tube)
+                                              : FibreKind::None;
     si.uv = Vec2(u, clampf(vHit, 0, 1));
     if (material && material->needsShadingDerivatives()) {
         si.dpdv = dpdv;

@@ -1,5 +1,6 @@
 // What an integrator knows about a ray's hit point.
 #pragma once
+#include "geometry/fibre_kind.h"
 #include "math/frame.h"
 #include "math/vec.h"
 
@@ -26,6 +27,7 @@ struct SurfaceInteraction {
     // dpdu is already the unit tangent of the shading frame (orthogonal to ns), as triangles
     // with a fixed normal precompute it, so the frame needs no Gram-Schmidt step per hit.
     bool tangentIsFrameAxis = false;
+    FibreKind fibre = FibreKind::None;  // curves only (geometry/fibre_kind.h)
 
     Frame shadingFrame() const {
         return tangentIsFrameAxis ? Frame(dpdu, cross(ns, dpdu), ns) : Frame::fromNormalTangent(ns, dpdu);

@@ -52,6 +52,7 @@ double Np(double dphi, int p, double s, double gammaO, double gammaT) {
 }  // namespace
 
 struct HairBxDF::Lobes {
+    double h, gammaO;  // the offset across the fibre, asin(h)
     double sinThetaO, cosThetaO, phiO, gammaT;
     // theta_o tilted by the scales for each lobe (lobe kPMax untilted).
     std::array<double, kPMax + 1> sinThetaP, cosThetaP;
@@ -63,7 +64,7 @@ struct HairBxDF::Lobes {
 HairBxDF::HairBxDF(const HairParams& p) : BxDF(true) {
     h_ = clampd(p.h, -1, 1);
     eta_ = p.eta;
-    gammaO_ = std::asin(h_);
+    fibre_ = p.fibre;
     for (int c = 0; c < 4; ++c) sigmaA_[c] = clampd(p.sigmaA[c], 0, 1e30);  // also maps NaN to 0
     meanChannels_ = p.spectral ? 4 : 3;
     const double bm = p.betaM, bn = p.betaN;
@@ -81,8 +82,10 @@ HairBxDF::HairBxDF(const HairParams& p) : BxDF(true) {
     }
 }
 
-HairBxDF::Lobes HairBxDF::lobes(Vec3 wo) const {
+HairBxDF::Lobes HairBxDF::lobes(Vec3 wo, double h) const {
     Lobes L;
+    L.h = h;
+    L.gammaO = std::asin(h);
     L.sinThetaO = clampd(wo.x, -1, 1);
     L.cosThetaO = safeSqrtD(1 - L.sinThetaO * L.sinThetaO);
     L.phiO = std::atan2(double(wo.z), double(wo.y));
@@ -92,8 +95,8 @@ HairBxDF::Lobes HairBxDF::lobes(Vec3 wo) const {
     const double sinThetaT = L.sinThetaO / eta_, cosThetaT = safeSqrtD(1 - sinThetaT * sinThetaT);
     const double etaNum = safeSqrtD(eta_ * eta_ - L.sinThetaO * L.sinThetaO);
     double sinGammaT;  // h / eta', guarded where eta' is 0 or infinite
-    if (etaNum > 0) sinGammaT = clampd(h_ * L.cosThetaO / etaNum, -1, 1);
-    else sinGammaT = h_ == 0 || L.cosThetaO == 0 ? 0.0 : std::copysign(1.0, h_);
+    if (etaNum > 0) sinGammaT = clampd(h * L.cosThetaO / etaNum, -1, 1);
+    else sinGammaT = h == 0 || L.cosThetaO == 0 ? 0.0 : std::copysign(1.0, h);
     L.gammaT = std::asin(sinGammaT);
     const double cosGammaT = safeSqrtD(1 - sinGammaT * sinGammaT);
     // Length of one pass through the fibre (radius 1).
@@ -101,7 +104,7 @@ HairBxDF::Lobes HairBxDF::lobes(Vec3 wo) const {
 
     // Attenuation: Fresnel at the first intersection, then per pass absorption T and one
     // more Fresnel reflection per internal bounce; lobe kPMax sums the geometric series.
-    const double fr = fresnelDielectric(float(L.cosThetaO * safeSqrtD(1 - h_ * h_)), float(eta_));
+    const double fr = fresnelDielectric(float(L.cosThetaO * safeSqrtD(1 - h * h)), float(eta_));
     double sumAvg = 0;
     for (int c = 0; c < 4; ++c) {
         const double T = sigmaA_[c] == 0 ? 1.0 : std::exp(-sigmaA_[c] * pathLength);
@@ -141,7 +144,7 @@ Spectrum HairBxDF::radiance(const Lobes& L, Vec3 wi) const {
     const double dphi = std::atan2(double(wi.z), double(wi.y)) - L.phiO;
     std::array<double, 4> sum{0, 0, 0, 0};
     for (int p = 0; p <= kPMax; ++p) {
-        const double n = p < kPMax ? Np(dphi, p, s_, gammaO_, L.gammaT) : 1 / (2 * kPiD);
+        const double n = p < kPMax ? Np(dphi, p, s_, L.gammaO, L.gammaT) : 1 / (2 * kPiD);
         const double m = Mp(cosThetaI, L.cosThetaP[p], sinThetaI, L.sinThetaP[p], v_[p]);
         for (int c = 0; c < 4; ++c) sum[c] += m * n * L.ap[p][c];
     }
@@ -156,20 +159,47 @@ double HairBxDF::density(const Lobes& L, double sinThetaI, double cosThetaI, dou
     double pdf = 0;
     for (int p = 0; p <= kPMax; ++p) {
         if (L.apPdf[p] == 0) continue;
-        const double n = p < kPMax ? Np(dphi, p, s_, gammaO_, L.gammaT) : 1 / (2 * kPiD);
+        const double n = p < kPMax ? Np(dphi, p, s_, L.gammaO, L.gammaT) : 1 / (2 * kPiD);
         pdf += Mp(cosThetaI, L.cosThetaP[p], sinThetaI, L.sinThetaP[p], v_[p]) * L.apPdf[p] * n;
     }
     return pdf;
 }
 
+// The offset across the fibre of a ray leaving along w. On a tube it is geometric: sin of
+// w's azimuth from the normal, w.y / sqrt(1 - w.x^2) in the frame (z the normal, x the fibre,
+// y = z cross x), its sign flipped with the normal; whichever ray found the point, the
+// radiance form then has the h of the ray towards the camera. On a ribbon facing each ray,
+// or any other surface, it is the hit's own (uniform across the width).
+double HairBxDF::offsetFor(Vec3 w) const {
+    if (fibre_ != FibreKind::Tube && fibre_ != FibreKind::TubeInward) return h_;
+    const double p = safeSqrtD(1 - double(w.x) * w.x);
+    if (!(p > 0)) return 0;
+    return clampd((fibre_ == FibreKind::Tube ? w.y : -w.y) / p, -1, 1);
+}
+
+// The adjoint at a vertex a light path found (wo towards the light, wi towards the camera;
+// thesis sec. 5.2: f* |cos wi| must carry what the radiance form carries for the same path).
+// The lobes are not reciprocal (the attenuation and h belong to the exit direction), so the
+// radiance form runs with the directions exchanged, with wi's offset. On a ribbon facing
+// each ray, that ribbon faced the light's ray: a light path meets the fibre over its width
+// projected towards the light, P(wo) = sqrt(1 - sin^2 theta), where the camera sees it over
+// P(wi), not over the ribbon's cosine |wi.z|.
+Spectrum HairBxDF::adjoint(Vec3 wo, Vec3 wi) const {
+    const Spectrum swapped = radiance(lobes(wi, offsetFor(wi)), wo);
+    if (fibre_ != FibreKind::FacingRay) return swapped;
+    const double pO = safeSqrtD(1 - double(wo.x) * wo.x), pI = safeSqrtD(1 - double(wi.x) * wi.x);
+    const double cosO = std::fabs(double(wo.z)), cosI = std::fabs(double(wi.z));
+    if (!(pO > 0) || !(cosI > 0)) return {};
+    // radiance() divides by |wo.z|: the lobes' sum is that times |wo.z|.
+    return swapped * float(cosO * pI / (pO * cosI));
+}
+
 Spectrum HairBxDF::f(Vec3 wo, Vec3 wi, TransportMode mode) const {
-    // Importance: the adjoint, the radiance form with the directions exchanged.
-    if (mode == TransportMode::Importance) std::swap(wo, wi);
-    return radiance(lobes(wo), wi);
+    return mode == TransportMode::Importance ? adjoint(wo, wi) : radiance(lobes(wo, offsetFor(wo)), wi);
 }
 
 float HairBxDF::pdf(Vec3 wo, Vec3 wi, TransportMode mode) const {
-    const Lobes L = lobes(wo);
+    const Lobes L = lobes(wo, offsetFor(wo));
     if (!L.valid) return 0;
     const double sinThetaI = clampd(wi.x, -1, 1), cosThetaI = safeSqrtD(1 - sinThetaI * sinThetaI);
     const double dphi = std::atan2(double(wi.z), double(wi.y)) - L.phiO;
@@ -177,7 +207,7 @@ float HairBxDF::pdf(Vec3 wo, Vec3 wi, TransportMode mode) const {
 }
 
 std::optional<BSDFSample> HairBxDF::sample(Vec3 wo, float ucIn, Vec2 u, TransportMode mode) const {
-    const Lobes L = lobes(wo);
+    const Lobes L = lobes(wo, offsetFor(wo));
     if (!L.valid) return std::nullopt;
     // The lobe by its share of the attenuation; uc rescaled to pick the azimuth within it.
     double uc = clampd(ucIn, 0, 1);
@@ -197,14 +227,14 @@ std::optional<BSDFSample> HairBxDF::sample(Vec3 wo, float ucIn, Vec2 u, Transpor
     const double cosThetaI = safeSqrtD(1 - sinThetaI * sinThetaI);
 
     // The azimuth from Np (uniform for the last lobe).
-    const double dphi = p < kPMax ? exitAzimuth(p, gammaO_, L.gammaT) + sampleTrimmedLogistic(uc, s_) : 2 * kPiD * uc;
+    const double dphi = p < kPMax ? exitAzimuth(p, L.gammaO, L.gammaT) + sampleTrimmedLogistic(uc, s_) : 2 * kPiD * uc;
     // The adjoint's lobes lie at the mirrored azimuths (exit azimuths of -dphi).
     const double phiI = L.phiO + (mode == TransportMode::Radiance ? dphi : -dphi);
     const Vec3 wi(float(sinThetaI), float(cosThetaI * std::cos(phiI)), float(cosThetaI * std::sin(phiI)));
 
     const float pdf = float(density(L, sinThetaI, cosThetaI, dphi));
     if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
-    const Spectrum f = mode == TransportMode::Radiance ? radiance(L, wi) : radiance(lobes(wi), wo);
+    const Spectrum f = mode == TransportMode::Radiance ? radiance(L, wi) : adjoint(wo, wi);
     return BSDFSample{f, wi, pdf, uint8_t(kReflection | kGlossy), 1};
 }
 

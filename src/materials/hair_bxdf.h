@@ -27,6 +27,7 @@
 // the hit, so a light-tracing vertex has the light ray's h, not the camera side's.
 #pragma once
 #include <array>
+#include "geometry/fibre_kind.h"
 #include "materials/bxdf.h"
 #include "spectral/wavelengths.h"
 
@@ -40,6 +41,7 @@ struct HairParams {
     float betaN = 0.3f;     // azimuthal roughness, 0.01 .. 1
     float alphaDegrees = 2; // tilt of the cuticle scales
     bool spectral = false;  // sigmaA holds four wavelengths' values (else r, g, b and g)
+    FibreKind fibre = FibreKind::None;  // the shape it lies on: which adjoint applies (hair_bxdf.cpp)
 };
 
 class HairBxDF final : public BxDF {
@@ -61,12 +63,16 @@ public:
 
 private:
     struct Lobes;  // everything that depends on wo only (hair_bxdf.cpp)
-    Lobes lobes(Vec3 wo) const;
+    Lobes lobes(Vec3 wo, double h) const;  // h: the offset of the ray along wo
     // pbrt-v4's f(wo, wi), the radiance form.
     Spectrum radiance(const Lobes& L, Vec3 wi) const;
+    // f under importance transport (hair_bxdf.cpp says why it is not f(wi, wo)).
+    Spectrum adjoint(Vec3 wo, Vec3 wi) const;
+    double offsetFor(Vec3 w) const;  // h of a ray leaving along w
     double density(const Lobes& L, double sinThetaI, double cosThetaI, double dphi) const;
 
-    double h_, eta_, gammaO_;
+    double h_, eta_;
+    FibreKind fibre_;
     std::array<double, 4> sigmaA_;
     int meanChannels_;  // channels whose mean chooses the lobe: 3 (RGB) or 4 (spectral)
     std::array<double, kPMax + 1> v_;  // longitudinal variance per lobe

@@ -34,6 +34,7 @@ const BxDF* HairMaterial::bxdf(const MaterialEvalContext& ctx, ScratchBuffer& bu
     p.spectral = ctx.lambda != nullptr;
     // Outside [0, 1] (a mesh's own uv) v is clamped; pbrt-v4 requires it there.
     p.h = std::clamp(-1 + 2 * finiteOr(ctx.uv.y, 0.5f), -1.0f, 1.0f);
+    p.fibre = ctx.fibre;
     return buf.alloc<HairBxDF>(p);
 }
 

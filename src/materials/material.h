@@ -2,6 +2,7 @@
 // caller's ScratchBuffer (no heap traffic in the render loop).
 #pragma once
 #include <memory>
+#include "geometry/fibre_kind.h"
 #include "materials/bxdf.h"
 #include "materials/texture.h"
 #include "util/scratch.h"
@@ -13,6 +14,7 @@ class ShadingDetail;  // materials/shading_detail.h
 struct MaterialEvalContext : TextureEvalContext {
     Vec3 wo;     // world-space direction towards the previous vertex
     Vec3 dpdu;   // world-space tangent along u (anisotropic frames follow it)
+    FibreKind fibre = FibreKind::None;
 };
 
 class Material {

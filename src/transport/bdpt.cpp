@@ -156,8 +156,8 @@ void BDPTIntegrator::joinInner(const PathVertex& qs, const PathVertex& pt, PathS
         j.L = Spectrum();
         return;
     }
-    j.known.pt = atQs.pdfFwd * std::fabs(dot(pt.ng, w)) * invDist2;
-    j.known.qs = atPt.pdfFwd * std::fabs(dot(qs.ng, w)) * invDist2;
+    j.known.pt = atQs.pdfFwd * densityCos(pt, w) * invDist2;
+    j.known.qs = atPt.pdfFwd * densityCos(qs, w) * invDist2;
     j.known.ptMinus = atPt.pdfRev * pt.toPrevArea;
     j.known.qsMinus = atQs.pdfRev * qs.toPrevArea;
     j.haveKnown = true;

@@ -47,6 +47,7 @@ inline const BxDF* surfaceBxDF(SurfaceInteraction& si, ScratchBuffer& scratch, S
     ctx.uv = si.uv;
     ctx.wo = si.wo;
     ctx.dpdu = si.dpdu;
+    ctx.fibre = si.fibre;
     const Material* material = si.material->resolve(ctx);
     if (!material) return nullptr;
     if (maps) {

@@ -3,6 +3,8 @@
 // measure at this vertex, with which the forward walk and the reverse (adjoint) walk would
 // generate it. Shared by light tracing and bidirectional path tracing (thesis ch. 10).
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include "geometry/interaction.h"
 #include "lights/light.h"
@@ -23,6 +25,7 @@ struct PathVertex {
     bool nonSpecular = false;  // surfaces: the BxDF has a diffuse or glossy lobe
     bool flatShading = false;  // surfaces: ns == ng, so the adjoint shading factor is 1
     bool dispersive = false;   // surfaces (spectral mode): the BxDF follows lambda[0] alone
+    bool facesRay = false;     // on a flat curve (geometry/fibre_kind.h): see densityCos
     Spectrum beta;          // throughput of the subpath up to and including this vertex
     Vec3 p;
     Vec3 ng, ns;            // zero for points without a surface (pinhole, point lights)
@@ -53,6 +56,19 @@ struct PathVertex {
     }
 };
 
+// The cosine that turns a solid-angle density of a direction w arriving at v into an area
+// density there. A flat curve faces each ray, so the point a path meets has no normal of its
+// own: every technique's density is per unit of the fibre's area (its width times length),
+// which a ray along w crosses with the fibre's projected width, sqrt(1 - (w . axis)^2), not
+// with the cosine of a ribbon that faced some other ray. The shading frame's s is the axis.
+inline float densityCos(const PathVertex& v, Vec3 w) {
+    if (v.facesRay) {
+        const float a = dot(v.frame.s, w);
+        return std::sqrt(std::max(0.0f, 1 - a * a));
+    }
+    return std::fabs(dot(v.ng, w));
+}
+
 // The factor |cos theta_to| / d^2 that turns a solid-angle density at `from` of choosing the
 // direction to `to` into an area density at `to` (thesis eq. 8.10); 1 for vertices at
 // infinity, which keep solid-angle densities.
@@ -62,7 +78,7 @@ inline float areaFactor(const PathVertex& from, const PathVertex& to) {
     float d2 = lengthSquared(w);
     if (!(d2 > 0)) return 0;
     float invDist2 = 1 / d2;
-    return to.onSurface() ? std::fabs(dot(to.ng, w * std::sqrt(invDist2))) * invDist2 : invDist2;
+    return to.onSurface() ? densityCos(to, w * std::sqrt(invDist2)) * invDist2 : invDist2;
 }
 // areaFactor(a, b) and areaFactor(b, a) from one distance (a walk needs both at each vertex).
 inline void areaFactors(const PathVertex& a, const PathVertex& b, float* aToB, float* bToA) {
@@ -79,8 +95,8 @@ inline void areaFactors(const PathVertex& a, const PathVertex& b, float* aToB, f
     }
     float invDist2 = 1 / d2;
     Vec3 wn = w * std::sqrt(invDist2);
-    *aToB = b.onSurface() ? std::fabs(dot(b.ng, wn)) * invDist2 : invDist2;
-    *bToA = a.onSurface() ? std::fabs(dot(a.ng, -wn)) * invDist2 : invDist2;
+    *aToB = b.onSurface() ? densityCos(b, wn) * invDist2 : invDist2;
+    *bToA = a.onSurface() ? densityCos(a, wn) * invDist2 : invDist2;
 }
 inline float solidAngleToArea(const PathVertex& from, float pdf, const PathVertex& to) {
     return pdf * areaFactor(from, to);

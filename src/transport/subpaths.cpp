@@ -105,7 +105,7 @@ int Subpaths::continueLightSubpath(const LightOrigin& o, S& sampler, ScratchBuff
     if (v.infinite) {
         if (n > 0) {
             path[1].pdfFwd = o.pdfPos;
-            if (path[1].onSurface()) path[1].pdfFwd *= std::fabs(dot(o.direction, path[1].ng));
+            if (path[1].onSurface()) path[1].pdfFwd *= densityCos(path[1], o.direction);
         }
         v.pdfFwd = infiniteLightDensity(-o.direction);
     }
@@ -173,6 +173,7 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
         v.bxdf = bxdf;
         v.nonSpecular = (bxdf->flags() & (kDiffuse | kGlossy)) != 0;
         v.flatShading = si.ns == si.ng;
+        v.facesRay = si.fibre == FibreKind::FacingRay;
         v.dispersive = lambda && lambda->terminationRequests != terminationRequests;
         v.light = si.areaLight;
         v.beta = beta;
@@ -291,7 +292,7 @@ void Subpaths::emissionDensities(const PathVertex& v, const PathVertex& to, floa
         if (origin) *origin = scene_.lightPmf(v.light) * pdfPos;
         if (next && nextDefined) *next = pdfDir / d2;
     }
-    if (next && nextDefined && to.onSurface()) *next *= std::fabs(dot(to.ng, w));
+    if (next && nextDefined && to.onSurface()) *next *= densityCos(to, w);
 }
 
 float Subpaths::pdfLightOrigin(const PathVertex& v, const PathVertex& to) const {

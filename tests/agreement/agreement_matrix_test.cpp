@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 
 #include "render/scene_builder.h"
@@ -76,6 +77,10 @@ class AgreementMatrix : public ::testing::TestWithParam<size_t> {};
 
 TEST_P(AgreementMatrix, EveryIntegratorAgrees) {
     const Variant& v = variants()[GetParam()];
+    // PATHSPACE_AGREEMENT_DUMP=DIR writes the cell's scene to DIR/<test name>.pbrt, to render
+    // it on its own (with `pathspace verify`, or by another renderer).
+    if (const char* dir = std::getenv("PATHSPACE_AGREEMENT_DUMP"))
+        std::ofstream(std::string(dir) + "/" + testName(v.name) + ".pbrt") << v.scene;
     auto scene = load(v.scene, v.spectral);
 
     // Coverage: exactly the integrators the variant names cannot sample it.

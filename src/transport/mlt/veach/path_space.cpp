@@ -122,7 +122,7 @@ Spectrum PathSpace::contribution(const MltPath& x, Vec2* pRaster) const {
         Spectrum fs;
         bsdf(v, wo, wi, TransportMode::Radiance, &fs, nullptr);
         // The path tracer's shading cosine |wi.ns| in place of the geometric one in G.
-        const float cosG = std::fabs(dot(wi, v.ng));
+        const float cosG = cosAt(v, wi);
         if (!(cosG > 0)) return {};
         f *= fs * (std::fabs(dot(wi, v.ns)) / cosG) * geometry(v, x[size_t(i + 1)]);
     }

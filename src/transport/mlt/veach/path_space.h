@@ -234,8 +234,15 @@ inline Vec3 directionTo(const MltVertex& from, const MltVertex& to) {
     return normalize(to.p - from.p);
 }
 
-// |cos| at v of the direction w (1 for a point without a normal).
+// |cos| at v of the direction w (1 for a point without a normal). On a flat curve, which
+// faces each ray, the fibre's projected width sqrt(1 - (w . axis)^2) instead: the path's
+// measure there is the fibre's area, whichever ray found the point (as densityCos in
+// transport/path_vertex.h).
 inline float cosAt(const MltVertex& v, Vec3 w) {
+    if (v.kind == MltVertex::Kind::Surface && v.si.fibre == FibreKind::FacingRay) {
+        const float a = dot(v.frame.s, w);
+        return std::sqrt(std::max(0.0f, 1 - a * a));
+    }
     return (v.ng.x != 0 || v.ng.y != 0 || v.ng.z != 0) ? std::fabs(dot(v.ng, w)) : 1.0f;
 }
 
