@@ -1,6 +1,7 @@
 // The pathspace command line.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <iostream>
 #include <thread>
 
+#include "app/command_line.h"
 #include "app/exit_codes.h"
 #include "app/mc_command.h"
 #include "app/render_command.h"
@@ -37,8 +39,13 @@ int main(int argc, char** argv) {
     // those it did not meet itself (RenderCommand).
     if (!ps::distributed::isRoot()) ps::setWarningsQuiet(true);
     CLI::App app{"pathspace: a physically based renderer (Veach's robust Monte Carlo light transport).\n"
-                 "Exit status: 0 success, 1 internal error, 2 bad input, 130 interrupted (image so far written)."};
+                 "`pathspace SCENE.pbrt [options]` is `pathspace render SCENE.pbrt [options]`.\n"
+                 "Exit status: 0 success, 1 internal error, 2 bad input, 3 verify found a disagreement,\n"
+                 "130 interrupted (image so far written)."};
+    app.name("pathspace");
     app.require_subcommand(1);
+    app.formatter(ps::wrappingFormatter());
+    app.set_version_flag("--version", std::string("pathspace ") + PATHSPACE_VERSION);
     ps::RenderCommand render;
     render.attach(app);
     ps::McCommand mc;
@@ -50,7 +57,10 @@ int main(int argc, char** argv) {
     std::exception_ptr parseError;
     std::string parseMessage;
     try {
-        app.parse(argc, argv);
+        // CLI11 reads a vector of arguments last to first.
+        std::vector<std::string> args = ps::normaliseArguments(argc, argv);
+        std::reverse(args.begin(), args.end());
+        app.parse(args);
     } catch (const CLI::ParseError& e) {
         parseError = std::current_exception();
         parseMessage = e.what();

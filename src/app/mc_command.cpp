@@ -1,5 +1,7 @@
 #include "app/mc_command.h"
 
+#include "app/command_line.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -87,6 +89,7 @@ void McCommand::attach(CLI::App& app) {
     cmd_->add_option("--json", jsonFile_, "Write every measurement as JSON to this file");
     cmd_->add_option("--svg", svgFile_, "Write a log-log plot of RMSE against N (one panel per integrand and "
                                         "dimension, one line per technique) as SVG to this file");
+    refuseOptionsAsValues(cmd_);
 }
 
 int McCommand::run() {

@@ -4,14 +4,19 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <unistd.h>
 
+#include <tbb/task_arena.h>
+
+#include "app/command_line.h"
 #include "app/exit_codes.h"
 #include "app/output_checks.h"
 #include "image/image.h"
@@ -72,14 +77,20 @@ CLI::Validator probabilityCheck() {
     });
 }
 
-// A whole number >= 1 (CLI11 would accept "2.5" for an int by truncating it).
-CLI::Validator countCheck() {
-    return plainCheck("a whole number >= 1", "INT>=1", [](const std::string& t) {
-        char* end = nullptr;
-        long long v = std::strtoll(t.c_str(), &end, 10);
-        return end != t.c_str() && *end == '\0' && v >= 1 && v <= 2147483647LL;
-    });
+// A whole number in [lo, hi] (CLI11 would truncate "2.5" for an int, or say "Could not
+// convert"; a seed past 2^63 - 1 would be clamped in silence).
+CLI::Validator wholeCheck(long long lo, long long hi = 2147483647LL) {
+    const std::string range = hi == 2147483647LL ? ">= " + std::to_string(lo)
+                                                 : "from " + std::to_string(lo) + " to " + std::to_string(hi);
+    return plainCheck("a whole number " + range, lo == 0 ? "INT>=0" : "INT>=" + std::to_string(lo),
+                      [lo, hi](const std::string& t) {
+                          errno = 0;
+                          char* end = nullptr;
+                          long long v = std::strtoll(t.c_str(), &end, 10);
+                          return errno == 0 && end != t.c_str() && *end == '\0' && v >= lo && v <= hi;
+                      });
 }
+CLI::Validator countCheck() { return wholeCheck(1); }
 
 // out.exr -> out.variance.exr, next to the output and in its format.
 std::string variancePath(const std::string& output) {
@@ -120,6 +131,23 @@ void gatherWarnings() {
     }
 }
 
+// The summary's first line: what ran, as the user would name it.
+std::string summaryLine(const RenderSettings& s, int threads) {
+    static const std::map<std::string, std::string> kNames = {
+        {"path", "path tracing"},           {"light", "light tracing"},
+        {"bdpt", "bidirectional path tracing"}, {"pssmlt", "primary-sample-space MLT"},
+        {"mmlt", "multiplexed MLT"},        {"mlt", "Veach's MLT"}};
+    auto it = kNames.find(s.integrator);
+    std::string line = "integrator " + s.integrator + " (" + (it != kNames.end() ? it->second : s.integrator);
+    if (s.sceneIntegrator == "mlt" && s.integrator == "mmlt") line += ": the scene's Integrator \"mlt\", pbrt-v4's";
+    line += ")";
+    // The Metropolis integrators draw their own primary samples; the pixel sampler is unused.
+    if (s.integrator == "path" || s.integrator == "light" || s.integrator == "bdpt") line += " | sampler " + s.sampler;
+    line += std::string(" | ") + (s.spectral ? "spectral" : "rgb") + " colour | " + std::to_string(threads) +
+            (threads == 1 ? " thread" : " threads");
+    return line;
+}
+
 }  // namespace
 
 // What the scene file and the options make, alike on every process.
@@ -136,14 +164,16 @@ struct RenderCommand::Job {
 void RenderCommand::attach(CLI::App& app) {
     cmd_ = app.add_subcommand("render", "Render a pbrt-v4 scene file");
     cmd_->add_option("scene", scene_, "pbrt-v4 scene file")->required()->check(CLI::ExistingFile);
-    cmd_->add_option("--spp", spp_, "Samples per pixel (overrides the scene's Sampler pixelsamples)")->check(numberCheck(false));
+    cmd_->add_option("--spp", spp_, "Samples per pixel (overrides the scene's Sampler pixelsamples)")->check(wholeCheck(1));
     cmd_->add_option("--time", time_, "Time budget in seconds; the image so far is written when it runs out")
         ->check(numberCheck(false));
-    cmd_->add_option("--threads", threads_, "Worker threads (default: all cores)")->check(numberCheck(true));
-    cmd_->add_option("--seed", seed_, "Random seed (overrides the scene's; same seed and thread count = same image)")
-        ->check(numberCheck(true));
+    cmd_->add_option("--threads,--nthreads", threads_,
+                     "Worker threads (default: all cores; more than the machine has are cut to that)")
+        ->check(wholeCheck(0));
+    cmd_->add_option("--seed", seed_, "Random seed (overrides the scene's; the same seed gives the same image)")
+        ->check(wholeCheck(0, 9223372036854775807LL));
     cmd_->add_option("--maxdepth", maxDepth_, "Maximum number of scattering events (overrides the scene's)")
-        ->check(numberCheck(true));
+        ->check(wholeCheck(0));
     cmd_->add_option("--integrator", integrator_,
                      "Integrator: path (path tracing with MIS), light (light tracing: particles from the lights "
                      "splatted through the lens), bdpt (bidirectional path tracing, every strategy with MIS), pssmlt "
@@ -175,13 +205,21 @@ void RenderCommand::attach(CLI::App& app) {
                      "Extra output: variance = per-pixel variance of the pixel's mean luminance (grey image), "
                      "written next to each output as <stem>.variance.<ext>")
         ->check(CLI::IsMember({"variance"}));
-    cmd_->add_option("-o,--output", outputs_,
+    cmd_->add_option("-o,--output,--outfile", outputs_,
                      "Output image(s): .exr (float32), .png (sRGB 8-bit, clamped), .pfm; may be repeated. "
                      "Default: the scene's Film filename, relative to the current directory");
-    cmd_->add_option("--crop", crop_, "Crop window x0 x1 y0 y1 in [0,1] (y down), as pbrt's cropwindow")
+    cmd_->add_option("--crop,--cropwindow", crop_,
+                     "Crop window x0 x1 y0 y1 (or x0,x1,y0,y1) in [0,1], y down, as pbrt-v4's --cropwindow")
         ->expected(4)
         ->allow_extra_args(false);
-    cmd_->add_option("--stats", statsFile_, "Write render statistics as JSON to this file");
+    cmd_->add_option("--pixelbounds", pixelBounds_,
+                     "Render only pixels x0 <= x < x1, y0 <= y < y1 of the film, as pbrt-v4's --pixelbounds")
+        ->expected(4)
+        ->allow_extra_args(false);
+    cmd_->add_option("--stats", statsFile_,
+                     "Write the render statistics as JSON to this file; with no file (pbrt-v4's flag), print them "
+                     "after the render");
+    cmd_->add_flag("--stats-print", statsPrint_)->group("");  // `--stats` alone (normaliseArguments)
     cmd_->add_option("--checkpoint", checkpoint_,
                      "Write the film's exact sums to this file after a whole pass, every --checkpoint-every seconds "
                      "(atomically: a temporary file, flushed, renamed over it), to continue with --resume (path, "
@@ -254,6 +292,18 @@ void RenderCommand::attach(CLI::App& app) {
                      "the chains render every path)")
         ->check(CLI::NonNegativeNumber);
     cmd_->add_flag("--quiet", quiet_, "No progress bar or statistics on the terminal");
+
+    const std::pair<const char*, std::vector<const char*>> groups[] = {
+        {"Rendering", {"--spp", "--time", "--threads", "--seed", "--maxdepth", "--integrator", "--mis", "--sampler",
+                       "--adaptive", "--color", "--max-memory"}},
+        {"Output", {"--output", "--aov", "--crop", "--pixelbounds", "--stats", "--bdpt-strategies", "--quiet"}},
+        {"Checkpoints", {"--checkpoint", "--checkpoint-every", "--resume"}},
+        {"Metropolis (pssmlt, mmlt, mlt)",
+         {"--chains", "--bootstrap", "--large-step-probability", "--camera-step-probability", "--sigma",
+          "--strategy-pilot", "--two-stage", "--two-stage-black-level", "--mlt-mutations", "--mlt-direct"}}};
+    for (const auto& [group, names] : groups)
+        for (const char* name : names) cmd_->get_option(name)->group(group);
+    refuseOptionsAsValues(cmd_);
 }
 
 void RenderCommand::load(Job& job) {
@@ -314,12 +364,31 @@ void RenderCommand::load(Job& job) {
             settings.mltTwoStageBlackLevel = float(twoStageBlackLevel_);
         }
     }
+    const int W = scene->camera().params().xRes, H = scene->camera().params().yRes;
+    if (!crop_.empty() && !pixelBounds_.empty())
+        throw InputError("--crop and --pixelbounds both choose the pixels to render: give one");
     if (!crop_.empty()) {
-        int W = scene->camera().params().xRes, H = scene->camera().params().yRes;
+        for (float c : crop_)
+            if (!(c >= 0 && c <= 1)) {
+                char text[32];
+                std::snprintf(text, sizeof text, "%g", double(c));
+                throw InputError(std::string("--crop: every value must lie in [0, 1], not ") + text);
+            }
+        if (!(crop_[0] < crop_[1]) || !(crop_[2] < crop_[3]))
+            throw InputError("--crop x0 x1 y0 y1 needs x0 < x1 and y0 < y1");
         PixelBounds b = cropWindowToPixels(W, H, crop_.data());
-        if (b.width() <= 0 || b.height() <= 0) throw InputError("--crop: the crop window is empty");
+        if (b.width() <= 0 || b.height() <= 0) throw InputError("--crop: the crop window holds no pixel");
         scene->setPixelBounds(b);
     }
+    if (!pixelBounds_.empty()) {
+        const std::vector<int>& p = pixelBounds_;
+        if (p[0] < 0 || p[2] < 0 || p[1] > W || p[3] > H || p[0] >= p[1] || p[2] >= p[3])
+            throw InputError("--pixelbounds x0 x1 y0 y1 needs 0 <= x0 < x1 <= " + std::to_string(W) +
+                             " and 0 <= y0 < y1 <= " + std::to_string(H) + " (the film's resolution)");
+        scene->setPixelBounds(PixelBounds{p[0], p[1], p[2], p[3]});
+    }
+    // pbrt-v4 warns too: a scene without emitters renders black.
+    if (scene->lights().empty()) warning("the scene has no light source or emitting shape: the image will be black");
     job.outputs = outputs_;
     if (job.outputs.empty()) job.outputs.push_back(std::filesystem::path(settings.outputFile).filename().string());
     job.writeVariance = std::find(aovs_.begin(), aovs_.end(), "variance") != aovs_.end();
@@ -380,7 +449,11 @@ void RenderCommand::load(Job& job) {
     RenderOptions& opts = job.opts;
     opts.spp = settings.spp;
     opts.timeLimit = time_;
-    opts.threads = threads_;
+    const int cores = std::max(1, tbb::this_task_arena::max_concurrency());
+    if (threads_ > cores)
+        warning("--threads " + std::to_string(threads_) + ": this machine has " + std::to_string(cores) +
+                " hardware threads; using " + std::to_string(cores));
+    opts.threads = threads_ > 0 ? std::min(threads_, cores) : cores;
     opts.seed = settings.seed;
     opts.sampler = settings.sampler;
     opts.progress = !quiet_;
@@ -395,7 +468,22 @@ void RenderCommand::load(Job& job) {
 }
 
 void RenderCommand::checkRootsFiles(const Job& job, CheckpointState& resumed) {
-    for (const std::string& o : job.outputs) checkWritable(o);
+    // Every file the render writes, by the words that name it: two alike, or one that is an
+    // input, would lose one of them.
+    std::vector<std::pair<std::string, std::string>> writes;
+    for (const std::string& o : job.outputs) {
+        checkWritable(o);
+        writes.push_back({o, "-o " + o});
+        if (job.writeVariance) writes.push_back({variancePath(o), "--aov variance's " + variancePath(o)});
+    }
+    if (!statsFile_.empty()) {
+        checkFileWritable(statsFile_, "--stats");
+        writes.push_back({statsFile_, "--stats " + statsFile_});
+    }
+    if (!checkpoint_.empty()) {
+        checkFileWritable(checkpoint_, "--checkpoint");
+        writes.push_back({checkpoint_, "--checkpoint " + checkpoint_});
+    }
     if (job.bdpt) {
         std::error_code ec;
         std::filesystem::create_directories(strategiesDir_, ec);
@@ -409,6 +497,21 @@ void RenderCommand::checkRootsFiles(const Job& job, CheckpointState& resumed) {
         if (!f) throw InputError("--checkpoint \"" + checkpoint_ + "\": cannot write \"" + probe + "\"");
         std::fclose(f);
         std::filesystem::remove(probe);
+    }
+    namespace fs = std::filesystem;
+    auto same = [](const std::string& a, const std::string& b) {
+        std::error_code ec;
+        return fs::weakly_canonical(fs::absolute(a, ec), ec) == fs::weakly_canonical(fs::absolute(b, ec), ec);
+    };
+    for (size_t i = 0; i < writes.size(); ++i) {
+        for (size_t k = i + 1; k < writes.size(); ++k)
+            if (same(writes[i].first, writes[k].first))
+                throw InputError(writes[i].second + " and " + writes[k].second + " name the same file");
+        if (same(writes[i].first, scene_))
+            throw InputError(writes[i].second + " would write over the scene file");
+        // --resume F --checkpoint F continues and keeps saving: F is read before it is written.
+        if (!resume_.empty() && same(writes[i].first, resume_) && writes[i].second.rfind("--checkpoint", 0) != 0)
+            throw InputError(writes[i].second + " would write over the checkpoint it resumes");
     }
 }
 
@@ -485,6 +588,16 @@ int RenderCommand::run() {
     for (const auto& [purpose, t] : distributed::trafficByPurpose())
         byPurpose[purpose] = {{"bytes", t.bytes}, {"seconds", t.seconds}};
 
+    // A crop keeps its place in the film (the EXR's data window inside its display window).
+    const PixelBounds& pb = scene->pixelBounds();
+    const int filmW = scene->camera().params().xRes, filmH = scene->camera().params().yRes;
+    if (pb.width() != filmW || pb.height() != filmH)
+        for (Image* img : {&r.image, &r.variance}) {
+            img->filmWidth = filmW;
+            img->filmHeight = filmH;
+            img->x0 = pb.x0;
+            img->y0 = pb.y0;
+        }
     for (const std::string& o : outputs) {
         writeImage(o, r.image);
         if (writeVariance) writeImage(variancePath(o), r.variance);
@@ -494,6 +607,9 @@ int RenderCommand::run() {
             writeImage((std::filesystem::path(strategiesDir_) / (name + ".exr")).string(), image);
 
     double secs = std::max(r.seconds, 1e-9);
+    // A variance needs two samples of a pixel (or two half-buffers): below that it is unknown,
+    // not zero.
+    const bool noiseKnown = r.meanSpp >= 2;
     uint64_t rays = r.stats.rays + r.stats.shadowRays;
     nlohmann::json stats = {
         {"scene", scene_},
@@ -504,7 +620,7 @@ int RenderCommand::run() {
         {"adaptive", adaptive_.empty() ? "none" : adaptive_},
         {"resolution", {scene->camera().params().xRes, scene->camera().params().yRes}},
         {"pixels", scene->pixelBounds().area()},
-        {"threads", threads_},
+        {"threads", job.opts.threads},
         {"ranks", r.distributed.ranks},
         {"rank_samples", r.distributed.rankSamples},
         {"rank_seconds", r.distributed.rankSeconds},
@@ -527,36 +643,43 @@ int RenderCommand::run() {
         {"closest_hit_rays", r.stats.rays},
         {"shadow_rays", r.stats.shadowRays},
         {"rays_per_s", double(rays) / secs},
-        {"mean_pixel_variance", r.error.meanVariance},
-        {"mean_relative_variance", r.error.meanRelativeVariance},
-        {"efficiency", r.efficiency},
+        {"mean_pixel_variance", noiseKnown ? nlohmann::json(r.error.meanVariance) : nlohmann::json()},
+        {"mean_relative_variance", noiseKnown ? nlohmann::json(r.error.meanRelativeVariance) : nlohmann::json()},
+        {"efficiency", noiseKnown && std::isfinite(r.efficiency) ? nlohmann::json(r.efficiency) : nlohmann::json()},
         {"nonfinite_guarded", r.stats.guarded},
         {"nonfinite_samples_rejected", r.rejectedSamples},
         {"warnings", warningCount()},
         {"memory_limit_bytes", memoryLimit()},
     };
     const MetropolisStats& ms = r.metropolis;
-    if (ms.present)
+    // Veach's mlt has no large and small steps in primary sample space: those fields are
+    // pssmlt's and mmlt's alone.
+    const bool primarySample = settings.integrator != "mlt";
+    if (ms.present) {
         stats["metropolis"] = {
             {"b", ms.b},
             {"bootstrap_samples", ms.bootstrapSamples},
             {"pilot_samples", ms.pilotSamples},
             {"two_stage_samples", ms.twoStageSamples},
             {"chains", ms.chains},
-            {"large_step_probability", settings.mltLargeStepProbability},
-            {"sigma", settings.mltSigma},
-            {"camera_step_probability", settings.mltCameraStepProbability},
             {"mutations", ms.mutations},
             {"acceptance_rate", ms.acceptanceRate()},
-            {"large_steps", ms.proposedLarge},
-            {"large_step_acceptance_rate", MetropolisStats::rate(ms.acceptedLarge, ms.proposedLarge)},
-            {"small_steps", ms.proposedSmall},
-            {"small_step_acceptance_rate", MetropolisStats::rate(ms.acceptedSmall, ms.proposedSmall)},
             {"invalid_proposals", ms.invalidProposals},
             {"b_relative_error", ms.bRelativeError},
             {"rank_mutations", ms.rankMutations},
             {"rank_acceptance_rates", ms.rankAcceptance},
         };
+        if (primarySample) {
+            nlohmann::json& m = stats["metropolis"];
+            m["large_step_probability"] = settings.mltLargeStepProbability;
+            m["sigma"] = settings.mltSigma;
+            m["camera_step_probability"] = settings.mltCameraStepProbability;
+            m["large_steps"] = ms.proposedLarge;
+            m["large_step_acceptance_rate"] = MetropolisStats::rate(ms.acceptedLarge, ms.proposedLarge);
+            m["small_steps"] = ms.proposedSmall;
+            m["small_step_acceptance_rate"] = MetropolisStats::rate(ms.acceptedSmall, ms.proposedSmall);
+        }
+    }
     if (ms.present) {
         // Per path depth: its share of the image and, for mmlt, its proposals' acceptance.
         nlohmann::json depths = nlohmann::json::array();
@@ -584,35 +707,44 @@ int RenderCommand::run() {
     const bool clamped = std::isfinite(settings.maxComponentValue);
     constexpr const char* kClampNote = "biased: energy is lost where the clamp acts";
     if (clamped) stats["max_component_value"] = {{"value", settings.maxComponentValue}, {"note", kClampNote}};
+    if (statsPrint_) std::printf("%s\n", stats.dump(2).c_str());
     if (!statsFile_.empty()) {
         std::ofstream f(statsFile_);
         if (!f) throw InputError("--stats: cannot write \"" + statsFile_ + "\"");
         f << stats.dump(2) << "\n";
     }
     if (!quiet_) {
+        std::printf("%s\n", summaryLine(settings, job.opts.threads).c_str());
         std::printf("wrote %s", outputs[0].c_str());
         for (size_t i = 1; i < outputs.size(); ++i) std::printf(", %s", outputs[i].c_str());
         std::printf("\n");
-        std::printf("time %.3f s | %.1f spp (target %d) | %.3g camera paths/s | %.3g rays (%.3g closest, %.3g shadow) | "
+        // Light tracing traces no camera paths: its rate is of light paths.
+        const bool lightOnly = r.stats.cameraPaths == 0 && r.stats.lightPaths > 0;
+        std::printf("time %.3f s | %.1f spp (target %d) | %.3g %s paths/s | %.3g rays (%.3g closest, %.3g shadow) | "
                     "%.3g rays/s | non-finite: %llu guarded, %lld rejected\n",
-                    r.seconds, r.meanSpp, r.targetSpp, double(r.stats.cameraPaths) / secs, double(rays),
-                    double(r.stats.rays), double(r.stats.shadowRays), double(rays) / secs,
+                    r.seconds, r.meanSpp, r.targetSpp,
+                    double(lightOnly ? r.stats.lightPaths : r.stats.cameraPaths) / secs, lightOnly ? "light" : "camera",
+                    double(rays), double(r.stats.rays), double(r.stats.shadowRays), double(rays) / secs,
                     (unsigned long long)r.stats.guarded, r.rejectedSamples);
-        std::printf("noise estimate: mean relative variance %.3g, efficiency 1/(V T) %.3g\n", r.error.meanRelativeVariance,
-                    r.efficiency);
+        if (noiseKnown)
+            std::printf("noise estimate: mean relative variance %.3g, efficiency 1/(V T) %.3g\n",
+                        r.error.meanRelativeVariance, r.efficiency);
+        else
+            std::printf("noise estimate: n/a (%s)\n", r.meanSpp < 2 ? "fewer than 2 samples per pixel" : "no variance");
         if (clamped)
             std::printf("clamp: Film \"maxcomponentvalue\" %g (%s)\n", double(settings.maxComponentValue), kClampNote);
         if (r.distributed.ranks > 1)
             std::printf("%d processes (MPI) | rank 0's collectives: %.3g MB in %.3f s\n", r.distributed.ranks,
                         r.distributed.reductionBytes / 1e6, r.distributed.reductionSeconds);
-        if (ms.present)
-            std::printf("metropolis: b %.4g | %d chains | %lld mutations | acceptance %.3f (large steps %.3f, small "
-                        "steps %.3f) | %lld invalid proposals\n",
-                        ms.b, ms.chains, ms.mutations, ms.acceptanceRate(),
-                        MetropolisStats::rate(ms.acceptedLarge, ms.proposedLarge),
-                        MetropolisStats::rate(ms.acceptedSmall, ms.proposedSmall), ms.invalidProposals);
         if (ms.present) {
-            std::printf("metropolis: b relative error %.3g | per depth: share", ms.bRelativeError);
+            std::printf("metropolis: b %.4g | %d chains | %lld mutations | acceptance %.3f", ms.b, ms.chains,
+                        ms.mutations, ms.acceptanceRate());
+            if (primarySample)
+                std::printf(" (large steps %.3f, small steps %.3f)", MetropolisStats::rate(ms.acceptedLarge, ms.proposedLarge),
+                            MetropolisStats::rate(ms.acceptedSmall, ms.proposedSmall));
+            std::printf(" | %lld invalid proposals\n", ms.invalidProposals);
+            std::printf("metropolis: b relative error %.3g", ms.bRelativeError);
+            if (!ms.depths.empty()) std::printf(" | per depth: share");
             for (const MetropolisStats::Depth& d : ms.depths) std::printf(" %.3f", d.share);
             if (ms.multiplexed) {
                 std::printf(" | chosen");

@@ -36,7 +36,9 @@ private:
     std::vector<std::string> aovs_;
     std::vector<std::string> outputs_;
     std::vector<float> crop_;
+    std::vector<int> pixelBounds_;  // --pixelbounds x0 x1 y0 y1
     std::string statsFile_;
+    bool statsPrint_ = false;  // `--stats` without a file
     std::string checkpoint_, resume_;  // --checkpoint FILE, --resume FILE
     double checkpointEvery_ = -1;      // --checkpoint-every SECONDS
     std::string maxMemory_;

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <unistd.h>
 
+#include "app/command_line.h"
 #include "app/exit_codes.h"
 #include "app/output_checks.h"
 #include "image/image.h"
@@ -137,6 +138,7 @@ void VerifyCommand::attach(CLI::App& app) {
     cmd_->add_option("--map", map_, "PNG map of the differences (default: SCENE-verify.png here)");
     cmd_->add_option("--json", json_, "JSON report (default: SCENE-verify.json here)");
     cmd_->add_flag("--quiet", quiet_, "print only the result line");
+    refuseOptionsAsValues(cmd_);
 }
 
 int VerifyCommand::run() {

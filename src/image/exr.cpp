@@ -55,6 +55,13 @@ Image readExr(const std::string& path, long long fileBytes) {
             throw InputError(path + ": EXR has no R, G, B or Y channels (it has: " + channelNames(ch) + ")");
 
         Image img{int(w), int(h)};
+        const Imath::Box2i disp = file.header().displayWindow();
+        if (disp != dw) {  // a crop: where it lies in its film
+            img.filmWidth = disp.max.x - disp.min.x + 1;
+            img.filmHeight = disp.max.y - disp.min.y + 1;
+            img.x0 = dw.min.x - disp.min.x;
+            img.y0 = dw.min.y - disp.min.y;
+        }
         Imf::FrameBuffer fb;
         const size_t xs = 3 * sizeof(float), ys = xs * size_t(w);
         char* base = reinterpret_cast<char*>(img.rgb.data());
@@ -86,20 +93,25 @@ std::vector<char> encodeExr(const Image& img) {
     std::vector<float> pixels(img.rgb.size());
     std::transform(img.rgb.begin(), img.rgb.end(), pixels.begin(), finiteForOutput);
     Imf::Header header(img.width, img.height);
+    if (img.filmWidth > 0 && img.filmHeight > 0) {
+        header.displayWindow() = Imath::Box2i({0, 0}, {img.filmWidth - 1, img.filmHeight - 1});
+        header.dataWindow() = Imath::Box2i({img.x0, img.y0}, {img.x0 + img.width - 1, img.y0 + img.height - 1});
+    }
     header.compression() = Imf::ZIP_COMPRESSION;
     for (const char* name : {"R", "G", "B"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
     Imf::FrameBuffer fb;
     const size_t xs = 3 * sizeof(float), ys = xs * size_t(img.width);
     char* base = reinterpret_cast<char*>(pixels.data());
-    fb.insert("R", Imf::Slice(Imf::FLOAT, base, xs, ys));
-    fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
-    fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
+    const Imath::Box2i dw = header.dataWindow();  // the slices start at its first pixel
+    fb.insert("R", Imf::Slice::Make(Imf::FLOAT, base, dw, xs, ys));
+    fb.insert("G", Imf::Slice::Make(Imf::FLOAT, base + sizeof(float), dw, xs, ys));
+    fb.insert("B", Imf::Slice::Make(Imf::FLOAT, base + 2 * sizeof(float), dw, xs, ys));
     MemoryOStream stream;
     {
         // The offset table is written when the file object is destroyed.
         Imf::OutputFile file(stream, header);
         file.setFrameBuffer(fb);
-        file.writePixels(img.height);
+        file.writePixels(img.height);  // from the data window's first row
     }
     return std::move(stream.data);
 }

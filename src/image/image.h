@@ -14,6 +14,9 @@ struct Image {
     int width = 0, height = 0;
     std::vector<float> rgb;  // 3 floats per pixel, row 0 = top, linear
     std::vector<float> alpha;  // empty unless the file has an alpha channel
+    // A crop of a larger film: the film's size and the crop's top-left pixel in it (EXR keeps
+    // them as the display and data windows, as pbrt-v4 writes a crop). 0: not a crop.
+    int filmWidth = 0, filmHeight = 0, x0 = 0, y0 = 0;
 
     Image() = default;
     Image(int w, int h) : width(w), height(h), rgb(size_t(w) * h * 3, 0.0f) {}

@@ -204,6 +204,7 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
     // Integrator.
     const ParamSet& ip = desc.integrator.params;
     std::string it = desc.integrator.type;
+    s.sceneIntegrator = it;
     s.maxDepth = ip.getInt("maxdepth", 5);
     if (s.maxDepth < 0) throw InputError(desc.integrator.loc, "Integrator: \"maxdepth\" must be >= 0");
     s.regularize = ip.getBool("regularize", false);

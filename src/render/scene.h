@@ -22,6 +22,7 @@ namespace ps {
 // What the scene file asks for; the command line may override each field.
 struct RenderSettings {
     std::string integrator = "path";
+    std::string sceneIntegrator;  // the scene's Integrator type as written ("mlt" runs our "mmlt")
     int maxDepth = 5;
     bool regularize = false;
     std::string sampler = "sobol";

@@ -158,7 +158,7 @@ std::vector<Case> cases() {
         {"missing_environment_map", "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
                                     "LightSource \"infinite\" \"string filename\" [ \"sky.exr\" ]\n",
          {}, 2, {":4:1: error: ", "sky.exr: cannot open image"}},
-        {"bad_option_value", kHeader + "Shape \"sphere\"", {}, 2, {"--spp", "expected a positive number, got \"-3\""},
+        {"bad_option_value", kHeader + "Shape \"sphere\"", {}, 2, {"--spp", "expected a whole number >= 1, got \"-3\""},
          "--spp -3"},
         {"unknown_integrator", kHeader + "Shape \"sphere\"", {}, 2, {"warp"}, "--integrator warp"},
         {"film_beyond_memory_limit", kHeader + "Shape \"sphere\"", {}, 2,

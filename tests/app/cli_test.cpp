@@ -253,7 +253,7 @@ TEST_F(Cli, MaxMemoryLimitsWhatARenderMayAllocate) {
     }
     Result help = run("render --help");
     EXPECT_NE(help.out.find("--max-memory"), std::string::npos);
-    EXPECT_NE(help.out.find("80% of physical memory"), std::string::npos);
+    EXPECT_NE(help.out.find("80% of physical"), std::string::npos);
 
     // A texture beyond the limit, named by its file; the limit is in the statistics.
     ps::Image tex(256, 256);
@@ -293,7 +293,8 @@ TEST_F(Cli, SeedAndThreadsOptions) {
     };
     for (const std::string integrator : {"path", "bdpt"}) {
         SCOPED_TRACE(integrator);
-        std::vector<float> a = render(integrator, 5, 1), b = render(integrator, 5, 4), c = render(integrator, 6, 4);
+        // Two threads: more than the machine has would be cut to its count (FrontDoor).
+        std::vector<float> a = render(integrator, 5, 1), b = render(integrator, 5, 2), c = render(integrator, 6, 2);
         EXPECT_EQ(a, b) << "the thread count changed the image";
         EXPECT_NE(a, c) << "the seed did not change the image";
     }

@@ -434,7 +434,7 @@ TEST_F(Mpi, InputErrorBeforeTheRenderIsEveryProcesss) {
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"render --quiet " + syntax + " -o " + path("a.pfm"), "syntax.pbrt:4:37: error: expected a directive"},
         {"render --quiet " + include + " -o " + path("a.pfm"), "include.pbrt:2:1: error: Include: cannot read the file"},
-        {"render --quiet " + scene() + " --spp 0 -o " + path("a.pfm"), "--spp: expected a positive number"},
+        {"render --quiet " + scene() + " --spp 0 -o " + path("a.pfm"), "--spp: expected a whole number >= 1"},
         {"render --quiet " + scene() + " --mlt-direct 1 -o " + path("a.pfm"), "--mlt-direct renders direct lighting"},
         {"render --quiet " + scene() + " -o " + path("a.txt"), "unsupported extension"},
     };
