@@ -608,8 +608,11 @@ int RenderCommand::run() {
 
     double secs = std::max(r.seconds, 1e-9);
     // A variance needs two samples of a pixel (or two half-buffers): below that it is unknown,
-    // not zero.
+    // not zero. After --resume the image's variance covers the earlier runs' samples too, and
+    // this run's time alone would overstate the efficiency 1/(V T): it is not given.
     const bool noiseKnown = r.meanSpp >= 2;
+    const bool resumedRun = r.resumedSpp > 0;
+    const bool efficiencyKnown = noiseKnown && !resumedRun && std::isfinite(r.efficiency);
     uint64_t rays = r.stats.rays + r.stats.shadowRays;
     nlohmann::json stats = {
         {"scene", scene_},
@@ -645,7 +648,7 @@ int RenderCommand::run() {
         {"rays_per_s", double(rays) / secs},
         {"mean_pixel_variance", noiseKnown ? nlohmann::json(r.error.meanVariance) : nlohmann::json()},
         {"mean_relative_variance", noiseKnown ? nlohmann::json(r.error.meanRelativeVariance) : nlohmann::json()},
-        {"efficiency", noiseKnown && std::isfinite(r.efficiency) ? nlohmann::json(r.efficiency) : nlohmann::json()},
+        {"efficiency", efficiencyKnown ? nlohmann::json(r.efficiency) : nlohmann::json()},
         {"nonfinite_guarded", r.stats.guarded},
         {"nonfinite_samples_rejected", r.rejectedSamples},
         {"warnings", warningCount()},
@@ -720,15 +723,23 @@ int RenderCommand::run() {
         std::printf("\n");
         // Light tracing traces no camera paths: its rate is of light paths.
         const bool lightOnly = r.stats.cameraPaths == 0 && r.stats.lightPaths > 0;
-        std::printf("time %.3f s | %.1f spp (target %d) | %.3g %s paths/s | %.3g rays (%.3g closest, %.3g shadow) | "
+        // After --resume: the totals are the whole render's, the rates this run's over its time.
+        char thisRun[96] = "";
+        if (resumedRun)
+            std::snprintf(thisRun, sizeof thisRun, ", %.1f of them this run, %d resumed", r.meanSpp - r.resumedSpp,
+                          r.resumedSpp);
+        std::printf("time %.3f s | %.1f spp (target %d%s) | %.3g %s paths/s | %.3g rays (%.3g closest, %.3g shadow) | "
                     "%.3g rays/s | non-finite: %llu guarded, %lld rejected\n",
-                    r.seconds, r.meanSpp, r.targetSpp,
+                    r.seconds, r.meanSpp, r.targetSpp, thisRun,
                     double(lightOnly ? r.stats.lightPaths : r.stats.cameraPaths) / secs, lightOnly ? "light" : "camera",
                     double(rays), double(r.stats.rays), double(r.stats.shadowRays), double(rays) / secs,
                     (unsigned long long)r.stats.guarded, r.rejectedSamples);
-        if (noiseKnown)
+        if (noiseKnown && efficiencyKnown)
             std::printf("noise estimate: mean relative variance %.3g, efficiency 1/(V T) %.3g\n",
                         r.error.meanRelativeVariance, r.efficiency);
+        else if (noiseKnown)
+            std::printf("noise estimate: mean relative variance %.3g, efficiency n/a (resumed: the variance is of every "
+                        "run's samples, the time of this run's)\n", r.error.meanRelativeVariance);
         else
             std::printf("noise estimate: n/a (%s)\n", r.meanSpp < 2 ? "fewer than 2 samples per pixel" : "no variance");
         if (clamped)
@@ -761,6 +772,8 @@ int RenderCommand::run() {
         if (r.resumedSpp > 0) std::printf("resumed from %s at %d spp\n", resume_.c_str(), r.resumedSpp);
         if (r.checkpoints > 0)
             std::printf("%d checkpoint(s) written to %s (the last after whole passes)\n", r.checkpoints, checkpoint_.c_str());
+        else if (!checkpoint_.empty())
+            std::printf("no checkpoint written to %s: the render ended before the first was due\n", checkpoint_.c_str());
         if (r.stoppedEarly) std::printf("stopped early: %s\n", interrupted ? "interrupted" : "time budget reached");
     }
     return interrupted ? kExitInterrupted : kExitOk;

@@ -2,6 +2,8 @@
 // name and type; a parameter of another type is left unused (and reported later), while a
 // matching one with the wrong number of values is an error.
 #include "scene/params.h"
+
+#include <algorithm>
 #include "scene/color_space.h"
 
 #include "scene/spectra.h"
@@ -110,10 +112,31 @@ void ParamSet::addDefault(Param p) {
 }
 
 const Param* ParamSet::find(const std::string& name) const {
+    if (std::find(asked.begin(), asked.end(), name) == asked.end()) asked.push_back(name);
     for (const Param& p : params)
         if (p.name == name) return &p;
     return nullptr;
 }
+
+namespace {
+
+// Levenshtein distance: insertions, deletions and substitutions of one character.
+size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+}  // namespace
 
 float ParamSet::getFloat(const std::string& name, float def) const {
     const Param* p = findTyped(*this, name, ParamType::Float);
@@ -260,8 +283,20 @@ std::string ParamSet::getTexture(const std::string& name) const {
 
 void ParamSet::reportUnused(const std::string& context) const {
     // ps::warning prints each distinct message once, so repeated reports stay quiet.
-    for (const Param& p : params)
-        if (!p.used && !p.fromAttribute) warning(p.loc, "unused parameter " + describe(p) + " in " + context);
+    for (const Param& p : params) {
+        if (p.used || p.fromAttribute) continue;
+        // The nearest name the directive knows, if it is a likely misspelling of this one.
+        std::string nearest;
+        size_t best = std::max<size_t>(1, p.name.size() / 3) + 1;
+        for (const std::string& known : asked)
+            if (known != p.name)
+                if (const size_t d = editDistance(p.name, known); d < best) {
+                    best = d;
+                    nearest = known;
+                }
+        warning(p.loc, "unused parameter " + describe(p) + " in " + context +
+                           (nearest.empty() ? "" : " (did you mean \"" + nearest + "\"?)"));
+    }
 }
 
 }  // namespace ps

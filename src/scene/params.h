@@ -83,6 +83,9 @@ public:
     // values are in it.
     const RGBColorSpace* colorSpace = nullptr;
     std::vector<Param> params;
+    // Every name the scene's reader asked for (find): the names this directive knows, from
+    // which reportUnused suggests the nearest to a misspelt one.
+    mutable std::vector<std::string> asked;
 };
 
 }  // namespace ps

@@ -202,4 +202,41 @@ TEST_F(FrontDoor, HelpFitsOneHundredColumnsInGroups) {
         EXPECT_NE(r.out.find(group), std::string::npos) << group;
 }
 
+TEST_F(FrontDoor, AMisspeltParameterSuggestsTheNearestKnownName) {
+    std::string typo = std::string(kScene);
+    typo.replace(typo.find("\"float radius\""), 14, "\"float radiuss\"");
+    Result r = run("render " + write("typo.pbrt", typo) + " --spp 1 --quiet -o " + at("t.exr"));
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("unused parameter \"float radiuss\" in Shape \"sphere\" (did you mean \"radius\"?)"),
+              std::string::npos)
+        << r.out;
+    // Nothing near: no suggestion.
+    std::string odd = std::string(kScene);
+    odd.replace(odd.find("\"float radius\""), 14, "\"float zzzzzzzzz\" [ 1 ] \"float radius\"");
+    r = run("render " + write("odd.pbrt", odd) + " --spp 1 --quiet -o " + at("o.exr"));
+    EXPECT_NE(r.out.find("unused parameter \"float zzzzzzzzz\""), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("did you mean"), std::string::npos) << r.out;
+}
+
+// After --resume the totals are the whole render's and the rates this run's; the efficiency,
+// whose variance covers every run but whose time would be this run's, is not given.
+TEST_F(FrontDoor, ResumedRendersSayWhatWasThisRunsAndCheckpointsWhatWasKept) {
+    const std::string ckpt = at("c.ckpt");
+    Result r = run("render " + scene + " --spp 1 -o " + at("a.exr") + " --checkpoint " + ckpt);
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("no checkpoint written"), std::string::npos) << r.out;
+    r = run("render " + scene + " --spp 20000 --time 0.3 -o " + at("b.exr") + " --checkpoint " + ckpt +
+            " --checkpoint-every 0");
+    EXPECT_EQ(r.status, 0) << r.out;
+    ASSERT_TRUE(fs::exists(ckpt)) << r.out;
+    r = run("render " + scene + " --spp 20000 --time 0.3 -o " + at("b.exr") + " --resume " + ckpt + " --stats " +
+            at("r.json"));
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("of them this run"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("efficiency n/a (resumed"), std::string::npos) << r.out;
+    const nlohmann::json j = readJson(at("r.json"));
+    EXPECT_TRUE(j["efficiency"].is_null());
+    EXPECT_GT(j["resumed_spp"].get<int>(), 0);
+}
+
 }  // namespace
