@@ -307,6 +307,7 @@ void RenderCommand::attach(CLI::App& app) {
 }
 
 void RenderCommand::load(Job& job) {
+    const HeldWarnings inFileOrder;  // released when the scene is ready, or on an error
     if (!maxMemory_.empty()) setMemoryLimit(*parseByteSize(maxMemory_));  // validated by the option
     SceneDescription desc = parseSceneFile(scene_);
     std::unique_ptr<Scene>& scene = job.scene;

@@ -1,9 +1,12 @@
 #include "util/error.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <mutex>
 #include <set>
+
+#include "util/input_files.h"
 
 namespace ps {
 
@@ -13,6 +16,23 @@ std::set<std::string> gSeen;
 std::vector<std::string> gInOrder;
 std::atomic<int> gCount{0};
 std::atomic<bool> gQuiet{false};
+// HeldWarnings: the messages waiting, with their places (file empty: none).
+bool gHolding = false;
+struct Held {
+    SourceLoc loc;
+    std::string text;
+};
+std::vector<Held> gHeld;
+
+void give(const std::string& msg, const SourceLoc* loc) {
+    std::lock_guard<std::mutex> lock(gMutex);
+    if (!gSeen.insert(msg).second) return;  // once per distinct message
+    gInOrder.push_back(msg);
+    ++gCount;
+    if (gQuiet) return;
+    if (gHolding) gHeld.push_back({loc ? *loc : SourceLoc{}, msg});
+    else std::fprintf(stderr, "warning: %s\n", printableMessage(msg).c_str());
+}
 }  // namespace
 
 namespace {
@@ -47,15 +67,33 @@ std::string printableMessage(std::string_view text) {
     return out;
 }
 
-void warning(const std::string& msg) {
+void warning(const std::string& msg) { give(msg, nullptr); }
+
+void warning(const SourceLoc& loc, const std::string& msg) { give(loc.str() + ": " + msg, &loc); }
+
+HeldWarnings::HeldWarnings() {
     std::lock_guard<std::mutex> lock(gMutex);
-    if (!gSeen.insert(msg).second) return;  // once per distinct message
-    gInOrder.push_back(msg);
-    ++gCount;
-    if (!gQuiet) std::fprintf(stderr, "warning: %s\n", printableMessage(msg).c_str());
+    gHolding = true;
 }
 
-void warning(const SourceLoc& loc, const std::string& msg) { warning(loc.str() + ": " + msg); }
+HeldWarnings::~HeldWarnings() {
+    const std::vector<std::string> files = inputFiles();
+    std::lock_guard<std::mutex> lock(gMutex);
+    auto fileRank = [&](const Held& h) {
+        if (h.loc.file.empty()) return files.size() + 1;  // no place: after every file
+        const auto it = std::find(files.begin(), files.end(), h.loc.file);
+        return it == files.end() ? files.size() : size_t(it - files.begin());
+    };
+    std::stable_sort(gHeld.begin(), gHeld.end(), [&](const Held& a, const Held& b) {
+        const size_t fa = fileRank(a), fb = fileRank(b);
+        if (fa != fb) return fa < fb;
+        if (a.loc.file.empty()) return false;  // keep the given order
+        return a.loc.line != b.loc.line ? a.loc.line < b.loc.line : a.loc.column < b.loc.column;
+    });
+    for (const Held& h : gHeld) std::fprintf(stderr, "warning: %s\n", printableMessage(h.text).c_str());
+    gHeld.clear();
+    gHolding = false;
+}
 
 int warningCount() { return gCount; }
 std::vector<std::string> warningMessages() {

@@ -54,4 +54,16 @@ std::vector<std::string> warningMessages();
 // Silence stderr output of warnings (they are still counted), e.g. in tests.
 void setWarningsQuiet(bool quiet);
 
+// While a scene loads, its warnings wait; released, those with a place in an input file come
+// out in file order (files in the order first read, then line and column), the others after
+// them in the order given. Reading a scene warns as it parses, building it warns later about
+// what parsing kept (unused parameters), which would otherwise interleave out of order.
+class HeldWarnings {
+public:
+    HeldWarnings();
+    ~HeldWarnings();  // releases them
+    HeldWarnings(const HeldWarnings&) = delete;
+    HeldWarnings& operator=(const HeldWarnings&) = delete;
+};
+
 }  // namespace ps

@@ -239,4 +239,18 @@ TEST_F(FrontDoor, ResumedRendersSayWhatWasThisRunsAndCheckpointsWhatWasKept) {
     EXPECT_GT(j["resumed_spp"].get<int>(), 0);
 }
 
+// Reading warns as it parses; building warns later about what parsing kept (an unused
+// parameter): the user reads them in file order all the same.
+TEST_F(FrontDoor, WarningsComeOutInFileOrder) {
+    std::string text = std::string(kScene);
+    text.replace(text.find("\"float fov\" [ 30 ]"), 19, "\"float fov\" [ 30 ] \"float fovv\" [ 1 ]");
+    text += "AttributeEnd\n";
+    Result r = run("render " + write("order.pbrt", text) + " --spp 1 --quiet -o " + at("w.exr"));
+    EXPECT_EQ(r.status, 0) << r.out;
+    const size_t early = r.out.find("unused parameter \"float fovv\""), late = r.out.find("AttributeEnd without");
+    ASSERT_NE(early, std::string::npos) << r.out;
+    ASSERT_NE(late, std::string::npos) << r.out;
+    EXPECT_LT(early, late) << r.out;
+}
+
 }  // namespace
