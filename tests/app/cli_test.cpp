@@ -25,15 +25,7 @@ Result run(const std::string& args) { return ps::test::runPathspace(args); }
 
 class Cli : public ps::test::CliDirTest {};
 
-const char* kSmallScene = R"(LookAt 0 0 5  0 0 0  0 1 0
-Camera "perspective" "float fov" [ 30 ]
-Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 24 ] "string filename" [ "small.exr" ]
-Sampler "independent" "integer pixelsamples" [ 4 ]
-WorldBegin
-LightSource "infinite" "rgb L" [ 1 1 1 ]
-Material "diffuse"
-Shape "sphere" "float radius" [ 1 ]
-)";
+using ps::test::kSmallScene;
 
 }  // namespace
 

@@ -25,15 +25,7 @@ protected:
         scene = write("s.pbrt", kScene);
     }
     std::string at(const std::string& name) const { return (dir / name).string(); }
-    static constexpr const char* kScene = R"(LookAt 0 0 5  0 0 0  0 1 0
-Camera "perspective" "float fov" [ 30 ]
-Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 24 ] "string filename" [ "small.exr" ]
-Sampler "independent" "integer pixelsamples" [ 4 ]
-WorldBegin
-LightSource "infinite" "rgb L" [ 1 1 1 ]
-Material "diffuse"
-Shape "sphere" "float radius" [ 1 ]
-)";
+    static constexpr const char* kScene = ps::test::kSmallScene;
     std::string scene;
 };
 
