@@ -82,7 +82,7 @@ CLI::Validator probabilityCheck() {
 CLI::Validator wholeCheck(long long lo, long long hi = 2147483647LL) {
     const std::string range = hi == 2147483647LL ? ">= " + std::to_string(lo)
                                                  : "from " + std::to_string(lo) + " to " + std::to_string(hi);
-    return plainCheck("a whole number " + range, lo == 0 ? "INT>=0" : "INT>=" + std::to_string(lo),
+    return plainCheck("a whole number " + range, "INT>=" + std::to_string(lo),
                       [lo, hi](const std::string& t) {
                           errno = 0;
                           char* end = nullptr;
@@ -492,13 +492,6 @@ void RenderCommand::checkRootsFiles(const Job& job, CheckpointState& resumed) {
         checkWritable((std::filesystem::path(strategiesDir_) / "s0_t2.exr").string());
     }
     if (!resume_.empty()) resumed = readCheckpoint(resume_, job.checkpointSettings);
-    if (!checkpoint_.empty()) {
-        const std::string probe = checkpoint_ + ".tmp";
-        std::FILE* f = std::fopen(probe.c_str(), "wb");
-        if (!f) throw InputError("--checkpoint \"" + checkpoint_ + "\": cannot write \"" + probe + "\"");
-        std::fclose(f);
-        std::filesystem::remove(probe);
-    }
     namespace fs = std::filesystem;
     auto same = [](const std::string& a, const std::string& b) {
         std::error_code ec;
@@ -735,14 +728,15 @@ int RenderCommand::run() {
                     double(lightOnly ? r.stats.lightPaths : r.stats.cameraPaths) / secs, lightOnly ? "light" : "camera",
                     double(rays), double(r.stats.rays), double(r.stats.shadowRays), double(rays) / secs,
                     (unsigned long long)r.stats.guarded, r.rejectedSamples);
-        if (noiseKnown && efficiencyKnown)
+        if (efficiencyKnown)
             std::printf("noise estimate: mean relative variance %.3g, efficiency 1/(V T) %.3g\n",
                         r.error.meanRelativeVariance, r.efficiency);
         else if (noiseKnown)
-            std::printf("noise estimate: mean relative variance %.3g, efficiency n/a (resumed: the variance is of every "
-                        "run's samples, the time of this run's)\n", r.error.meanRelativeVariance);
+            std::printf("noise estimate: mean relative variance %.3g, efficiency n/a (%s)\n", r.error.meanRelativeVariance,
+                        resumedRun ? "resumed: the variance is of every run's samples, the time of this run's"
+                                   : "no variance");
         else
-            std::printf("noise estimate: n/a (%s)\n", r.meanSpp < 2 ? "fewer than 2 samples per pixel" : "no variance");
+            std::printf("noise estimate: n/a (fewer than 2 samples per pixel)\n");
         if (clamped)
             std::printf("clamp: Film \"maxcomponentvalue\" %g (%s)\n", double(settings.maxComponentValue), kClampNote);
         if (r.distributed.ranks > 1)
