@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <span>
 #include <unistd.h>
 
 #include <tbb/task_arena.h>
@@ -229,7 +230,8 @@ void RenderCommand::attach(CLI::App& app) {
         ->check(numberCheck(true));
     cmd_->add_option("--resume", resume_,
                      "Continue the render whose checkpoint this is (same scene file and settings, any number of "
-                     "processes and threads): the image is the one an uninterrupted render gives")
+                     "processes and threads): the image is the one an uninterrupted render gives; a higher --spp "
+                     "than the checkpoint's continues it to more samples")
         ->check(CLI::ExistingFile);
     cmd_->add_option("--max-memory", maxMemory_,
                      "Memory limit for the film, images, meshes and strategy images, e.g. 512M, 8G, 1.5GiB "
@@ -547,13 +549,25 @@ int RenderCommand::run() {
     if (!resume_.empty()) {
         // Rank 0 says where the checkpoint it read stands.
         distributed::Purpose purpose("checkpoint");
-        std::vector<int64_t> where{0, 1, 0};
-        if (root) where = {resumed.samplesPerPixel, resumed.passSize, int64_t(resumed.partial.size())};
+        std::vector<int64_t> where{0, 1, 0, 0, 0};
+        if (root)
+            where = {resumed.samplesPerPixel, resumed.passSize, int64_t(resumed.partial.size()), resumed.spp,
+                     int64_t(resumed.sampleSets.size())};
         distributed::broadcastFromRoot(where);
         resumed.samplesPerPixel = int(where[0]);
         resumed.passSize = int(where[1]);
         resumed.partial.resize(size_t(where[2]));
+        resumed.spp = int(where[3]);
+        std::vector<int64_t> sets(resumed.sampleSets.begin(), resumed.sampleSets.end());
+        sets.resize(size_t(where[4]));
+        distributed::broadcastFromRoot(sets);
+        resumed.sampleSets.assign(sets.begin(), sets.end());
         distributed::broadcastFromRoot(resumed.partial);
+        // A raised --spp: the new samples are a set of their own (RenderOptions::sampleSets),
+        // which the checkpoints this render writes record.
+        job.opts.sampleSets = resumed.sampleSets;
+        if (job.opts.spp > resumed.spp) job.opts.sampleSets.push_back(resumed.spp);
+        if (!job.opts.sampleSets.empty()) job.checkpointSettings["sample_sets"] = job.opts.sampleSets;
     }
 
     std::signal(SIGINT, onSignal);
@@ -608,6 +622,9 @@ int RenderCommand::run() {
     const bool resumedRun = r.resumedSpp > 0;
     const bool efficiencyKnown = noiseKnown && !resumedRun && std::isfinite(r.efficiency);
     uint64_t rays = r.stats.rays + r.stats.shadowRays;
+    // Rates are this run's work over this run's time (after --resume, the totals are not).
+    const PathStats run = resume_.empty() ? r.stats : r.stats.since(resumed.stats);
+    const double runRays = double(run.rays + run.shadowRays);
     nlohmann::json stats = {
         {"scene", scene_},
         {"outputs", outputs},
@@ -634,12 +651,12 @@ int RenderCommand::run() {
         {"resumed_spp", r.resumedSpp},
         {"checkpoints", r.checkpoints},
         {"camera_paths", r.stats.cameraPaths},
-        {"camera_paths_per_s", double(r.stats.cameraPaths) / secs},
+        {"camera_paths_per_s", double(run.cameraPaths) / secs},
         {"light_paths", r.stats.lightPaths},
         {"rays", rays},
         {"closest_hit_rays", r.stats.rays},
         {"shadow_rays", r.stats.shadowRays},
-        {"rays_per_s", double(rays) / secs},
+        {"rays_per_s", runRays / secs},
         {"mean_pixel_variance", noiseKnown ? nlohmann::json(r.error.meanVariance) : nlohmann::json()},
         {"mean_relative_variance", noiseKnown ? nlohmann::json(r.error.meanRelativeVariance) : nlohmann::json()},
         {"efficiency", efficiencyKnown ? nlohmann::json(r.efficiency) : nlohmann::json()},
@@ -725,8 +742,8 @@ int RenderCommand::run() {
         std::printf("time %.3f s | %.1f spp (target %d%s) | %.3g %s paths/s | %.3g rays (%.3g closest, %.3g shadow) | "
                     "%.3g rays/s | non-finite: %llu guarded, %lld rejected\n",
                     r.seconds, r.meanSpp, r.targetSpp, thisRun,
-                    double(lightOnly ? r.stats.lightPaths : r.stats.cameraPaths) / secs, lightOnly ? "light" : "camera",
-                    double(rays), double(r.stats.rays), double(r.stats.shadowRays), double(rays) / secs,
+                    double(lightOnly ? run.lightPaths : run.cameraPaths) / secs, lightOnly ? "light" : "camera",
+                    double(rays), double(r.stats.rays), double(r.stats.shadowRays), runRays / secs,
                     (unsigned long long)r.stats.guarded, r.rejectedSamples);
         if (efficiencyKnown)
             std::printf("noise estimate: mean relative variance %.3g, efficiency 1/(V T) %.3g\n",
@@ -750,25 +767,39 @@ int RenderCommand::run() {
                             MetropolisStats::rate(ms.acceptedSmall, ms.proposedSmall));
             std::printf(" | %lld invalid proposals\n", ms.invalidProposals);
             std::printf("metropolis: b relative error %.3g", ms.bRelativeError);
-            if (!ms.depths.empty()) std::printf(" | per depth: share");
-            for (const MetropolisStats::Depth& d : ms.depths) std::printf(" %.3f", d.share);
+            // The depths up to the last whose share of the image shows at three digits (a
+            // maxdepth of 100 would print a hundred zeros per list).
+            size_t shown = ms.depths.size();
+            while (shown > 1 && ms.depths[shown - 1].share < 5e-4) --shown;
+            const std::span<const MetropolisStats::Depth> depths(ms.depths.data(), shown);
+            if (!depths.empty()) std::printf(" | per depth: share");
+            for (const MetropolisStats::Depth& d : depths) std::printf(" %.3f", d.share);
             if (ms.multiplexed) {
                 std::printf(" | chosen");
-                for (const MetropolisStats::Depth& d : ms.depths) std::printf(" %.3f", d.chosen);
+                for (const MetropolisStats::Depth& d : depths) std::printf(" %.3f", d.chosen);
                 std::printf(" | acceptance");
-                for (const MetropolisStats::Depth& d : ms.depths)
+                for (const MetropolisStats::Depth& d : depths)
                     std::printf(" %.3f", MetropolisStats::rate(d.accepted, d.proposed));
             }
+            if (shown < ms.depths.size())
+                std::printf(" | %zu deeper depths, each below 0.0005 of the image (--stats lists them)", ms.depths.size() - shown);
             std::printf("\n");
             for (const MetropolisStats::Kind& k : ms.kinds)
                 std::printf("metropolis: %s mutation: %lld proposed, %lld failed, acceptance %.3f\n", k.name.c_str(),
                             k.proposed, k.failed, MetropolisStats::rate(k.accepted, k.proposed));
         }
-        if (r.resumedSpp > 0) std::printf("resumed from %s at %d spp\n", resume_.c_str(), r.resumedSpp);
+        if (!resume_.empty()) {
+            std::printf("resumed from %s", resume_.c_str());
+            if (r.resumedSpp > 0) std::printf(" at %d spp", r.resumedSpp);
+            if (resumed.spp < opts.spp) std::printf("; --spp raised from its %d to %d", resumed.spp, opts.spp);
+            std::printf("\n");
+        }
         if (r.checkpoints > 0)
-            std::printf("%d checkpoint(s) written to %s (the last after whole passes)\n", r.checkpoints, checkpoint_.c_str());
+            std::printf("checkpoint %s (%d written) holds %s; --resume %s continues it, to a higher --spp too\n",
+                        checkpoint_.c_str(), r.checkpoints, r.checkpointKept.c_str(), checkpoint_.c_str());
         else if (!checkpoint_.empty())
-            std::printf("no checkpoint written to %s: the render ended before the first was due\n", checkpoint_.c_str());
+            std::printf("no checkpoint written to %s: the render stopped before it had anything to keep\n",
+                        checkpoint_.c_str());
         if (r.stoppedEarly) std::printf("stopped early: %s\n", interrupted ? "interrupted" : "time budget reached");
     }
     return interrupted ? kExitInterrupted : kExitOk;

@@ -16,8 +16,9 @@ namespace {
 
 constexpr char kMagic[8] = {'P', 'S', 'C', 'K', 'P', 'T', '\n', '\0'};
 // 2: the partial pass; 3: the chains' state; 4: the film's sums in units of 2^-40 (2^-64
-// before), which an earlier file's sums cannot be read as, so it is refused.
-constexpr uint32_t kVersion = 5;
+// before), which an earlier file's sums cannot be read as, so it is refused; 6: the two-stage
+// pilot map's tile size (a time budget may shrink the pilot, and its tiles with it).
+constexpr uint32_t kVersion = 6;
 constexpr uint32_t kByteOrder = 0x01020304;  // read back otherwise on a machine of the other order
 
 struct Header {
@@ -63,10 +64,14 @@ std::string fileDifferences(const nlohmann::json& want, const nlohmann::json& ha
     return d;
 }
 
-// "spp 64 here, 32 in the checkpoint; integrator ..." for every setting that differs.
+// The settings a resume may change: the sample count (raised) and, with it, the sample sets.
+bool mayChange(const std::string& key) { return key == "spp" || key == "sample_sets"; }
+
+// "seed 2 here, 1 in the checkpoint; integrator ..." for every setting that differs.
 std::string differences(const nlohmann::json& want, const nlohmann::json& have) {
     std::string d;
     for (const auto& [key, value] : want.items()) {
+        if (mayChange(key)) continue;
         const auto it = have.find(key);
         if (value.is_object() && it != have.end() && it->is_object()) {
             const std::string f = fileDifferences(value, *it);
@@ -169,6 +174,11 @@ CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& se
         const nlohmann::json m = nlohmann::json::parse(bytes.substr(headerBytes, h.metadataBytes));
         const std::string diff = differences(settings, m.at("settings"));
         if (!diff.empty()) refuse(path, "made for another render (" + diff + ")");
+        s.spp = m.at("settings").at("spp").get<int>();
+        s.sampleSets = m.at("settings").value("sample_sets", std::vector<int>());
+        if (settings.contains("spp") && settings.at("spp").get<int>() < s.spp)
+            refuse(path, "made for --spp " + std::to_string(s.spp) + ": a resume may raise --spp, not lower it (--spp " +
+                             settings.at("spp").dump() + " here)");
         s.samplesPerPixel = m.at("samples_per_pixel").get<int>();
         s.passSize = m.at("pass_size").get<int>();
         if (s.passSize < 1 || s.passSize > 64) refuse(path, "damaged: pass size " + std::to_string(s.passSize));

@@ -31,6 +31,10 @@ struct CheckpointState {
     // every chain's state, in chain order; empty for a uniform render. `samples` then counts
     // mutations.
     std::vector<char> chains;
+    // The render that wrote it: its --spp, and where its sample sets after the first begin
+    // (RenderOptions::sampleSets). A resume may raise --spp (never lower it).
+    int spp = 0;
+    std::vector<int> sampleSets;
 };
 
 // Writes atomically: a temporary file next to `path`, flushed to disk, then renamed over it,
@@ -40,7 +44,9 @@ void writeCheckpoint(const std::string& path, const nlohmann::json& settings, co
 
 // Reads and checks a checkpoint: throws InputError naming the file and what is wrong when it
 // is not one, is truncated or corrupt (checksum), or was made with other settings (listing
-// each that differs), so nothing is rendered or overwritten.
+// each that differs), so nothing is rendered or overwritten. Settings "spp" and
+// "sample_sets" are not compared: the checkpoint's go to CheckpointState::spp and
+// sampleSets, and a "spp" below the checkpoint's is refused.
 CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& settings);
 
 // A 64-bit hash of a file's bytes, in hexadecimal (the scene's identity in the settings).

@@ -27,6 +27,11 @@ struct PathStats {
         cameraPaths += o.cameraPaths; lightPaths += o.lightPaths; rays += o.rays; shadowRays += o.shadowRays; guarded += o.guarded;
         return *this;
     }
+    // What a run added to the counts `before` it (a resumed render's own work).
+    PathStats since(const PathStats& before) const {
+        return {cameraPaths - before.cameraPaths, lightPaths - before.lightPaths, rays - before.rays,
+                shadowRays - before.shadowRays, guarded - before.guarded};
+    }
 };
 
 // The BxDF at a surface hit (textures evaluated, `mix` resolved), allocated in scratch;

@@ -20,8 +20,8 @@ std::string formatSeconds(double s) {
 }  // namespace
 
 Monitor::Monitor(bool show, double timeLimit, const std::atomic<bool>* cancel, std::atomic<bool>& stop,
-                 const std::atomic<long long>& done, long long total)
-    : show_(show), timeLimit_(timeLimit), cancel_(cancel), stop_(stop), done_(done), total_(total),
+                 const std::atomic<long long>& done, long long total, const char* phase)
+    : show_(show), timeLimit_(timeLimit), cancel_(cancel), stop_(stop), done_(done), total_(total), phase_(phase),
       start_(std::chrono::steady_clock::now()), interactive_(isatty(fileno(stderr)) != 0), thread_([this] { run(); }) {}
 
 Monitor::~Monitor() {
@@ -56,7 +56,7 @@ void Monitor::print(bool final) {
     bar.resize(width, ' ');
     std::string eta = frac > 0 && !final ? formatSeconds(t / frac - t) : "0s";
     if (timeLimit_ > 0 && !final) eta = formatSeconds(std::max(0.0, std::min(timeLimit_ - t, t / std::max(frac, 1e-9) - t)));
-    std::fprintf(stderr, "\rrendering [%s] %5.1f%%  elapsed %s  eta %s   ", bar.c_str(), 100 * frac,
+    std::fprintf(stderr, "\r%s [%s] %5.1f%%  elapsed %s  eta %s   ", phase_, bar.c_str(), 100 * frac,
                  formatSeconds(t).c_str(), eta.c_str());
     std::fflush(stderr);
 }

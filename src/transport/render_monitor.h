@@ -11,9 +11,10 @@ namespace ps {
 class Monitor {
 public:
     // Sets `stop` once the time limit (seconds, 0 = none) has passed or *cancel is set;
-    // shows done/total as a progress bar when `show`.
+    // shows done/total as a progress bar when `show`, named `phase` ("rendering", or a
+    // Metropolis render's "bootstrap").
     Monitor(bool show, double timeLimit, const std::atomic<bool>* cancel, std::atomic<bool>& stop,
-            const std::atomic<long long>& done, long long total);
+            const std::atomic<long long>& done, long long total, const char* phase = "rendering");
     ~Monitor();
     double elapsed() const {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -30,6 +31,7 @@ private:
     std::atomic<bool>& stop_;
     const std::atomic<long long>& done_;
     long long total_;
+    const char* phase_;
     std::chrono::steady_clock::time_point start_;
     std::mutex m_;
     std::condition_variable cv_;

@@ -191,9 +191,10 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
         result.seconds = monitor.elapsed();
     }
     result.stats = passes.stats();
-    // Stopped early (a signal, --time): a last checkpoint, of everything taken so far, the
-    // stopped pass's samples included, so that no finished work is lost.
-    const bool finalCheckpoint = !complete && options.checkpoint && options.adaptive == AdaptiveMode::None;
+    // A last checkpoint, of everything taken: stopped early (a signal, --time), the stopped
+    // pass's samples included, so that no finished work is lost; at the end, so that a resume
+    // can raise --spp.
+    const bool finalCheckpoint = options.checkpoint && options.adaptive == AdaptiveMode::None;
     if (finalCheckpoint) {
         distributed::Purpose purpose("checkpoint");
         distributed::orToRoot(at.partial);
@@ -210,6 +211,12 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
         state.samples = std::accumulate(result.distributed.rankSamples.begin(), result.distributed.rankSamples.end(), 0LL) +
                         (resume ? resume->samples : 0);
         state.stats = result.stats;
+        int partial = 0;
+        for (uint64_t bits : state.partial) partial += bits != 0;
+        result.checkpointKept = std::to_string(state.samplesPerPixel) + " of " + std::to_string(spp) + " spp in every pixel";
+        if (partial > 0)
+            result.checkpointKept += ", and samples of the next pass in " + std::to_string(partial) + " of " +
+                                     std::to_string(state.partial.size()) + " pixels";
         options.checkpoint(state);
         ++result.checkpoints;
     }

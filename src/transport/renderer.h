@@ -32,8 +32,15 @@ struct RenderOptions {
     // once `checkpointEvery` seconds (>= 0) have passed since the last, sum the films on rank 0
     // and hand them to `checkpoint` there; and once more when the render stops early, with
     // the samples of the pass it stopped in (CheckpointState::partial).
+    // A render that ends writes a last checkpoint too, so that a resume can raise --spp.
     const CheckpointState* resume = nullptr;
     double checkpointEvery = -1;
+    // Where the sample sets after the first begin, ascending (uniform renders). A resume that
+    // raises --spp from N starts a set at N: indices from N on come from a sampler of its own
+    // seed sized for the new samples, so that both sets keep their stratification (each
+    // sampler's points are laid out for its own count) and the image is an unbiased mean of
+    // the two. Empty: one set, sized spp.
+    std::vector<int> sampleSets;
     std::function<void(const CheckpointState&)> checkpoint;
     // What the result holds besides the image, for a caller that will not show or write it
     // to leave out: the error estimate (result.error and efficiency), the variance image and
@@ -115,6 +122,7 @@ struct RenderResult {
     DistributedStats distributed;
     int resumedSpp = 0;   // samples per pixel the render resumed from (RenderOptions::resume)
     int checkpoints = 0;  // checkpoints written
+    std::string checkpointKept;  // what the last one holds ("64 spp in every pixel", ...)
 };
 
 // What a finished film gives every driver's result: the image (in the film's colour space),

@@ -1,5 +1,7 @@
 #include "transport/sample_passes.h"
 
+#include <algorithm>
+
 #include <tbb/parallel_for.h>
 
 #include "mc/rng.h"
@@ -22,7 +24,7 @@ SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, con
       hasMotion_(scene.hasMotion()), share_{distributed::rank(), distributed::size()},
       states_([this] {
           ThreadState s;
-          for (int k = 0; k < 2; ++k) s.samplers[k] = prototypes_[k]->clone();
+          for (const std::unique_ptr<Sampler>& p : prototypes_) s.samplers.push_back(p->clone());
           return s;
       }),
       arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {
@@ -32,14 +34,25 @@ SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, con
             tiles_.push_back({x, std::min(x + kTileSize, b.x1), y, std::min(y + kTileSize, b.y1)});
     const int spp = std::max(1, options.spp);
     const int resolution = std::max(scene.camera().params().xRes, scene.camera().params().yRes);
-    prototypes_[0] = createSampler(options.sampler, options.seed, spp, resolution);
-    if (!prototypes_[0]) {
-        std::string names;
-        for (const std::string& n : samplerNames()) names += (names.empty() ? "" : ", ") + n;
-        throw InputError("unknown sampler \"" + options.sampler + "\" (available: " + names + ")");
-    }
+    setStarts_.push_back(0);
+    for (int start : options.sampleSets)
+        if (start > setStarts_.back() && start < spp) setStarts_.push_back(start);
     if (scene.settings().spectral) spectral_.emplace(scene.settings());
-    prototypes_[1] = createSampler(options.sampler, mix64(options.seed ^ 0x5bd1e9955bd1e995ULL), spp, resolution);
+    // The pilot of a two-stage render and every later sample set draw from samplers of their
+    // own seeds; the first set's is the render's seed itself.
+    for (uint64_t stream : {0, 1})
+        for (size_t set = 0; set < setStarts_.size(); ++set) {
+            const uint64_t seed = stream == 0 && set == 0 ? options.seed
+                                  : stream == 1 && set == 0 ? mix64(options.seed ^ 0x5bd1e9955bd1e995ULL)
+                                                            : mixWithKey(mix64(options.seed ^ (0x9e3779b97f4a7c15ULL * stream)), set);
+            const int count = (set + 1 < setStarts_.size() ? setStarts_[set + 1] : spp) - setStarts_[set];
+            prototypes_.push_back(createSampler(options.sampler, seed, count, resolution));
+            if (!prototypes_.back()) {
+                std::string names;
+                for (const std::string& n : samplerNames()) names += (names.empty() ? "" : ", ") + n;
+                throw InputError("unknown sampler \"" + options.sampler + "\" (available: " + names + ")");
+            }
+        }
 }
 
 bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& spanOf, Stream stream,
@@ -54,7 +67,7 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                 return;
             }
             ThreadState& st = states_.local();
-            Sampler& sampler = *st.samplers[int(stream)];
+            const size_t sets = setStarts_.size();
             const Tile& t = tiles_[ti];
             long long count = 0;
             for (int py = t.y0; py < t.y1; ++py)
@@ -71,7 +84,10 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                         if (k < 64 && (span.taken >> k & 1)) continue;
                         if (taken) mine |= uint64_t(1) << k;
                         ++count;
-                        sampler.startPixelSample(px, py, si);
+                        const size_t set = size_t(std::upper_bound(setStarts_.begin(), setStarts_.end(), si) -
+                                                  setStarts_.begin()) - 1;
+                        Sampler& sampler = *st.samplers[size_t(stream) * sets + set];
+                        sampler.startPixelSample(px, py, si - setStarts_[set]);
                         FilterSample fs = filter.sample(sampler.getPixel2D());
                         CameraSample cs;
                         cs.pFilm = {px + 0.5f + fs.offset.x, py + 0.5f + fs.offset.y};

@@ -62,8 +62,9 @@ private:
     struct Tile {
         int x0, x1, y0, y1;
     };
+    // Per stream, then per sample set (RenderOptions::sampleSets): sampler stream * sets + set.
     struct ThreadState {
-        std::unique_ptr<Sampler> samplers[2];  // per Stream
+        std::vector<std::unique_ptr<Sampler>> samplers;
         ScratchBuffer scratch;
         PathStats stats;
     };
@@ -78,7 +79,8 @@ private:
     const bool hasMotion_;  // the camera sample draws a time (only then: static scenes keep their streams)
     std::optional<SpectralFilm> spectral_;  // spectral mode's sensor (empty in RGB mode)
     Share share_;
-    std::unique_ptr<Sampler> prototypes_[2];
+    std::vector<int> setStarts_;  // 0, then RenderOptions::sampleSets
+    std::vector<std::unique_ptr<Sampler>> prototypes_;
     tbb::enumerable_thread_specific<ThreadState> states_;
     tbb::task_arena arena_;
 };

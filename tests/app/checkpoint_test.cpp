@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -103,7 +104,7 @@ TEST_F(Checkpoint, RefusesDamagedOrMismatchedCheckpoints) {
              {"truncated", "truncated", "--spp 40", "truncated or damaged"},
              {"corrupt", "corrupt", "--spp 40", "corrupt (its checksum does not match"},
              {"other scene", "ck", "--spp 40 --scene-file other.pbrt", "scene_file_hash"},
-             {"other spp", "ck", "--spp 41", "spp 41 here, 40 in the checkpoint"},
+             {"lower spp", "ck", "--spp 39", "made for --spp 40: a resume may raise --spp, not lower it"},
              {"other integrator", "ck", "--spp 40 --integrator light", "integrator \"light\" here, \"path\" in the checkpoint"},
              {"not a checkpoint", "s.pbrt", "--spp 40", "not a pathspace checkpoint"}}) {
         SCOPED_TRACE(c.what);
@@ -122,6 +123,50 @@ TEST_F(Checkpoint, RefusesDamagedOrMismatchedCheckpoints) {
         std::printf("%s: %s", c.what.c_str(), r.out.c_str());
     }
     EXPECT_TRUE(bytes(path("ck")) == good) << "the checkpoint was overwritten";
+}
+
+// A finished render's last checkpoint, resumed with --spp raised (twice: 16 -> 32 -> 64, the
+// first raise over 2 processes when mpirun is here): the new samples come from sample sets of
+// their own (RenderOptions::sampleSets), each a stratified set of its size. The image is
+// right (the sky's exact values within 4 sigma), and its squared error is what three
+// independent sets give: (16 A + 16 B + 32 C) / 64 has the variance e16 / 16 + e16 / 16 +
+// e32 / 4, from the errors e16, e32 of renders of one set. (A second set that re-used the
+// first one's points, B = A, would give e16 / 4 + e32 / 4, 1.7 times more here.) The sums of
+// squares over ~600 pixels are good to about 10%.
+TEST_F(Checkpoint, ResumeRaisesSpp) {
+    // Each pixel's squared error against the exact image, summed.
+    auto squaredError = [&](const std::string& name) {
+        const ps::Image img = ps::readImage(path(name + ".pfm"));
+        double e = 0;
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x) {
+                const ps::Spectrum v = img.get(x, y);
+                const double d = (double(v.r) + v.g + v.b) / 3 - exactSkyPixel(x, y);
+                if (std::isfinite(d)) e += d * d;  // the silhouette's pixels have no exact value
+            }
+        return e;
+    };
+    ASSERT_EQ(render("s16", "--sampler sobol --threads 2 --spp 16 --checkpoint " + path("ck")).status, 0);
+    ASSERT_EQ(render("s32", "--sampler sobol --threads 2 --spp 32 --seed 7").status, 0);
+    std::string why;
+    const int processes = mpirunPath(why).empty() ? 0 : 2;
+    ASSERT_EQ(render("r32", "--sampler sobol --threads 1 --spp 32 --resume " + path("ck") + " --checkpoint " + path("ck"), processes).status,
+              0);
+    const Result r = runPathspace("render " + scene() + " --sampler sobol --threads 2 --spp 64 --resume " + path("ck") + " -o " +
+                                  path("r64.pfm") + " --stats " + path("r64.json"));
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("resumed from " + path("ck") + " at 32 spp; --spp raised from its 32 to 64"), std::string::npos)
+        << r.out;
+    EXPECT_EQ(stats("r32.json")["spp_mean"].get<double>(), 32);
+    EXPECT_EQ(stats("r64.json")["spp_mean"].get<double>(), 64);
+    EXPECT_EQ(stats("r64.json")["resumed_spp"].get<int>(), 32);
+    expectExactSkyImage(ps::readImage(path("r64.pfm")), "16 spp raised to 32, then to 64");
+    const double e16 = squaredError("s16"), e32 = squaredError("s32"), raised = squaredError("r64");
+    const double independent = e16 / 8 + e32 / 4;
+    std::printf("squared error: 16 spp %.4g, 32 spp %.4g, 16 -> 32 -> 64 spp %.4g (independent sets: %.4g)\n", e16,
+                e32, raised, independent);
+    EXPECT_GT(raised, 0.7 * independent);
+    EXPECT_LT(raised, 1.4 * independent);
 }
 
 // Adaptive sampling does not checkpoint yet, and says so (Metropolis renders do:

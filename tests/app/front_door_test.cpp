@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 
@@ -212,16 +213,19 @@ TEST_F(FrontDoor, AMisspeltParameterSuggestsTheNearestKnownName) {
 }
 
 // After --resume the totals are the whole render's and the rates this run's; the efficiency,
-// whose variance covers every run but whose time would be this run's, is not given.
+// whose variance covers every run but whose time would be this run's, is not given. The
+// checkpoint message says what the file holds: a render that ends keeps all of it.
 TEST_F(FrontDoor, ResumedRendersSayWhatWasThisRunsAndCheckpointsWhatWasKept) {
     const std::string ckpt = at("c.ckpt");
     Result r = run("render " + scene + " --spp 1 -o " + at("a.exr") + " --checkpoint " + ckpt);
     EXPECT_EQ(r.status, 0) << r.out;
-    EXPECT_NE(r.out.find("no checkpoint written"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("checkpoint " + ckpt + " (1 written) holds 1 of 1 spp in every pixel"), std::string::npos)
+        << r.out;
     r = run("render " + scene + " --spp 20000 --time 0.3 -o " + at("b.exr") + " --checkpoint " + ckpt +
-            " --checkpoint-every 0");
+            " --checkpoint-every 0 --stats " + at("b.json"));
     EXPECT_EQ(r.status, 0) << r.out;
     ASSERT_TRUE(fs::exists(ckpt)) << r.out;
+    EXPECT_NE(r.out.find(" of 20000 spp in every pixel"), std::string::npos) << r.out;
     r = run("render " + scene + " --spp 20000 --time 0.3 -o " + at("b.exr") + " --resume " + ckpt + " --stats " +
             at("r.json"));
     EXPECT_EQ(r.status, 0) << r.out;
@@ -230,6 +234,41 @@ TEST_F(FrontDoor, ResumedRendersSayWhatWasThisRunsAndCheckpointsWhatWasKept) {
     const nlohmann::json j = readJson(at("r.json"));
     EXPECT_TRUE(j["efficiency"].is_null());
     EXPECT_GT(j["resumed_spp"].get<int>(), 0);
+    // The path tracer traces one camera path per sample: its rate is this run's samples over
+    // this run's time, not the whole render's.
+    const double thisRun = j["rank_samples"][0].get<double>();
+    EXPECT_NEAR(j["camera_paths_per_s"].get<double>() * j["wall_time_s"].get<double>(), thisRun, 1e-6 * thisRun);
+    EXPECT_GT(j["camera_paths"].get<double>(), 1.01 * thisRun);
+}
+
+// A Metropolis render in a time budget shorter than its bootstrap would take shrinks the
+// bootstrap to a quarter of the budget instead of overrunning it; its start-up shows progress.
+TEST_F(FrontDoor, MetropolisStartUpFitsTheTimeBudgetAndShowsProgress) {
+    for (const std::string integrator : {"mmlt", "mlt"}) {
+        SCOPED_TRACE(integrator);
+        const auto start = std::chrono::steady_clock::now();
+        const std::string common = "render " + scene + " --integrator " + integrator +
+                                   " --spp 100000 --time 1 --bootstrap 50000000 --two-stage 0.1 -o " + at("t.exr");
+        const Result r = run(common + " --stats " + at("t.json") + " --checkpoint " + at("t.ckpt"));
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        EXPECT_EQ(r.status, 0) << r.out;
+        EXPECT_NE(r.out.find("bootstrap [="), std::string::npos) << r.out;
+        EXPECT_EQ(r.out.find("budget; fewer bootstrap samples"), std::string::npos) << r.out;
+        const nlohmann::json j = readJson(at("t.json"));
+        const long long boot = j["metropolis"]["bootstrap_samples"].get<long long>();
+        std::printf("%s: --time 1: %.2f s in all, %lld bootstrap samples\n", integrator.c_str(), seconds, boot);
+        EXPECT_LT(boot, 50000000);
+        EXPECT_LT(j["metropolis"]["two_stage_samples"].get<long long>(), 5000000);
+        EXPECT_GT(j["metropolis"]["mutations"].get<long long>(), 0);
+        // The whole render (the scene's loading and the image's writing included) near its
+        // budget: at the full bootstrap it takes minutes.
+        EXPECT_LT(seconds, 10.0);
+        // Its checkpoint holds the cut bootstrap and pilot map (whose tiles follow the pilot's
+        // samples): resumed, the chains go on from it.
+        const Result resumed = run(common + " --resume " + at("t.ckpt"));
+        EXPECT_EQ(resumed.status, 0) << resumed.out;
+        EXPECT_EQ(resumed.out.find("bootstrap [="), std::string::npos) << resumed.out;
+    }
 }
 
 // Reading warns as it parses; building warns later about what parsing kept (an unused

@@ -81,6 +81,8 @@ Samples sampleIndependently(const BootstrapContext& ctx, int64_t first, const Bo
                     groupSums[groups + size_t(g)] += v * v;
                 }
             }
+            if (ctx.progress) ctx.progress->fetch_add(std::min(count, (block + 1) * kBlock) - block * kBlock,
+                                                      std::memory_order_relaxed);
         });
     });
     {
@@ -169,11 +171,24 @@ int64_t bootstrapIndexCount(const MetropolisIntegrator& integrator) {
     return std::max<int64_t>(std::max(1, integrator.bootstrapGroups()), integrator.bootstrapCount());
 }
 
-Bootstrap runBootstrap(const BootstrapContext& ctx) {
+void probeBootstrap(const BootstrapContext& ctx, int64_t count) {
+    // Evaluators of its own, so that its rays are not counted as the render's (the pilot
+    // image, not yet made, would divide by 1 anyway).
+    tbb::enumerable_thread_specific<ChainEvaluator> evaluators;
+    const BootstrapContext probe{ctx.integrator, ctx.pss,       mix64(ctx.seed ^ 0x3243f6a8885a308dULL),
+                                 ctx.cancel,     ctx.arena,     evaluators,
+                                 nullptr};
+    std::atomic<bool> cancelled{false};
+    const int groups = std::max(1, ctx.integrator.bootstrapGroups());
+    sampleIndependently(probe, 0, BootstrapAllocation::even(std::max<int64_t>(count, groups), groups),
+                        ctx.integrator.defaultChoice(), false, cancelled);
+}
+
+Bootstrap runBootstrap(const BootstrapContext& ctx, int64_t samples) {
     const MetropolisIntegrator& integrator = ctx.integrator;
     const MetropolisParams& mp = integrator.params();
     const int groups = std::max(1, integrator.bootstrapGroups());
-    const int64_t nAll = bootstrapIndexCount(integrator);
+    const int64_t nAll = std::max<int64_t>(groups, samples);
     Bootstrap boot;
     boot.choice = integrator.defaultChoice();
     std::atomic<bool> cancelled{false};
@@ -222,6 +237,7 @@ void runImportancePilot(const BootstrapContext& ctx, int64_t first, int64_t coun
         ctx.integrator.bdptSample(sampler, ctx.evaluators.local(), x);
         for (const BDPTIntegrator::PathContribution& c : x)
             if (const double y = c.L.luminance(); std::isfinite(y)) sums[importance.tileOf(c.pRaster)] += y;
+        if (ctx.progress) ctx.progress->fetch_add(1, std::memory_order_relaxed);
     }, ctx.cancel);
 }
 

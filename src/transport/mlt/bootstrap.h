@@ -62,9 +62,16 @@ struct BootstrapContext {
     const std::atomic<bool>* cancel;  // may be null
     tbb::task_arena& arena;
     tbb::enumerable_thread_specific<ChainEvaluator>& evaluators;
+    std::atomic<long long>* progress = nullptr;  // counts the samples taken (a progress bar's), may be null
 };
 
-Bootstrap runBootstrap(const BootstrapContext& ctx);
+// The bootstrap of `samples` samples, its pilot's included (bootstrapIndexCount, or fewer
+// to fit a time budget: startup_budget.h).
+Bootstrap runBootstrap(const BootstrapContext& ctx, int64_t samples);
+
+// `count` samples as the bootstrap's pilot takes them (every group alike), from streams of
+// their own, their results unused: what a start-up's samples cost (startup_budget.h).
+void probeBootstrap(const BootstrapContext& ctx, int64_t count);
 
 // The indices the bootstrap's samples (its pilot's included) may take: 0 .. this - 1.
 int64_t bootstrapIndexCount(const MetropolisIntegrator& integrator);

@@ -16,8 +16,8 @@ constexpr uint32_t kTag = 0x4e494843;  // "CHIN"
 
 }  // namespace
 
-ChainCheckpoints::ChainCheckpoints(const RenderOptions& options, int chains)
-    : options_(options), resume_(options.resume), chains_count_(chains) {
+ChainCheckpoints::ChainCheckpoints(const RenderOptions& options, int chains, long long total)
+    : options_(options), resume_(options.resume), chains_count_(chains), total_(total) {
     if (!resume_) return;
     distributed::Purpose purpose("checkpoint");
     if (distributed::isRoot()) blob_ = resume_->chains;
@@ -36,6 +36,12 @@ ChainCheckpoints::ChainCheckpoints(const RenderOptions& options, int chains)
 
 ByteReader ChainCheckpoints::reader(std::span<const char> s, const std::string& what) const {
     return ByteReader(s, "--resume: the checkpoint's state of " + what);
+}
+
+long long ChainCheckpoints::addedMutations(int c) const {
+    if (!resume_ || resume_->spp <= 0 || resume_->spp >= options_.spp) return 0;
+    const long long before = total_ / options_.spp * resume_->spp;
+    return chain_ranks::chainMutations(total_, chains_count_, c) - chain_ranks::chainMutations(before, chains_count_, c);
 }
 
 bool ChainCheckpoints::due(bool stopped) {
@@ -66,6 +72,8 @@ void ChainCheckpoints::write(const Film& film, const std::vector<char>& bootstra
     ++result.checkpoints;
     last_ = std::chrono::steady_clock::now();
     if (!root) return;
+    result.checkpointKept = "the bootstrap and " + std::to_string(chains_count_) + " chains after " +
+                            std::to_string(state.samples) + " of " + std::to_string(total_) + " mutations";
     std::vector<std::span<const char>> byChain(static_cast<size_t>(chains_count_));
     ByteReader in(all, "the chains gathered for a checkpoint");
     while (!in.atEnd()) {

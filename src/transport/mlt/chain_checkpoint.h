@@ -27,14 +27,18 @@ class ChainCheckpoints {
 public:
     // Every process constructs it at the same point: with options.resume, rank 0's chain
     // states reach every process (a collective) and are checked against `chains` (InputError
-    // before anything is rendered).
-    ChainCheckpoints(const RenderOptions& options, int chains);
+    // before anything is rendered). `total`: the render's mutations over all chains.
+    ChainCheckpoints(const RenderOptions& options, int chains, long long total);
 
     bool resuming() const { return resume_ != nullptr; }
     // The resumed render's bootstrap results and chain c's state (resuming() only).
     ByteReader bootstrap() const { return reader(bootstrap_, "the bootstrap"); }
     ByteReader chain(int c) const { return reader(chains_[size_t(c)], "chain " + std::to_string(c)); }
     const CheckpointState* resume() const { return resume_; }
+    // The mutations a resumed chain c gains when the resume raises --spp: a chain's course
+    // does not depend on how many mutations it is to make, so the chains, continued to their
+    // new share, make the uninterrupted render of the new --spp.
+    long long addedMutations(int c) const;
 
     // After a pass: whether a checkpoint is due (--checkpoint-every seconds since the last;
     // every process agrees), or, with `stopped`, whether the render stopping early is to
@@ -53,6 +57,7 @@ private:
     const RenderOptions& options_;
     const CheckpointState* resume_;
     int chains_count_;
+    long long total_;
     std::vector<char> blob_;  // the resumed state, on every process
     std::span<const char> bootstrap_;
     std::vector<std::span<const char>> chains_;

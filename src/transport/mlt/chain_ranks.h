@@ -26,13 +26,14 @@ inline bool ownsBlock(int64_t b) { return b % distributed::size() == distributed
 
 // The chains this process runs, in order, and *mutations their share of `total` mutations
 // over `chains` chains (chain c makes total / chains, one more for the first total % chains).
+inline long long chainMutations(long long total, int chains, int c) { return total / chains + (c < total % chains ? 1 : 0); }
 inline std::vector<int> ownedChains(int chains, long long total, long long* mutations) {
     std::vector<int> mine;
     *mutations = 0;
     for (int c = 0; c < chains; ++c)
         if (ownsChain(c)) {
             mine.push_back(c);
-            *mutations += total / chains + (c < total % chains ? 1 : 0);
+            *mutations += chainMutations(total, chains, c);
         }
     return mine;
 }

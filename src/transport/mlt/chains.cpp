@@ -20,6 +20,7 @@
 #include "transport/film_reduction.h"
 #include "transport/mlt/chain_checkpoint.h"
 #include "transport/mlt/chain_ranks.h"
+#include "transport/mlt/startup_budget.h"
 #include "transport/render_monitor.h"
 #include "transport/spectral_film.h"
 #include "util/error.h"
@@ -255,7 +256,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     // Two-stage MLT: the pilot image every evaluator divides the target by (at() is 1 until
     // the pilot has made it).
-    const int64_t nPilot = mp.twoStageSamples();
+    int64_t nPilot = mp.twoStageSamples();
     PilotImportance importance(bounds, nPilot, mp.twoStageBlackLevel, scene.settings().imagingRatio);
     tbb::enumerable_thread_specific<ChainEvaluator> evaluators([&importance] {
         ChainEvaluator ev;
@@ -267,6 +268,8 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     RenderResult result;
     MetropolisStats& ms = result.metropolis;
     ms.present = true;
+    // Mutations per pixel already made, as a uniform render's resumed samples per pixel.
+    if (options.resume) result.resumedSpp = int(options.resume->samples / std::max<long long>(1, bounds.area()));
     ms.multiplexed = integrator.choosesDepth();
 
     // Bootstrap: b, the strategy choice and the weights of the candidate initial states. It
@@ -276,16 +279,42 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
     // checkpoint (chain_checkpoint.h) and runs no bootstrap.
     const long long total = std::max(1LL, (long long)std::max(1, options.spp) * bounds.area());
     const int chains = int(std::min<long long>(std::max(1, mp.chains), total));
-    ChainCheckpoints checkpoints(options, chains);
+    ChainCheckpoints checkpoints(options, chains, total);
     distributed::barrier();
     const auto startTime = std::chrono::steady_clock::now();
-    const BootstrapContext bctx{integrator, pss, options.seed, options.cancel, arena, evaluators};
-    int64_t nBoot = 0;
-    if (!checkpoints.resuming()) runImportancePilot(bctx, bootstrapIndexCount(integrator), nPilot, importance);
+    std::atomic<long long> startupDone{0};
+    BootstrapContext bctx{integrator, pss, options.seed, options.cancel, arena, evaluators, &startupDone};
+    int64_t nBoot = 0, nAll = bootstrapIndexCount(integrator);
+    if (!checkpoints.resuming()) {
+        // Within a time budget, a start-up that fits a quarter of it (startup_budget.h): the
+        // one --bootstrap N' gives, N' as the statistics' bootstrap and pilot samples say.
+        const int64_t probed = startupProbeSamples(nAll + nPilot);
+        const double fraction = startupFraction(options.timeLimit, nAll + nPilot, probed,
+                                                [&] { probeBootstrap(bctx, probed); });
+        if (fraction < 1) {
+            const int groups = std::max(1, integrator.bootstrapGroups());
+            nAll = std::max<int64_t>(groups, scaledCount(nAll, fraction, std::max<int64_t>(256, 4 * groups)));
+            if (nPilot > 0) {
+                nPilot = mp.twoStageSamples(nAll);
+                importance = PilotImportance(bounds, nPilot, mp.twoStageBlackLevel, scene.settings().imagingRatio);
+            }
+        }
+    }
+    Bootstrap boot;
+    {
+        std::atomic<bool> shown{false};
+        Monitor monitor(options.progress && distributed::isRoot() && !checkpoints.resuming(), 0, nullptr, shown,
+                        startupDone, std::max<long long>(1, (nAll + nPilot + distributed::size() - 1) / distributed::size()),
+                        "bootstrap");
+        if (!checkpoints.resuming()) {
+            runImportancePilot(bctx, nAll, nPilot, importance);
+            boot = runBootstrap(bctx, nAll);
+            nBoot = int64_t(boot.weights.size());
+        } else {
+            boot = loadBootstrap(checkpoints.bootstrap(), integrator, nBoot, importance);
+        }
+    }
     ms.twoStageSamples = nPilot;
-    const Bootstrap boot = checkpoints.resuming() ? loadBootstrap(checkpoints.bootstrap(), integrator, nBoot, importance)
-                                                  : runBootstrap(bctx);
-    if (!checkpoints.resuming()) nBoot = int64_t(boot.weights.size());
     const std::vector<char> bootBytes = options.checkpoint ? saveBootstrap(boot, nBoot, importance) : std::vector<char>();
     const StrategyChoice& choice = boot.choice;
     const bool bootstrapCancelled = boot.cancelled;
@@ -341,6 +370,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                 cc.shareAt.assign(size_t(depths), 0.0);
                 if (checkpoints.resuming()) {
                     loadChain(checkpoints.chain(c), pss, size_t(depths), ch, cc);
+                    ch.remaining += checkpoints.addedMutations(c);
                     return;
                 }
                 ch.rng = Rng(chainSeed(options.seed, c), 0x3c6ef372fe94f82bULL);
@@ -349,7 +379,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                     return;
                 }
                 ch.sampler->reseed(chainSeed(options.seed, c));
-                ch.remaining = total / chains + (c < total % chains ? 1 : 0);
+                ch.remaining = chain_ranks::chainMutations(total, chains, c);
             });
         });
         constexpr long long kPass = 256;
@@ -414,8 +444,8 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
                 distributed::Purpose purpose("stop decisions");
                 halt = distributed::anyOf(stop.load());
             }
-            // A checkpoint when one is due, and a last one when the render stops early.
-            if ((halt || (pass + 1) * kPass < mostLeft) && checkpoints.due(halt)) {
+            // A checkpoint when one is due, and a last one when the render stops or ends.
+            if (checkpoints.due(halt || (pass + 1) * kPass >= mostLeft)) {
                 PathStats stats;
                 for (const ChainEvaluator& ev : evaluators) stats += ev.stats;
                 long long doneHere = -doneBefore;

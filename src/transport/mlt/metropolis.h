@@ -53,8 +53,12 @@ struct MetropolisParams {
     // Its black level (pilot_importance.h), in pixel luminance: the target evens the relative
     // error above it and leaves the absolute error below it as the plain target does.
     double twoStageBlackLevel = 0.1;
-    // The pilot image's samples: twoStage times the bootstrap's.
-    int64_t twoStageSamples() const { return int64_t(std::ceil(twoStage * double(std::max(1, bootstrapSamples)))); }
+    // The pilot image's samples: twoStage times the bootstrap's (`bootstrap` of them, when a
+    // time budget cut their number: startup_budget.h).
+    int64_t twoStageSamples(int64_t bootstrap) const {
+        return int64_t(std::ceil(twoStage * double(std::max<int64_t>(1, bootstrap))));
+    }
+    int64_t twoStageSamples() const { return twoStageSamples(bootstrapSamples); }
 };
 
 // A sample of a chain: its splats (each strategy's share of the path, at its film position)

@@ -75,6 +75,10 @@ void PilotImportance::learn(tbb::task_arena& arena, int64_t count, const std::fu
 }
 
 void PilotImportance::load(ByteReader& in) {
+    tile_ = in.get<int32_t>();
+    if (tile_ < 1) in.fail();
+    nx_ = std::max(1, (bounds_.width() + tile_ - 1) / tile_);
+    ny_ = std::max(1, (bounds_.height() + tile_ - 1) / tile_);
     brightness_ = in.getVector<double>();
     if (!brightness_.empty() && brightness_.size() != size_t(tiles())) in.fail();
 }

@@ -51,8 +51,12 @@ public:
     // skips the samples left (the bootstrap after it stops too, and the image is black).
     void learn(tbb::task_arena& arena, int64_t count, const std::function<void(int64_t, double*)>& sample,
                const std::atomic<bool>* cancel = nullptr);
-    // The map, for a checkpoint, and back (a resumed render makes no pilot).
-    void save(ByteWriter& out) const { out.putVector(brightness_); }
+    // The map and its tiles (their size follows the pilot's samples, which a time budget may
+    // have cut: startup_budget.h), for a checkpoint, and back (a resumed render makes no pilot).
+    void save(ByteWriter& out) const {
+        out.put(int32_t(tile_));
+        out.putVector(brightness_);
+    }
     void load(ByteReader& in);
     // B at a film position (1 before finish).
     double at(Vec2 pRaster) const { return brightness_.empty() ? 1.0 : brightness_[size_t(tileOf(pRaster))]; }

@@ -22,6 +22,7 @@
 #include "transport/film_reduction.h"
 #include "transport/mlt/chain_checkpoint.h"
 #include "transport/mlt/chain_ranks.h"
+#include "transport/mlt/startup_budget.h"
 #include "transport/mlt/bootstrap.h"
 #include "transport/spectral_film.h"
 #include "transport/path_tracer.h"
@@ -294,43 +295,74 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
     RenderResult result;
     MetropolisStats& ms = result.metropolis;
     ms.present = true;
+    // Mutations per pixel already made, as a uniform render's resumed samples per pixel.
+    if (options.resume) result.resumedSpp = int(options.resume->samples / std::max<long long>(1, bounds.area()));
     const long long total = std::max(1LL, (long long)std::max(1, options.spp) * bounds.area());
     const int chains = int(std::min<long long>(std::max(1, mp.chains), total));
     // A resumed render takes b and every chain's state from its checkpoint (chain_checkpoint.h).
-    ChainCheckpoints checkpoints(options, chains);
+    ChainCheckpoints checkpoints(options, chains, total);
     const PathCodec codec(scene);
     distributed::barrier();  // over several processes (chain_ranks.h) the clocks start together
     const auto startTime = std::chrono::steady_clock::now();
 
-    // Two-stage MLT (pilot_importance.h): the pilot's own samples, past the bootstrap's
-    // indices (a resumed render takes the map from its checkpoint).
-    const int64_t nBoot = std::max(1, mp.bootstrapSamples);
-    const int64_t nPilot = mp.twoStageSamples();
+    int64_t nBoot = std::max(1, mp.bootstrapSamples), nPilot = mp.twoStageSamples();
     PilotImportance importance(bounds, nPilot, mp.twoStageBlackLevel, scene.settings().imagingRatio);
-    if (!checkpoints.resuming())
-        importance.learn(arena, nPilot, [&](int64_t j, double* sums) {
-            bootstrapSample(integrator, importance, options.seed, nBoot + j, threadStats.local(), scratchStates.local(),
-                            -1, sums);
-        }, options.cancel);
-    ms.twoStageSamples = nPilot;
-
     // Bootstrap: b and the weights of the candidate initial states, each process taking its
     // blocks of samples and every process getting all the weights (chain_ranks.h).
-    std::vector<double> weights(checkpoints.resuming() ? 0 : size_t(nBoot), 0.0);
+    constexpr int64_t kBlock = 256;
     std::atomic<bool> bootstrapCancelled{false};
-    if (!checkpoints.resuming()) arena.execute([&] {
-        constexpr int64_t kBlock = 256;
-        tbb::parallel_for(int64_t(0), (nBoot + kBlock - 1) / kBlock, [&](int64_t block) {
-            if (!chain_ranks::ownsBlock(block)) return;
-            if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
-                bootstrapCancelled = true;
-                return;
-            }
-            PathState& s = scratchStates.local();
-            for (int64_t i = block * kBlock; i < std::min(nBoot, (block + 1) * kBlock); ++i)
-                weights[size_t(i)] = bootstrapSample(integrator, importance, options.seed, i, threadStats.local(), s);
+    std::atomic<long long> startupDone{0};
+    auto bootstrapRun = [&](uint64_t seed, int64_t count, std::vector<double>* weights) {
+        arena.execute([&] {
+            tbb::parallel_for(int64_t(0), (count + kBlock - 1) / kBlock, [&](int64_t block) {
+                if (!chain_ranks::ownsBlock(block)) return;
+                if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+                    bootstrapCancelled = true;
+                    return;
+                }
+                PathState& s = scratchStates.local();
+                PathStats unused;
+                const int64_t end = std::min(count, (block + 1) * kBlock);
+                for (int64_t i = block * kBlock; i < end; ++i) {
+                    const double w = bootstrapSample(integrator, importance, seed, i, weights ? threadStats.local() : unused, s);
+                    if (weights) (*weights)[size_t(i)] = w;
+                }
+                if (weights) startupDone.fetch_add(end - block * kBlock, std::memory_order_relaxed);
+            });
         });
-    });
+    };
+    if (!checkpoints.resuming()) {
+        // Within a time budget, a start-up that fits a quarter of it (startup_budget.h), timed
+        // on samples of streams of their own.
+        const int64_t probed = startupProbeSamples(nBoot + nPilot);
+        const double fraction = startupFraction(options.timeLimit > 0 ? std::max(1e-3, options.timeLimit - direct.seconds) : 0.0, nBoot + nPilot, probed, [&] {
+            bootstrapRun(mix64(options.seed ^ 0x3243f6a8885a308dULL), probed, nullptr);
+        });
+        if (fraction < 1) {
+            // The start-up --bootstrap N' gives, N' as the statistics' bootstrap samples say.
+            nBoot = scaledCount(nBoot, fraction, 256);
+            if (nPilot > 0) {
+                nPilot = mp.twoStageSamples(nBoot);
+                importance = PilotImportance(bounds, nPilot, mp.twoStageBlackLevel, scene.settings().imagingRatio);
+            }
+        }
+    }
+    std::vector<double> weights(checkpoints.resuming() ? 0 : size_t(nBoot), 0.0);
+    if (!checkpoints.resuming()) {
+        std::atomic<bool> shown{false};
+        Monitor monitor(options.progress && distributed::isRoot(), 0, nullptr, shown, startupDone,
+                        std::max<long long>(1, (nBoot + nPilot + distributed::size() - 1) / distributed::size()),
+                        "bootstrap");
+        // Two-stage MLT (pilot_importance.h): the pilot's own samples, past the bootstrap's
+        // indices (a resumed render takes the map from its checkpoint).
+        importance.learn(arena, nPilot, [&](int64_t j, double* sums) {
+            bootstrapSample(integrator, importance, options.seed, nBoot + j, threadStats.local(),
+                            scratchStates.local(), -1, sums);
+            startupDone.fetch_add(1, std::memory_order_relaxed);
+        }, options.cancel);
+        bootstrapRun(options.seed, nBoot, &weights);
+    }
+    ms.twoStageSamples = nPilot;
     {
         distributed::Purpose purpose("bootstrap merge");
         distributed::mergeDisjoint(weights);
@@ -387,6 +419,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                 Chain& ch = all[size_t(c)];
                 if (checkpoints.resuming()) {
                     loadChain(codec, checkpoints.chain(c), ch);
+                    ch.remaining += checkpoints.addedMutations(c);
                     return;
                 }
                 ch.rng = Rng(chainSeed(options.seed, c), 0x510e527fade682d1ULL);
@@ -401,7 +434,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                         weights[size_t(i)] ||
                     !(ch.x.f > 0))
                     replayMismatch = true;
-                ch.remaining = total / chains + (c < total % chains ? 1 : 0);
+                ch.remaining = chain_ranks::chainMutations(total, chains, c);
             });
         });
         if (distributed::Purpose p("stop decisions"); distributed::anyOf(replayMismatch.load()))
@@ -467,8 +500,8 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                 distributed::Purpose purpose("stop decisions");
                 halt = distributed::anyOf(stop.load());
             }
-            // A checkpoint when one is due, and a last one when the render stops early.
-            if ((halt || (pass + 1) * kPass < mostLeft) && checkpoints.due(halt)) {
+            // A checkpoint when one is due, and a last one when the render stops or ends.
+            if (checkpoints.due(halt || (pass + 1) * kPass >= mostLeft)) {
                 PathStats stats;
                 for (const PathStats& s : threadStats) stats += s;
                 long long doneHere = -doneBefore;
