@@ -400,6 +400,8 @@ void RenderCommand::load(Job& job) {
     // A darker image with no word of why is a wrong answer (missingPaths says which light).
     if (const std::string why = missingPaths(*scene, settings.integrator); !why.empty())
         warning("integrator \"" + settings.integrator + "\" will render part of this scene's light black: " + why);
+    if (const std::string why = inconsistentSurfaces(*scene, settings.integrator); !why.empty())
+        warning("integrator \"" + settings.integrator + "\" may render some curves other than path tracing: " + why);
     const AdaptiveMode adaptive = parseAdaptiveMode(adaptive_);
     if (adaptive != AdaptiveMode::None && integrator->splats())
         throw InputError("--adaptive " + adaptive_ + " needs --integrator path: light tracing, BDPT and Metropolis "

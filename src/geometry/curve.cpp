@@ -184,9 +184,9 @@ int Curve::tessellationRate() const {
 }
 
 RTCGeometry Curve::buildGeometry(RTCDevice device) const {
-    RTCGeometryType kind = type_ == CurveType::Flat     ? RTC_GEOMETRY_TYPE_FLAT_BEZIER_CURVE
-                           : type_ == CurveType::Ribbon ? RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BEZIER_CURVE
-                                                        : RTC_GEOMETRY_TYPE_ROUND_BEZIER_CURVE;
+    // Cylinder curves are flat ones shaded as tubes (interaction), as in pbrt-v4.
+    RTCGeometryType kind = type_ == CurveType::Ribbon ? RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BEZIER_CURVE
+                                                      : RTC_GEOMETRY_TYPE_FLAT_BEZIER_CURVE;
     RTCGeometry g = rtcNewGeometry(device, kind);
     const size_t nVertices = cp_.size() / 4;
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, cp_.data(), 0, 4 * sizeof(float), nVertices);
@@ -195,7 +195,7 @@ RTCGeometry Curve::buildGeometry(RTCDevice device) const {
     if (type_ == CurveType::Ribbon)
         rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, cpNormal_.data(), 0,
                                    3 * sizeof(float), nVertices);
-    if (type_ == CurveType::Flat) rtcSetGeometryTessellationRate(g, float(tessellationRate()));
+    if (type_ != CurveType::Ribbon) rtcSetGeometryTessellationRate(g, float(tessellationRate()));
     if (type_ != CurveType::Ribbon)
         installHitFilter(g);  // self hits, see isSelfHit
     else
@@ -210,9 +210,9 @@ RTCGeometry Curve::buildGeometry(RTCDevice device) const {
 // angle (measured: 0.5% of the rays leaving a straight flat curve without this test; ribbons,
 // real strips, are not found again). So a flat segment's hits are rejected when the ray
 // starts within the radius of its centre line; like a tube, a flat curve that curls back
-// within one segment does not shadow itself. pbrt-v4's cylinder curves are such ray-facing
-// strips too, shaded as tubes: a ray leaving one into the tube (a hair BSDF's transmission
-// through the fibre) passes, where our real tube would stop it at its far wall.
+// within one segment does not shadow itself. Cylinder curves are such ray-facing strips too,
+// shaded as tubes: a ray leaving one into the tube (a hair BSDF's transmission through the
+// fibre) passes.
 bool Curve::isSelfHit(Vec3 o, int seg, float u) const {
     const float* q = &cp_[16 * size_t(seg)];
     const float tolAbs = 4e-5f * (1 + std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z)}));
@@ -242,8 +242,18 @@ bool Curve::acceptsHit(const Ray& r, float t, int embreePrim, float u, float v) 
 // d x dp/du (for ribbons, the distance from the centre over the width); dp/du the curve's
 // derivative; dp/dv across the curve with length the width, and the normal
 // dp/du x dp/dv flipped by ReverseOrientation XOR a handedness swap. That normal faces away
-// from the ray on flat curves, is the end normals' interpolation made perpendicular to the
-// curve on ribbons and, on tubes, the tube's outward normal.
+// from the ray on flat and cylinder curves and is the end normals' interpolation made
+// perpendicular to the curve on ribbons.
+//
+// Cylinder curves are pbrt-v4's: the flat curve's strip facing the ray, its geometric normal
+// the strip's, its shading normal turned about the curve by theta = (v - 1/2) pi, so that
+// across the strip it sweeps as a tube's does (at the edges perpendicular to the ray). The
+// strip faces every ray, so the fibre is met over its projected width by every technique
+// (FibreKind::FacingRay): a true tube, whose far side a light path could find and connect to
+// the camera through the tube itself, would give light tracing and BDPT a fibre that the
+// camera's rays never see (+0.4% and +0.55% on the matrix's hair cell). The shading normal
+// is tilted towards the side of the hit, as on a tube seen from the ray's origin (it faces
+// away from the ray, as the strip's normal does; theta linear in v, as pbrt-v4's).
 int Curve::interaction(const Ray& r, float t, int embreePrim, float u, float v, SurfaceInteraction& si) const {
     (void)v;
     const int seg = embreePrim;
@@ -261,25 +271,29 @@ int Curve::interaction(const Ray& r, float t, int embreePrim, float u, float v, 
     Vec3 n = cross(tangent, across);  // flat: d made perpendicular to the curve, unit
     Vec3 dpdv = across * width;
     float vHit = 0.5f + dot(off, across) * invWidth;
-    if (type_ == CurveType::Cylinder) {
-        n = normalizeOr(off - tangent * dot(off, tangent), n);
-        dpdv = normalizeOr(cross(n, tangent), across) * width;
-    } else if (type_ == CurveType::Ribbon) {
+    if (type_ == CurveType::Ribbon) {
         Vec3 nr = ribbonNormal(seg, u);
         n = normalizeOr(nr - tangent * dot(nr, tangent), n);
         dpdv = normalizeOr(cross(nr, tangent), across) * (width * std::fabs(dot(nr, d)));
         vHit = 0.5f + std::copysign(length(off), dot(off, across)) * invWidth;
     }
-    if (flip_) n = -n;
+    Vec3 ns = n;
+    if (type_ == CurveType::Cylinder) {
+        const float theta = (clampf(vHit, 0, 1) - 0.5f) * kPi;
+        ns = n * std::cos(theta) - across * std::sin(theta);
+        dpdv = normalizeOr(cross(ns, tangent), across) * width;
+    }
+    if (flip_) {
+        n = -n;
+        ns = -ns;
+    }
     si.p = p;
     si.t = t;
     si.ng = n;
-    si.ns = n;
+    si.ns = ns;
     si.dpdu = dcdu;
     si.tangentIsFrameAxis = false;
-    si.fibre = type_ == CurveType::Flat       ? FibreKind::FacingRay
-               : type_ == CurveType::Cylinder ? (flip_ ? FibreKind::TubeInward : FibreKind::Tube)
-                                              : FibreKind::None;
+    si.fibre = type_ == CurveType::Ribbon ? FibreKind::None : FibreKind::FacingRay;
     si.uv = Vec2(u, clampf(vHit, 0, 1));
     if (material && material->needsShadingDerivatives()) {
         si.dpdv = dpdv;

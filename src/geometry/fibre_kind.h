@@ -1,16 +1,14 @@
-// What kind of fibre a curve hit lies on. Its light transport depends on it: a flat curve is
-// a ribbon turned to face each ray, so the surface a path meets depends on the ray that met
-// it; a cylinder is a true tube. The hair BSDF and the path-space densities read it.
+// What kind of fibre a curve hit lies on. Its light transport depends on it: flat and
+// cylinder curves are strips turned to face each ray, so the surface a path meets depends on
+// the ray that met it. The hair BSDF and the path-space densities read it.
 #pragma once
 #include <cstdint>
 
 namespace ps {
 
 enum class FibreKind : int8_t {
-    None,        // not a curve, or a ribbon with fixed normals (an ordinary surface)
-    FacingRay,   // flat curve
-    Tube,        // cylinder curve, normal outwards
-    TubeInward,  // cylinder curve under ReverseOrientation
+    None,       // not a curve, or a ribbon with fixed normals (an ordinary surface)
+    FacingRay,  // flat or cylinder curve
 };
 
 }  // namespace ps

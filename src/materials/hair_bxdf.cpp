@@ -165,27 +165,15 @@ double HairBxDF::density(const Lobes& L, double sinThetaI, double cosThetaI, dou
     return pdf;
 }
 
-// The offset across the fibre of a ray leaving along w. On a tube it is geometric: sin of
-// w's azimuth from the normal, w.y / sqrt(1 - w.x^2) in the frame (z the normal, x the fibre,
-// y = z cross x), its sign flipped with the normal; whichever ray found the point, the
-// radiance form then has the h of the ray towards the camera. On a ribbon facing each ray,
-// or any other surface, it is the hit's own (uniform across the width).
-double HairBxDF::offsetFor(Vec3 w) const {
-    if (fibre_ != FibreKind::Tube && fibre_ != FibreKind::TubeInward) return h_;
-    const double p = safeSqrtD(1 - double(w.x) * w.x);
-    if (!(p > 0)) return 0;
-    return clampd((fibre_ == FibreKind::Tube ? w.y : -w.y) / p, -1, 1);
-}
-
 // The adjoint at a vertex a light path found (wo towards the light, wi towards the camera;
 // thesis sec. 5.2: f* |cos wi| must carry what the radiance form carries for the same path).
-// The lobes are not reciprocal (the attenuation and h belong to the exit direction), so the
-// radiance form runs with the directions exchanged, with wi's offset. On a ribbon facing
+// The lobes are not reciprocal (the attenuation belongs to the exit direction), so the
+// radiance form runs with the directions exchanged. On a ribbon facing
 // each ray, that ribbon faced the light's ray: a light path meets the fibre over its width
 // projected towards the light, P(wo) = sqrt(1 - sin^2 theta), where the camera sees it over
 // P(wi), not over the ribbon's cosine |wi.z|.
 Spectrum HairBxDF::adjoint(Vec3 wo, Vec3 wi) const {
-    const Spectrum swapped = radiance(lobes(wi, offsetFor(wi)), wo);
+    const Spectrum swapped = radiance(lobes(wi, h_), wo);
     if (fibre_ != FibreKind::FacingRay) return swapped;
     const double pO = safeSqrtD(1 - double(wo.x) * wo.x), pI = safeSqrtD(1 - double(wi.x) * wi.x);
     const double cosO = std::fabs(double(wo.z)), cosI = std::fabs(double(wi.z));
@@ -195,11 +183,11 @@ Spectrum HairBxDF::adjoint(Vec3 wo, Vec3 wi) const {
 }
 
 Spectrum HairBxDF::f(Vec3 wo, Vec3 wi, TransportMode mode) const {
-    return mode == TransportMode::Importance ? adjoint(wo, wi) : radiance(lobes(wo, offsetFor(wo)), wi);
+    return mode == TransportMode::Importance ? adjoint(wo, wi) : radiance(lobes(wo, h_), wi);
 }
 
 float HairBxDF::pdf(Vec3 wo, Vec3 wi, TransportMode mode) const {
-    const Lobes L = lobes(wo, offsetFor(wo));
+    const Lobes L = lobes(wo, h_);
     if (!L.valid) return 0;
     const double sinThetaI = clampd(wi.x, -1, 1), cosThetaI = safeSqrtD(1 - sinThetaI * sinThetaI);
     const double dphi = std::atan2(double(wi.z), double(wi.y)) - L.phiO;
@@ -207,7 +195,7 @@ float HairBxDF::pdf(Vec3 wo, Vec3 wi, TransportMode mode) const {
 }
 
 std::optional<BSDFSample> HairBxDF::sample(Vec3 wo, float ucIn, Vec2 u, TransportMode mode) const {
-    const Lobes L = lobes(wo, offsetFor(wo));
+    const Lobes L = lobes(wo, h_);
     if (!L.valid) return std::nullopt;
     // The lobe by its share of the attenuation; uc rescaled to pick the azimuth within it.
     double uc = clampd(ucIn, 0, 1);

@@ -68,7 +68,6 @@ private:
     Spectrum radiance(const Lobes& L, Vec3 wi) const;
     // f under importance transport (hair_bxdf.cpp says why it is not f(wi, wo)).
     Spectrum adjoint(Vec3 wo, Vec3 wi) const;
-    double offsetFor(Vec3 w) const;  // h of a ray leaving along w
     double density(const Lobes& L, double sinThetaI, double cosThetaI, double dphi) const;
 
     double h_, eta_;

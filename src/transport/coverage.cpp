@@ -2,7 +2,9 @@
 
 #include <set>
 
+#include "geometry/curve.h"
 #include "materials/bxdf.h"
+#include "materials/hair_material.h"
 
 namespace ps {
 
@@ -45,6 +47,20 @@ SceneTraits traitsOf(const Scene& scene) {
 }
 
 }  // namespace
+
+std::string inconsistentSurfaces(const Scene& scene, const std::string& integrator) {
+    if (integrator == "path") return "";
+    for (const Shape* shape : scene.shapes()) {
+        const auto* curve = dynamic_cast<const Curve*>(shape);
+        if (!curve || curve->type() == CurveType::Ribbon || !shape->material ||
+            dynamic_cast<const HairMaterial*>(shape->material))
+            continue;
+        return "flat and cylinder curves turn to face each ray, so light paths meet them other than camera rays do; "
+               "with a material other than hair only path tracing renders them consistently (as in pbrt-v4): use "
+               "path, hair, or ribbon curves";
+    }
+    return "";
+}
 
 std::string lensRequirement(const std::string& integrator) {
     return integrator == "light" ? "connects every light path to the lens and needs a perspective camera"

@@ -15,6 +15,13 @@ namespace ps {
 // name: createIntegrator reports an unknown one.
 std::string missingPaths(const Scene& scene, const std::string& integrator);
 
+// Why `integrator` would render some of the scene's surfaces other than the path tracer does,
+// or "" when it would not: flat and cylinder curves turn to face each ray, so a light path
+// meets a fibre other than a camera ray does, which only the hair BSDF's adjoint allows for
+// (hair_bxdf.cpp); with any other material only path tracing is consistent there, as in
+// pbrt-v4.
+std::string inconsistentSurfaces(const Scene& scene, const std::string& integrator);
+
 // Why "light" or "mlt" cannot render through a camera without importance (orthographic,
 // spherical, realistic): a phrase that follows the integrator's name.
 std::string lensRequirement(const std::string& integrator);

@@ -23,7 +23,7 @@ struct PathVertex {
     bool infinite = false;  // at infinity: a light vertex of an infinite or distant light,
                             // or where a camera ray escaped
     bool nonSpecular = false;  // surfaces: the BxDF has a diffuse or glossy lobe
-    bool flatShading = false;  // surfaces: ns == ng, so the adjoint shading factor is 1
+    bool flatShading = false;  // surfaces: the adjoint shading factor is 1 (ns == ng, or facesRay: subpaths.cpp)
     bool dispersive = false;   // surfaces (spectral mode): the BxDF follows lambda[0] alone
     bool facesRay = false;     // on a flat curve (geometry/fibre_kind.h): see densityCos
     Spectrum beta;          // throughput of the subpath up to and including this vertex

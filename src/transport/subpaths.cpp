@@ -172,8 +172,11 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
         v.frame = si.shadingFrame();
         v.bxdf = bxdf;
         v.nonSpecular = (bxdf->flags() & (kDiffuse | kGlossy)) != 0;
-        v.flatShading = si.ns == si.ng;
         v.facesRay = si.fibre == FibreKind::FacingRay;
+        // On a strip facing each ray (flat and cylinder curves) the factor's geometric cosines
+        // would be the strip's, which turns with the ray that met it: the hair BSDF's adjoint
+        // makes the same correction with the fibre's projected widths (hair_bxdf.cpp).
+        v.flatShading = si.ns == si.ng || v.facesRay;
         v.dispersive = lambda && lambda->terminationRequests != terminationRequests;
         v.light = si.areaLight;
         v.beta = beta;
@@ -250,7 +253,7 @@ Spectrum Subpaths::f(const PathVertex& v, const PathVertex& next, TransportMode 
     if (v.kind != VertexKind::Surface || !v.bxdf) return {};
     Vec3 wi = directionTo(v, next);
     Spectrum fv = v.bxdf->f(v.frame.toLocal(v.wo), v.frame.toLocal(wi), mode);
-    if (mode == TransportMode::Importance) fv *= adjointShadingFactor(v.wo, wi, v.ns, v.ng);
+    if (mode == TransportMode::Importance && !v.flatShading) fv *= adjointShadingFactor(v.wo, wi, v.ns, v.ng);
     return fv;
 }
 

@@ -111,6 +111,7 @@ VerifyReport verifyScene(Scene& scene, const VerifyOptions& o, const Reference* 
         r.name = name;
         r.runs = RunSet(o.blocksX, o.blocksY);
         r.skipped = missingPaths(scene, name);
+        if (r.skipped.empty()) r.skipped = inconsistentSurfaces(scene, name);
         toRun += r.skipped.empty();
         report.results.push_back(std::move(r));
     }

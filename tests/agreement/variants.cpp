@@ -304,18 +304,20 @@ Material "mix" "string materials" [ "a" "b" ] "float amount" [ 0.4 ])");
     material("measured", "Material \"measured\" \"string filename\" [ \"" + data + "/pbrt-v4/measured/ggx-spectral.bsdf\" ]");
 
     // Hair fibres across the box, as flat curves (pbrt-v4's default type: ribbons that face
-    // each ray). The hair BSDF needs its own adjoint, and the densities there are per unit of
-    // the fibre's area (hair_bxdf.cpp; densityCos in transport/path_vertex.h). Tubes
-    // ("cylinder") are not a cell: docs/agreement-matrix.md says why.
-    box("material/hair", [](Box& b) {
-        b.extra = R"(AttributeBegin
+    // each ray) and as cylinder curves (the same strips, shaded as tubes). The hair BSDF needs
+    // its own adjoint, and the densities there are per unit of the fibre's area
+    // (hair_bxdf.cpp; densityCos in transport/path_vertex.h).
+    for (const char* type : {"flat", "cylinder"})
+        box(std::string("material/hair") + (std::string(type) == "flat" ? "" : "-cylinder"), [type](Box& b) {
+            b.extra = std::string(R"(AttributeBegin
   Material "hair" "rgb sigma_a" [ 0.4 0.6 0.9 ]
-  Shape "curve" "string type" [ "flat" ] "float width" [ 0.06 ]
+  Shape "curve" "string type" [ "TYPE" ] "float width" [ 0.06 ]
     "point3 P" [ -0.4 0.2 0.1  -0.1 0.5 0.2  0.1 0.3 0.1  0.4 0.6 0.2 ]
-  Shape "curve" "string type" [ "flat" ] "float width" [ 0.06 ]
+  Shape "curve" "string type" [ "TYPE" ] "float width" [ 0.06 ]
     "point3 P" [ -0.4 0.7 0.0  -0.1 0.5 0.1  0.1 0.8 0.0  0.4 0.4 0.1 ]
-AttributeEnd)";
-    });
+AttributeEnd)");
+            for (size_t at; (at = b.extra.find("TYPE")) != std::string::npos;) b.extra.replace(at, 4, type);
+        });
 
     // ---- textures and cut-outs ----
     box("texture/checkerboard", [](Box& b) {

@@ -44,6 +44,38 @@ TEST(CoverageCli, LightTracingWarnsWhereItCannotSample) {
     EXPECT_EQ(r.out.find("will render part"), std::string::npos) << r.out;
 }
 
+// Flat and cylinder curves of a material other than hair: every integrator but the path tracer
+// warns (light paths meet the strip other than camera rays do); hair curves, ribbons and the
+// path tracer do not.
+TEST(CoverageCli, LightSideIntegratorsWarnOnRayFacingCurvesOfOtherMaterials) {
+    auto withCurve = [](const std::string& type, const std::string& material) {
+        std::string scene = ps::test::box("5 5 5", "0.7 0.2 0.2", "0.2 0.7 0.2");
+        scene.insert(scene.rfind("Shape \"sphere\""),
+                     "AttributeBegin\nMaterial \"" + material + "\"\nShape \"curve\" \"string type\" [ \"" + type +
+                         "\" ] \"float width\" [ 0.1 ] \"point3 P\" [ -1 0 0  -0.3 0.5 0  0.3 0 0  1 0.5 0 ]" +
+                         (type == "ribbon" ? " \"normal N\" [ 0 0 1  0 0 1 ]" : "") + "\nAttributeEnd\n");
+        return scene;
+    };
+    const std::string phrase = "may render some curves other than path tracing";
+    for (const std::string type : {"flat", "cylinder"}) {
+        const SceneFile diffuse(withCurve(type, "diffuse"), "curve-diffuse"), hair(withCurve(type, "hair"), "curve-hair");
+        for (const std::string integrator : {"light", "bdpt", "mmlt"}) {
+            const std::string args = "--integrator " + integrator + " --spp 1" + (integrator == "mmlt" ? " --bootstrap 1000" : "");
+            auto r = ps::test::runPathspace(render(diffuse, args));
+            EXPECT_EQ(r.status, 0) << r.out;
+            EXPECT_NE(r.out.find(phrase), std::string::npos) << type << " " << integrator << ": " << r.out;
+            r = ps::test::runPathspace(render(hair, args));
+            EXPECT_EQ(r.out.find(phrase), std::string::npos) << type << " " << integrator << ": " << r.out;
+        }
+        const auto r = ps::test::runPathspace(render(diffuse, "--integrator path --spp 1"));
+        EXPECT_EQ(r.out.find(phrase), std::string::npos) << r.out;
+    }
+    const SceneFile ribbon(withCurve("ribbon", "diffuse"), "curve-ribbon");
+    const auto r = ps::test::runPathspace(render(ribbon, "--integrator bdpt --spp 1"));
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(r.out.find(phrase), std::string::npos) << r.out;
+}
+
 TEST(CoverageCli, EveryIntegratorAtMaxDepth1000) {
     const SceneFile box(ps::test::withBootstrap(ps::test::box("5 5 5", "0.7 0.2 0.2", "0.2 0.7 0.2"), 1000), "deep");
     for (const char* integrator : {"path", "light", "bdpt", "pssmlt", "mmlt"}) {

@@ -1,6 +1,6 @@
-// Shape "curve" through Embree's curve primitives, against closed forms: a straight
-// "cylinder" curve is a tube, a straight "flat" curve a strip of the width facing each ray, a
-// straight "ribbon" a strip in the plane its normals give; widths vary linearly along the
+// Shape "curve" through Embree's curve primitives, against closed forms: a straight "flat" or
+// "cylinder" curve is a strip of the width facing each ray (the cylinder's shaded as a tube),
+// a straight "ribbon" a strip in the plane its normals give; widths vary linearly along the
 // curve; degree 2 and B-spline curves equal the cubic Bezier curves they convert to exactly.
 #include <gtest/gtest.h>
 
@@ -44,68 +44,19 @@ std::optional<SurfaceInteraction> trace(const Scene& scene, Vec3 o, Vec3 d) {
 
 }  // namespace
 
-// Width 0.5: a tube of radius R = 0.25 about the x axis. Random rays aimed at points at a
-// distance s of the axis hit iff s < R (tested with a 2% margin), at the entry point of the
-// infinite cylinder y^2 + z^2 = R^2, with its outward normal and u = (x + 2) / 4.
-TEST(Curve, StraightCylinderIsATube) {
-    const float R = 0.25f;
-    auto scene = sceneOf(straightCurve("cylinder", "\"float width\" [ 0.5 ]"));
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<float> U(0, 1);
-    int hits = 0, misses = 0;
-    double worstT = 0, worstN = 0, worstU = 0;
-    for (int i = 0; i < 4000; ++i) {
-        // A ray direction at up to ~60 degrees from -z, aimed at (x, s cos a, s sin a).
-        Vec3 d = normalize(Vec3(U(rng) - 0.5f, 2 * U(rng) - 1, 1.2f));
-        float x = 1.6f * (2 * U(rng) - 1), s = 2 * R * U(rng), a = 2 * kPi * U(rng);
-        Vec3 aim(x, s * std::cos(a), s * std::sin(a));
-        Vec3 o = aim - d * 5.0f;
-        // Distance between the ray's line and the axis, and the entry point.
-        float dyz2 = d.y * d.y + d.z * d.z;
-        float b = (o.y * d.y + o.z * d.z) / dyz2;
-        float c = (o.y * o.y + o.z * o.z - R * R) / dyz2;
-        float disc = b * b - c;
-        float lineDist = std::sqrt(std::max(0.0f, (o.y * o.y + o.z * o.z) - b * b * dyz2));
-        auto si = trace(*scene, o, d);
-        if (lineDist > 1.02f * R) {
-            EXPECT_FALSE(si) << "ray " << i << " passes at " << lineDist;
-            ++misses;
-            continue;
-        }
-        if (lineDist > 0.98f * R) continue;
-        ASSERT_TRUE(si) << "ray " << i << " passes at " << lineDist;
-        ++hits;
-        float tExact = -b - std::sqrt(disc);
-        Vec3 p = o + d * tExact;
-        if (std::fabs(p.x) > 1.9f) continue;  // the rounded ends
-        Vec3 nExact = Vec3(0, p.y, p.z) / R;
-        worstT = std::max(worstT, double(std::fabs(si->t - tExact)));
-        worstN = std::max(worstN, double(length(si->ng - nExact)));
-        worstU = std::max(worstU, double(std::fabs(si->uv.x - (p.x + 2) / 4)));
-        EXPECT_NEAR(si->t, tExact, 2e-3f * R) << "ray " << i;
-        EXPECT_LT(length(si->ng - nExact), 1e-2f) << "ray " << i;
-        EXPECT_NEAR(si->uv.x, (p.x + 2) / 4, 1e-3f) << "ray " << i;
-        EXPECT_LT(std::fabs(dot(si->ns, si->ng) - 1), 1e-5f);
-    }
-    std::printf("  %d hits, %d misses; largest |t - t_exact| %.2g (R = %.2f), |n - n_exact| %.2g, |u - u_exact| %.2g\n",
-                hits, misses, worstT, R, worstN, worstU);
-    EXPECT_GT(hits, 1000);
-    EXPECT_GT(misses, 500);
-    // ReverseOrientation flips the normal.
-    auto flipped = sceneOf("ReverseOrientation\n" + straightCurve("cylinder", "\"float width\" [ 0.5 ]"));
-    auto si = trace(*flipped, Vec3(0.3f, 0, -5), Vec3(0, 0, 1));
-    ASSERT_TRUE(si);
-    EXPECT_NEAR(si->t, 5 - R, 1e-3f);
-    EXPECT_LT(length(si->ng - Vec3(0, 0, 1)), 1e-4f);
-}
-
 // A flat curve is a strip of the curve's width facing each ray: whatever the direction, a
 // ray hits iff it passes within w/2 of the centre line, at the depth of the centre line's
 // closest point, with a normal perpendicular to the curve pointing away from the ray origin
-// (pbrt-v4's orientation) and v = 1/2 + (signed distance) / w.
-TEST(Curve, FlatCurveHasTheProjectedWidth) {
+// (pbrt-v4's orientation) and v = 1/2 + (signed distance) / w. A cylinder curve is the same
+// strip (pbrt-v4's), shaded as a tube: its shading normal is the strip's turned about the
+// curve by theta = (v - 1/2) pi, towards the side of the hit (as a tube's inner normal there);
+// ReverseOrientation flips both normals.
+TEST(Curve, FlatAndCylinderCurvesHaveTheProjectedWidth) {
+  for (const char* type : {"flat", "cylinder"}) {
+    SCOPED_TRACE(type);
+    const bool cylinder = std::string(type) == "cylinder";
     const float w = 0.3f;
-    auto scene = sceneOf(straightCurve("flat", "\"float width\" [ 0.3 ]"));
+    auto scene = sceneOf(straightCurve(type, "\"float width\" [ 0.3 ]"));
     std::mt19937 rng(12);
     std::uniform_real_distribution<float> U(0, 1);
     int hits = 0, misses = 0;
@@ -133,16 +84,31 @@ TEST(Curve, FlatCurveHasTheProjectedWidth) {
         float vExact = 0.5f + s / w;
         worstV = std::max(worstV, double(std::fabs(si->uv.y - vExact)));
         EXPECT_NEAR(si->uv.y, vExact, 2e-3f) << "ray " << i;
+        const float theta = cylinder ? (vExact - 0.5f) * kPi : 0.0f;
+        const Vec3 nsExact = nExact * std::cos(theta) - across * std::sin(theta);
+        EXPECT_LT(length(si->ns - nsExact), 1e-2f) << "ray " << i << " at v " << vExact;
     }
-    std::printf("  %d hits, %d misses; largest |t - t_exact| %.2g, |v - v_exact| %.2g\n", hits, misses, worstT, worstV);
+    std::printf("  %s: %d hits, %d misses; largest |t - t_exact| %.2g, |v - v_exact| %.2g\n", type, hits, misses, worstT,
+                worstV);
     EXPECT_GT(hits, 1000);
     EXPECT_GT(misses, 500);
+    // ReverseOrientation flips both normals: a ray along +z a quarter width off the axis
+    // towards -y, where v = 1/4 (across, d x axis, is +y).
+    auto flipped = sceneOf("ReverseOrientation\n" + straightCurve(type, "\"float width\" [ 0.3 ]"));
+    auto si = trace(*flipped, Vec3(0.3f, -0.075f, -5), Vec3(0, 0, 1));
+    ASSERT_TRUE(si);
+    EXPECT_NEAR(si->t, 5, 1e-3f);
+    EXPECT_LT(length(si->ng - Vec3(0, 0, -1)), 1e-4f);
+    const float theta = cylinder ? -0.25f * kPi : 0.0f;
+    EXPECT_LT(length(si->ns - Vec3(0, std::sin(theta), -std::cos(theta))), 1e-2f) << si->ns.x << " " << si->ns.y << " "
+                                                                                    << si->ns.z;
+  }
 }
 
 // width0 0.2 to width1 0.6 over two segments: pbrt-v4 gives segment k the widths at k/2 and
 // (k+1)/2 and interpolates linearly within it, so at x = -0.5 (segment 0, u = 1/2) the width is
 // 0.3 and at x = 0.5 (segment 1, u = 1/2) it is 0.5. Rays along +z at 0.98 and 1.02 times the
-// half width hit and miss, for flat and tube curves.
+// half width hit and miss, for flat and cylinder curves.
 TEST(Curve, WidthIsInterpolatedLinearly) {
     for (const char* type : {"flat", "cylinder"}) {
         auto scene = sceneOf(std::string("Shape \"curve\" \"string type\" \"") + type +
