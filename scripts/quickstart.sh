@@ -2,7 +2,7 @@
 # Set up, build, and render the bundled Cornell box to EXR and PNG.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-./scripts/setup.sh
+./scripts/setup.sh --renderer
 # Only the renderer: the test command builds the tests and benchmarks.
 ./scripts/build.sh pathspace
 mkdir -p out

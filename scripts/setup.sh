@@ -1,13 +1,19 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages pathspace needs to build, test and benchmark.
+# Installs the Debian 12 packages pathspace needs to build, test and benchmark; with
+# --renderer, only those the renderer needs (the quickstart: the test command installs the rest).
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev libopenexr-dev libstb-dev zlib1g-dev
-  libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
-  clang-14 libclang-rt-14-dev llvm-14  # sanitizer and fuzz builds (llvm-14: symbolized reports)
+  libcli11-dev nlohmann-json3-dev
   libopenmpi-dev openmpi-bin  # rendering across machines (mpirun -n K pathspace render ...)
 )
+if [ "${1:-}" != "--renderer" ]; then
+  packages+=(
+    libgtest-dev libbenchmark-dev
+    clang-14 libclang-rt-14-dev llvm-14  # sanitizer and fuzz builds (llvm-14: symbolized reports)
+  )
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
