@@ -313,4 +313,17 @@ float Curve::area(int prim) const {
 
 ShapeSample Curve::sampleArea(int, Vec2) const { return ShapeSample{}; }
 
+Bounds3 Curve::primitiveBounds(int prim) const {
+    const float* c = &cp_[16 * size_t(prim)];
+    Bounds3 b;
+    float r = 0;
+    for (int i = 0; i < 4; ++i) {
+        b.expand(Vec3(c[4 * i], c[4 * i + 1], c[4 * i + 2]));
+        r = std::max(r, c[4 * i + 3]);
+    }
+    b.lo -= Vec3(r, r, r);
+    b.hi += Vec3(r, r, r);
+    return b;
+}
+
 }  // namespace ps

@@ -52,6 +52,8 @@ public:
     float area(int prim) const override;
     // Never called: area lights on curves are rejected when the scene is built.
     ShapeSample sampleArea(int prim, Vec2 u) const override;
+    // The control points' box widened by the segment's largest radius (Bezier hull).
+    Bounds3 primitiveBounds(int prim) const override;
 
     // Embree's filters reject cut-outs and, on flat curves, hits on the curve the ray starts on.
     bool acceptsHit(const Ray& r, float t, int embreePrim, float u, float v) const override;

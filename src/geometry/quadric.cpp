@@ -9,15 +9,8 @@ namespace {
 
 void boundsCallback(const RTCBoundsFunctionArguments* args) {
     auto* q = static_cast<const Quadric*>(args->geometryUserPtr);
-    Vec3 lo, hi;
-    q->objectBounds(lo, hi);
-    Vec3 blo(1e30f, 1e30f, 1e30f), bhi(-1e30f, -1e30f, -1e30f);
-    for (int i = 0; i < 8; ++i) {
-        Vec3 c((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
-        Vec3 w = q->toScene().point(c);
-        blo = vmin(blo, w);
-        bhi = vmax(bhi, w);
-    }
+    Bounds3 sb = q->primitiveBounds(0);
+    Vec3 blo = sb.lo, bhi = sb.hi;
     RTCBounds* b = args->bounds_o;
     b->lower_x = blo.x; b->lower_y = blo.y; b->lower_z = blo.z;
     b->upper_x = bhi.x; b->upper_y = bhi.y; b->upper_z = bhi.z;
@@ -126,6 +119,15 @@ Sphere::Sphere(const Transform& toScene, bool reverseOrientation, float radius, 
     full_ = zMin_ <= -radius && zMax_ >= radius && phiMaxDeg >= 360;
     center_ = toScene.point({0, 0, 0});
     sceneRadius_ = radius * length(toScene.vector({1, 0, 0}));
+}
+
+Bounds3 Quadric::primitiveBounds(int) const {
+    Vec3 lo, hi;
+    objectBounds(lo, hi);
+    Bounds3 b;
+    for (int i = 0; i < 8; ++i)
+        b.expand(toScene_.point(Vec3((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z)));
+    return b;
 }
 
 void Sphere::objectBounds(Vec3& lo, Vec3& hi) const {
@@ -297,6 +299,11 @@ int Disk::interaction(const Ray& r, float t, int, float, float, SurfaceInteracti
         setDerivatives(si, {-phiMax_ * pObj.y, phiMax_ * pObj.x, 0}, dpdv, {}, {});
     }
     return 0;
+}
+
+DirectionCone Disk::normalBounds(int) const {
+    Vec3 n = normalize(toScene_.normal({0, 0, 1}));
+    return DirectionCone(flip_ ? -n : n, 1);
 }
 
 float Disk::area(int) const {

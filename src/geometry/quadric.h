@@ -16,6 +16,8 @@ public:
     // tMin finds the hits behind one that alpha cut out).
     virtual float intersectObject(Vec3 o, Vec3 d, float tMin, float tMax) const = 0;
     virtual void objectBounds(Vec3& lo, Vec3& hi) const = 0;
+    // The object bounds' eight corners carried to the shape's space.
+    Bounds3 primitiveBounds(int prim) const override;
     const Transform& toScene() const { return toScene_; }
     // The nearest hit in (0, tMax) that the alpha test keeps, or a negative value; o, d are
     // the ray in the shape's space (sceneRay) and in object space.
@@ -61,6 +63,7 @@ public:
     int interaction(const Ray& r, float t, int embreePrim, float u, float v, SurfaceInteraction& si) const override;
     float area(int prim) const override;
     ShapeSample sampleArea(int prim, Vec2 u) const override;
+    DirectionCone normalBounds(int prim) const override;  // flat: its one oriented normal
 
 private:
     float height_, radius_, innerRadius_, phiMax_;

@@ -8,6 +8,8 @@
 #include "geometry/alpha_mask.h"
 #include "geometry/interaction.h"
 #include "geometry/ray.h"
+#include "math/bounds3.h"
+#include "math/direction_cone.h"
 
 namespace ps {
 
@@ -46,6 +48,14 @@ public:
     virtual float pdfToward(int prim, Vec3 ref, Vec3 hitP, Vec3 hitN) const;
     // Called once for emissive shapes: cache what light sampling needs per primitive.
     virtual void prepareSampling() {}
+    // What choosing lights by their bounds needs of an emitting primitive (lights/light_bounds.h):
+    // a box holding it, in the space the shape is stored in, and a cone holding its oriented
+    // normals (the side a one-sided emitter emits from). Default: normals in every direction.
+    virtual Bounds3 primitiveBounds(int prim) const = 0;
+    virtual DirectionCone normalBounds(int prim) const {
+        (void)prim;
+        return DirectionCone::entireSphere();
+    }
 
     // The alpha test of Embree's hit (embreePrim, u, v) at distance t of ray r, r in the space
     // the shape is stored in (the world's, or an instance prototype's): true without alpha.

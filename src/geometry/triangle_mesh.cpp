@@ -250,3 +250,32 @@ std::optional<ShapeSample> TriangleMesh::sampleToward(int prim, Vec3 ref, Vec2 u
 }
 
 }  // namespace ps
+
+namespace ps {
+
+Bounds3 TriangleMesh::primitiveBounds(int prim) const {
+    const unsigned* vi = &indices_[3 * prim];
+    Bounds3 b(loadP(positions_, vi[0]));
+    b.expand(loadP(positions_, vi[1]));
+    b.expand(loadP(positions_, vi[2]));
+    return b;
+}
+
+DirectionCone TriangleMesh::normalBounds(int prim) const {
+    Vec3 ng = faceNormal_[prim];
+    if (normals_.empty()) return DirectionCone(ng, 1);
+    // With N the side of the interpolated normal decides (sampleArea, interaction): one side
+    // for the whole triangle when the three vertex normals agree on it.
+    const unsigned* vi = &indices_[3 * prim];
+    int above = 0, below = 0;
+    for (int k = 0; k < 3; ++k) {
+        float c = dot(normals_[vi[k]], ng);
+        above += c > 0;
+        below += c < 0;
+    }
+    if (above == 3) return DirectionCone(ng, 1);
+    if (below == 3) return DirectionCone(-ng, 1);
+    return DirectionCone::entireSphere();
+}
+
+}  // namespace ps

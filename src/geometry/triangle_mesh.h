@@ -29,6 +29,10 @@ public:
     ShapeSample sampleArea(int prim, Vec2 u) const override;
     std::optional<ShapeSample> sampleToward(int prim, Vec3 ref, Vec2 u) const override;
     void prepareSampling() override;
+    Bounds3 primitiveBounds(int prim) const override;
+    // The emitting side's normal: the one light sampling gives (the side N chooses), or every
+    // direction where N disagrees with itself over the triangle.
+    DirectionCone normalBounds(int prim) const override;
 
 private:
     Vec3 geometricNormal(int prim) const { return faceNormal_[prim]; }  // unit, oriented

@@ -49,6 +49,11 @@ std::optional<LightLeSample> DiffuseAreaLight::sampleLe(Vec2 uPos, Vec2 uDir, co
     return ls;
 }
 
+std::optional<LightBounds> DiffuseAreaLight::bounds() const {
+    DirectionCone normals = shape_->normalBounds(prim_);
+    return LightBounds(shape_->primitiveBounds(prim_), normals.w, phi().luminance(), normals.cosTheta, 0, twoSided_);
+}
+
 void DiffuseAreaLight::pdfLe(Vec3, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const {
     *pdfPos = shape_->pdfArea(prim_);
     *pdfDir = emittedDirectionPdf(dot(n, w));

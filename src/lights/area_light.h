@@ -36,6 +36,8 @@ public:
         return lambda ? liftIlluminant(image_->at(uv), *lambda) * Lemit_.rgb().g : Lemit_.rgb() * image_->at(uv);
     }
     // With an image, its mean radiance (pbrt-v4's, which ignores how uv stretches).
+    // The primitive's box and normal cone; light leaves up to pi/2 from the normal.
+    std::optional<LightBounds> bounds() const override;
     Spectrum phi() const override {
         return (image_ ? Lemit_.rgb() * image_->mean() : Lemit_.rgb()) * (kPi * (twoSided_ ? 2.0f : 1.0f) * shape_->area(prim_));
     }

@@ -19,6 +19,13 @@ void PointLight::pdfLe(Vec3, Vec3, Vec3, float* pdfPos, float* pdfDir) const {
     *pdfDir = uniformSpherePdf();
 }
 
+// Point-like lights weigh in as 4 pi times their intensity (pbrt-v4's choice), not their
+// power: what a point receives from them is intensity / d^2 wherever they shine at all, so a
+// spot light weighs as much as a point light of its intensity inside its cone.
+std::optional<LightBounds> PointLight::bounds() const {
+    return LightBounds(Bounds3(pos_), {0, 0, 1}, 4 * kPi * I_.rgb().luminance(), -1, 0, false);
+}
+
 static float smoothStep(float x, float a, float b) {
     if (a == b) return x < a ? 0.0f : 1.0f;
     float t = clampf((x - a) / (b - a), 0, 1);
@@ -50,6 +57,14 @@ void SpotLight::pdfLe(Vec3, Vec3, Vec3 w, float* pdfPos, float* pdfDir) const {
 // Integral of the smoothstep falloff over the sphere (PBRT-CONVENTIONS §3).
 Spectrum SpotLight::phi() const {
     return I_.rgb() * (2 * kPi * ((1 - cosStart_) + (cosStart_ - cosEnd_) / 2));
+}
+
+// Directions within the falloff's start have full intensity (theta_o); it reaches zero at the
+// cone's edge, theta_e further. A margin of 1e-3 radians keeps rounding from zeroing the
+// bound for directions the light still reaches (for a cone without falloff, theta_e is 0).
+std::optional<LightBounds> SpotLight::bounds() const {
+    float thetaE = safeAcos(cosEnd_) - safeAcos(cosStart_) + 1e-3f;
+    return LightBounds(Bounds3(pos_), frame_.n, 4 * kPi * I_.rgb().luminance(), cosStart_, std::cos(thetaE), false);
 }
 
 std::optional<LightLiSample> DistantLight::sampleLi(const LightSampleContext& ctx, Vec2) const {

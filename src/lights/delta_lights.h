@@ -14,6 +14,7 @@ public:
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
     Spectrum L(Vec3, Vec3, Vec2, Vec3, const SampledWavelengths* lambda) const override { return I_(lambda); }
     Spectrum phi() const override { return I_.rgb() * (4 * kPi); }
+    std::optional<LightBounds> bounds() const override;
 
 private:
     Vec3 pos_;
@@ -31,6 +32,7 @@ public:
     void pdfLe(Vec3 p, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const override;
     Spectrum L(Vec3, Vec3, Vec2, Vec3 w, const SampledWavelengths* lambda) const override { return intensity(w, lambda); }
     Spectrum phi() const override;
+    std::optional<LightBounds> bounds() const override;
     // Intensity towards world direction w leaving the light.
     Spectrum intensity(Vec3 w, const SampledWavelengths* lambda = nullptr) const;
 

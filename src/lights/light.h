@@ -6,6 +6,7 @@
 #include "geometry/interaction.h"
 #include "geometry/ray.h"
 #include "math/spectrum.h"
+#include "lights/light_bounds.h"
 #include "lights/light_spectrum.h"
 
 namespace ps {
@@ -79,6 +80,10 @@ public:
     bool atInfinity() const { return type_ == LightType::Infinite || type_ == LightType::DeltaDirection; }
     // Emitted power (for choosing lights in proportion to it), RGB in both colour modes.
     virtual Spectrum phi() const = 0;
+    // Where and which way the light emits, for choosing among lights by how much each may
+    // give a point (lights/light_sampler.h). None for lights at infinity (infinite and
+    // distant), which are chosen apart from the bounded ones.
+    virtual std::optional<LightBounds> bounds() const { return std::nullopt; }
     // Lights that depend on the scene's extent learn it here.
     virtual void preprocess(Vec3 sceneCenter, float sceneRadius) { (void)sceneCenter; (void)sceneRadius; }
 

@@ -87,6 +87,25 @@ void ProjectionLight::pdfLe(Vec3, Vec3, Vec3 w, float* pdfPos, float* pdfDir) co
     *pdfDir = frame_.toWorldDensity(distribution_.pdf(uv) / (screen_.planeArea() * screen_.cos3(sx, sy)), wl);
 }
 
+std::optional<LightBounds> ProjectionLight::bounds() const {
+    double sum = 0;
+    for (int y = 0; y < image_.height; ++y)
+        for (int x = 0; x < image_.width; ++x) sum += image_.get(x, y).luminance();
+    float meanI = float(sum / (double(image_.width) * image_.height)) * scale_;
+    // The frustum's four edges, carried to the world (the transform may shear it), bound the
+    // cone about the axis; an edge at or beyond 90 degrees from it leaves every direction.
+    Vec3 axis = frame_.toWorld({0, 0, 1});
+    float cosTheta = 1;
+    for (float sx : {screen_.x0, screen_.x1})
+        for (float sy : {screen_.y0, screen_.y1}) {
+            Vec3 edge = frame_.toWorld(normalize(Vec3(sx * screen_.tanHalfFov, sy * screen_.tanHalfFov, 1)));
+            cosTheta = std::min(cosTheta, dot(axis, edge));
+        }
+    if (!(cosTheta > 0)) cosTheta = -1;
+    // A margin of 1e-3 radians of emission beyond the cone, for rounding (see SpotLight::bounds).
+    return LightBounds(Bounds3(pos_), axis, 4 * kPi * meanI, cosTheta, std::cos(1e-3f), false);
+}
+
 Spectrum ProjectionLight::phi() const {
     int w = image_.width, h = image_.height;
     Spectrum sum;

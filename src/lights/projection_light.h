@@ -27,6 +27,9 @@ public:
     Spectrum L(Vec3, Vec3, Vec2, Vec3 w, const SampledWavelengths* lambda) const override { return intensity(w, lambda); }
     // pbrt-v4's power: texel values times their solid angles at the texel centres.
     Spectrum phi() const override;
+    // At its position, emitting within the cone that holds its frustum; it weighs in as 4 pi
+    // times its mean intensity over the screen, as point-like lights do (delta_lights.cpp).
+    std::optional<LightBounds> bounds() const override;
     Spectrum intensity(Vec3 w, const SampledWavelengths* lambda = nullptr) const {
         return intensityLight(frame_.toLight(w), lambda);
     }
