@@ -1,0 +1,211 @@
+#include "lights/bvh_light_sampler.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace ps {
+
+namespace {
+
+constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
+// Below this depth, splits follow the cost; from it on, the median, so that no way down needs
+// more than 64 bits for fewer than 2^32 lights.
+constexpr int kCostSplitDepth = 32;
+constexpr int kBuckets = 12;
+
+// pbrt-v4's cost of a group of lights (Conty Estevez and Kulla's heuristic): power times the
+// measure of the directions it may emit in (the cosine-weighted solid angle of its normals'
+// cone widened by the emission range) times its surface area; kr favours cutting the box
+// across its long side.
+float splitCost(const LightBounds& b, const Bounds3& parent, int dim) {
+    if (b.phi == 0) return 0;
+    const float thetaO = safeAcos(b.cosTheta_o), thetaE = safeAcos(b.cosTheta_e);
+    const float thetaW = std::min(thetaO + thetaE, kPi);
+    const float sinThetaO = safeSqrt(1 - sqr(b.cosTheta_o));
+    const float mOmega = 2 * kPi * (1 - b.cosTheta_o) +
+                         kPi / 2 * (2 * thetaW * sinThetaO - std::cos(thetaO - 2 * thetaW) -
+                                    2 * thetaO * sinThetaO + b.cosTheta_o);
+    const Vec3 d = parent.diagonal();
+    const float kr = maxComponent(d) / d[dim];
+    return b.phi * mOmega * kr * b.bounds.surfaceArea();
+}
+
+// The importances of a node's two children at ctx; nodes[i + 1] is the first.
+inline void childImportances(const auto& nodes, int i, const LightSampleContext& ctx, float c[2]) {
+    c[0] = nodes[size_t(i) + 1].bounds.importance(ctx.p, ctx.ng);
+    c[1] = nodes[size_t(nodes[size_t(i)].childOrLight)].bounds.importance(ctx.p, ctx.ng);
+}
+
+}  // namespace
+
+BVHLightSampler::BVHLightSampler(std::span<const Light* const> lights)
+    : lights_(lights.begin(), lights.end()), place_(lights.size(), Place::None), trail_(lights.size(), 0),
+      power_(lights) {
+    std::vector<Entry> entries;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        std::optional<LightBounds> b = lights[i]->bounds();
+        if (!b) {
+            infinite_.push_back(lights[i]);
+            place_[i] = Place::Infinite;
+        } else if (b->phi > 0 && std::isfinite(b->phi)) {
+            // A light of no power is never chosen (it gives nothing).
+            entries.push_back({int(i), *b});
+            place_[i] = Place::Tree;
+        }
+    }
+    if (!entries.empty()) {
+        nodes_.reserve(2 * entries.size() - 1);
+        build(entries, 0, int(entries.size()), 0, 0);
+    }
+}
+
+int BVHLightSampler::build(std::vector<Entry>& entries, int begin, int end, uint64_t trail, int depth) {
+    depth_ = std::max(depth_, depth);
+    const int index = int(nodes_.size());
+    if (end - begin == 1) {
+        const Entry& e = entries[size_t(begin)];
+        nodes_.push_back(Node{e.bounds, e.light, true});
+        trail_[size_t(e.light)] = trail;
+        return index;
+    }
+    const int mid = split(entries, begin, end, depth);
+    nodes_.emplace_back();  // filled once both children exist
+    build(entries, begin, mid, trail, depth + 1);
+    const int second = build(entries, mid, end, trail | (uint64_t(1) << depth), depth + 1);
+    nodes_[size_t(index)] = Node{unite(nodes_[size_t(index) + 1].bounds, nodes_[size_t(second)].bounds), second, false};
+    return index;
+}
+
+int BVHLightSampler::split(std::vector<Entry>& entries, int begin, int end, int depth) const {
+    Bounds3 bounds, centroids;
+    for (int i = begin; i < end; ++i) {
+        bounds.expand(entries[size_t(i)].bounds.bounds);
+        centroids.expand(entries[size_t(i)].bounds.centroid());
+    }
+    auto bucketOf = [&](const Entry& e, int dim) {
+        return std::min(int(kBuckets * centroids.offset(e.bounds.centroid())[dim]), kBuckets - 1);
+    };
+
+    float bestCost = std::numeric_limits<float>::infinity();
+    int bestDim = -1, bestBucket = -1;
+    for (int dim = 0; dim < 3 && depth < kCostSplitDepth; ++dim) {
+        if (!(centroids.hi[dim] > centroids.lo[dim]) || !(bounds.diagonal()[dim] > 0)) continue;
+        std::array<LightBounds, kBuckets> bucket;
+        std::array<int, kBuckets> count{};
+        for (int i = begin; i < end; ++i) {
+            int b = bucketOf(entries[size_t(i)], dim);
+            bucket[size_t(b)] = unite(bucket[size_t(b)], entries[size_t(i)].bounds);
+            ++count[size_t(b)];
+        }
+        // Costs of splitting after each bucket, from running unions from both ends.
+        std::array<LightBounds, kBuckets> above;
+        std::array<int, kBuckets> countAbove{};
+        for (int b = kBuckets - 1; b > 0; --b) {
+            above[size_t(b)] = b + 1 < kBuckets ? unite(above[size_t(b) + 1], bucket[size_t(b)]) : bucket[size_t(b)];
+            countAbove[size_t(b)] = (b + 1 < kBuckets ? countAbove[size_t(b) + 1] : 0) + count[size_t(b)];
+        }
+        LightBounds below;
+        int countBelow = 0;
+        for (int b = 0; b < kBuckets - 1; ++b) {
+            below = unite(below, bucket[size_t(b)]);
+            countBelow += count[size_t(b)];
+            if (countBelow == 0 || countAbove[size_t(b) + 1] == 0) continue;  // one side empty
+            float cost = splitCost(below, bounds, dim) + splitCost(above[size_t(b) + 1], bounds, dim);
+            if (cost > 0 && cost < bestCost) {
+                bestCost = cost;
+                bestDim = dim;
+                bestBucket = b;
+            }
+        }
+    }
+    if (bestDim >= 0) {
+        auto first = entries.begin() + begin, last = entries.begin() + end;
+        auto mid = std::partition(first, last, [&](const Entry& e) { return bucketOf(e, bestDim) <= bestBucket; });
+        if (mid != first && mid != last) return int(mid - entries.begin());
+    }
+    // No useful cost (lights on a line or at one point have no surface area): halve along the
+    // centroids' widest spread, so that the tree still follows where the lights are.
+    const Vec3 spread = centroids.diagonal();
+    const int dim = spread.x >= spread.y && spread.x >= spread.z ? 0 : (spread.y >= spread.z ? 1 : 2);
+    const int mid = (begin + end) / 2;
+    std::nth_element(entries.begin() + begin, entries.begin() + mid, entries.begin() + end,
+                     [dim](const Entry& a, const Entry& b) { return a.bounds.centroid()[dim] < b.bounds.centroid()[dim]; });
+    return mid;
+}
+
+bool BVHLightSampler::rootImportances(const LightSampleContext& ctx, float c[2]) const {
+    if (nodes_.empty()) {
+        c[0] = c[1] = 0;
+        return false;
+    }
+    if (nodes_[0].leaf) {
+        c[0] = nodes_[0].bounds.importance(ctx.p, ctx.ng);
+        c[1] = 0;
+    } else {
+        childImportances(nodes_, 0, ctx, c);
+    }
+    return c[0] > 0 || c[1] > 0;
+}
+
+SampledLight BVHLightSampler::sample(const LightSampleContext& ctx, float u) const {
+    float c[2];
+    const bool treeCanLight = rootImportances(ctx, c);
+    const float pInfinite = infiniteShare(treeCanLight);
+    if (u < pInfinite) {
+        const size_t n = infinite_.size();
+        const size_t i = std::min(size_t(u / pInfinite * float(n)), n - 1);
+        return {infinite_[i], pInfinite / float(n)};
+    }
+    if (!treeCanLight) return {};
+    // The rest of u, rescaled to [0, 1), chooses the way down; at each node the part of it
+    // left after the choice is rescaled again for the next.
+    u = std::min((u - pInfinite) / (1 - pInfinite), kOneMinusEpsilon);
+    float pmf = 1 - pInfinite;
+    int node = 0;
+    while (!nodes_[size_t(node)].leaf) {
+        if (node != 0) childImportances(nodes_, node, ctx, c);
+        const float total = c[0] + c[1];
+        if (!(total > 0)) return {};  // neither child can light ctx (nor could any leaf below)
+        const float p0 = c[0] / total;
+        int child;
+        if (u < p0) {
+            child = 0;
+            u = std::min(u / p0, kOneMinusEpsilon);
+        } else {
+            child = 1;
+            u = std::min((u - p0) / (1 - p0), kOneMinusEpsilon);
+        }
+        pmf *= c[child] / total;
+        node = child == 0 ? node + 1 : nodes_[size_t(node)].childOrLight;
+    }
+    return {lights_[size_t(nodes_[size_t(node)].childOrLight)], pmf};
+}
+
+// The same walk as sample's, in the same order of operations (so the two agree to the last
+// bit), following the light's trail instead of u.
+float BVHLightSampler::pmf(const LightSampleContext& ctx, const Light* light) const {
+    if (!light || light->index < 0 || size_t(light->index) >= lights_.size()) return 0;
+    const Place place = place_[size_t(light->index)];
+    if (place == Place::None) return 0;
+    float c[2];
+    const bool treeCanLight = rootImportances(ctx, c);
+    const float pInfinite = infiniteShare(treeCanLight);
+    if (place == Place::Infinite) return pInfinite / float(infinite_.size());
+    if (!treeCanLight) return 0;
+    const uint64_t trail = trail_[size_t(light->index)];
+    float pmf = 1 - pInfinite;
+    int node = 0, depth = 0;
+    while (!nodes_[size_t(node)].leaf) {
+        if (node != 0) childImportances(nodes_, node, ctx, c);
+        const float total = c[0] + c[1];
+        const int child = int((trail >> depth++) & 1);
+        if (!(c[child] > 0)) return 0;
+        pmf *= c[child] / total;
+        node = child == 0 ? node + 1 : nodes_[size_t(node)].childOrLight;
+    }
+    return pmf;
+}
+
+}  // namespace ps
