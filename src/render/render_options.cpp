@@ -208,7 +208,19 @@ void applyRenderOptions(const SceneDescription& desc, Scene& scene) {
     s.maxDepth = ip.getInt("maxdepth", 5);
     if (s.maxDepth < 0) throw InputError(desc.integrator.loc, "Integrator: \"maxdepth\" must be >= 0");
     s.regularize = ip.getBool("regularize", false);
-    ip.getString("lightsampler", "bvh");  // any unbiased light choice gives the same image
+    // How next-event estimation chooses a light (lights/light_sampler.h); the path tracer uses
+    // it, the other integrators choose by power for now.
+    s.lightSampler = ip.getString("lightsampler", "bvh");
+    if (s.lightSampler == "exhaustive") {
+        // pbrt-v4's reference for "bvh" (every light's importance, no tree): the same kind of
+        // choice, so its nearest relative.
+        warning(ip.find("lightsampler")->loc, "Integrator: \"lightsampler\" \"exhaustive\" is not available; using \"bvh\"");
+        s.lightSampler = "bvh";
+    } else if (!isLightSamplerName(s.lightSampler)) {
+        const Param* p = ip.find("lightsampler");
+        throw InputError(p ? p->loc : desc.integrator.loc, "Integrator: unknown \"lightsampler\" " + quoteForMessage(s.lightSampler) +
+                                                               " (must be " + kLightSamplerNames + ")");
+    }
     bool known = true;
     if (it == "path" || it == "volpath") {
         s.integrator = "path";

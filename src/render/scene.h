@@ -1,5 +1,6 @@
 // The renderable scene: Embree BVH over shapes and instances, materials, lights with a
-// power-proportional light chooser, the camera and the render settings from the file.
+// power-proportional light chooser and the scene's light sampler (which may choose by the
+// receiving point), the camera and the render settings from the file.
 #pragma once
 #include <optional>
 #include <array>
@@ -13,6 +14,7 @@
 #include "film/film.h"
 #include "geometry/shape.h"
 #include "lights/light.h"
+#include "lights/light_sampler.h"
 #include "mc/alias_table.h"
 #include "materials/material.h"
 #include "util/error.h"
@@ -25,6 +27,7 @@ struct RenderSettings {
     std::string sceneIntegrator;  // the scene's Integrator type as written ("mlt" runs our "mmlt")
     int maxDepth = 5;
     bool regularize = false;
+    std::string lightSampler = "bvh";  // Integrator "lightsampler" (isLightSamplerName)
     std::string sampler = "sobol";
     int spp = 16;
     uint64_t seed = 0;
@@ -66,9 +69,13 @@ public:
     // Any hit within r.tMax.
     bool occluded(const Ray& r) const;
 
-    // Light choice in proportion to power (luminance of phi).
+    // Light choice in proportion to power (luminance of phi), for callers without a
+    // receiving point (light subpaths) and the integrators that do not yet use lightSampler().
     const Light* sampleLight(float u, float* pmf) const;
     float lightPmf(const Light* light) const;
+    // The choice the scene's "lightsampler" names, which may depend on the receiving point
+    // (the path tracer's next-event estimation and its MIS weights use it).
+    const LightSampler& lightSampler() const { return *lightSampler_; }
 
     const std::vector<std::unique_ptr<Light>>& lights() const { return lights_; }
     const std::vector<const Light*>& infiniteLights() const { return infiniteLights_; }
@@ -123,6 +130,7 @@ private:
     std::vector<std::unique_ptr<Light>> lights_;
     std::vector<const Light*> infiniteLights_;
     AliasTable lightDistribution_;  // by power
+    std::unique_ptr<LightSampler> lightSampler_;  // always set once the scene is built
     std::unique_ptr<Camera> camera_;
     std::unique_ptr<Filter> filter_;
     PixelBounds pixelBounds_;

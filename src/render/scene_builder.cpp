@@ -319,6 +319,9 @@ void SceneBuilder::build() {
         power.push_back(l.phi().luminance());
     }
     scene_.lightDistribution_ = AliasTable(power);
+    std::vector<const Light*> lights;
+    for (const auto& l : scene_.lights_) lights.push_back(l.get());
+    scene_.lightSampler_ = createLightSampler(scene_.settings().lightSampler, lights);
 }
 
 std::unique_ptr<Scene> buildScene(const SceneDescription& desc, bool spectral) {

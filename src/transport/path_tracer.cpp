@@ -7,10 +7,14 @@ namespace ps {
 Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
                                   float uLight, Vec2 u, float time, const SampledWavelengths* lambda,
                                   PathStats& stats) const {
-    float pmf;
-    const Light* light = scene_.sampleLight(uLight, &pmf);
+    // The light is chosen for this point (the scene's "lightsampler"); the MIS weights of
+    // emitters the next ray hits ask the same sampler at the same point (prevCtx).
+    const LightSampleContext ctx{si.p, si.ng, lambda};
+    const SampledLight sl = scene_.lightSampler().sample(ctx, uLight);
+    const Light* light = sl.light;
+    const float pmf = sl.pmf;
     if (!light || !(pmf > 0)) return {};
-    auto ls = light->sampleLi(LightSampleContext{si.p, si.ng, lambda}, u);
+    auto ls = light->sampleLi(ctx, u);
     if (!ls || ls->L.isBlack() || !(ls->pdf > 0)) return {};
     Vec3 wiLocal = frame.toLocal(ls->wi);
     Spectrum f = bxdf.f(woLocal, wiLocal, TransportMode::Radiance) * absCosTheta(wiLocal);
@@ -61,7 +65,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
                 if (depth == 0 || specularBounce) {
                     L += beta * Le;
                 } else {
-                    float pl = scene_.lightPmf(light) * light->pdfLi(prevCtx, ray.d, nullptr);
+                    float pl = scene_.lightSampler().pmf(prevCtx, light) * light->pdfLi(prevCtx, ray.d, nullptr);
                     L += beta * Le * powerHeuristic(prevBsdfPdf, pl);
                 }
             }
@@ -75,7 +79,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
                 if (depth == 0 || specularBounce) {
                     L += beta * Le;
                 } else {
-                    float pl = scene_.lightPmf(si.areaLight) * si.areaLight->pdfLi(prevCtx, ray.d, &si);
+                    float pl = scene_.lightSampler().pmf(prevCtx, si.areaLight) * si.areaLight->pdfLi(prevCtx, ray.d, &si);
                     L += beta * Le * powerHeuristic(prevBsdfPdf, pl);
                 }
             }
@@ -112,7 +116,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
         prevBsdfPdf = bs->pdfIsProportional ? bxdf->pdf(woLocal, bs->wi, TransportMode::Radiance) : bs->pdf;
         specularBounce = bs->isSpecular();
         if (bs->isTransmission()) etaScale *= sqr(bs->eta);
-        prevCtx = LightSampleContext{si.p, si.ng};
+        prevCtx = LightSampleContext{si.p, si.ng};  // where sampleDirect chose its light
         ray = spawnRay(si.p, si.ng, wi, ray.time);
 
         // Russian roulette on the throughput with the radiance scaling of refraction undone.
