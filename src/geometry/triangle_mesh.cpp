@@ -249,10 +249,6 @@ std::optional<ShapeSample> TriangleMesh::sampleToward(int prim, Vec3 ref, Vec2 u
     return s;  // uv is not needed by uniform, unmasked emitters
 }
 
-}  // namespace ps
-
-namespace ps {
-
 Bounds3 TriangleMesh::primitiveBounds(int prim) const {
     const unsigned* vi = &indices_[3 * prim];
     Bounds3 b(loadP(positions_, vi[0]));

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace ps {
 
@@ -34,16 +35,17 @@ float splitCost(const LightBounds& b, const Bounds3& parent, int dim) {
 
 // The importances of a node's two children at ctx; nodes[i + 1] is the first.
 inline void childImportances(const auto& nodes, int i, const LightSampleContext& ctx, float c[2]) {
-    c[0] = nodes[size_t(i) + 1].bounds.importance(ctx.p, ctx.ng);
-    c[1] = nodes[size_t(nodes[size_t(i)].childOrLight)].bounds.importance(ctx.p, ctx.ng);
+    c[0] = nodes[size_t(i) + 1].importance.at(ctx.p, ctx.ng);
+    c[1] = nodes[size_t(nodes[size_t(i)].childOrSlot)].importance.at(ctx.p, ctx.ng);
 }
 
 }  // namespace
 
 BVHLightSampler::BVHLightSampler(std::span<const Light* const> lights)
     : lights_(lights.begin(), lights.end()), place_(lights.size(), Place::None), trail_(lights.size(), 0),
-      power_(lights) {
-    std::vector<Entry> entries;
+      slotOf_(lights.size(), -1), power_(lights) {
+    std::vector<Member> bounded;
+    std::vector<LightBounds> bounds(lights.size());
     for (size_t i = 0; i < lights.size(); ++i) {
         std::optional<LightBounds> b = lights[i]->bounds();
         if (!b) {
@@ -51,31 +53,72 @@ BVHLightSampler::BVHLightSampler(std::span<const Light* const> lights)
             place_[i] = Place::Infinite;
         } else if (b->phi > 0 && std::isfinite(b->phi)) {
             // A light of no power is never chosen (it gives nothing).
-            entries.push_back({int(i), *b});
+            bounded.push_back({int(i), b->phi});
+            bounds[i] = *b;
             place_[i] = Place::Tree;
         }
     }
+    std::vector<Entry> entries = group(std::move(bounded), bounds);
     if (!entries.empty()) {
         nodes_.reserve(2 * entries.size() - 1);
         build(entries, 0, int(entries.size()), 0, 0);
     }
+    members_.clear();
+    members_.shrink_to_fit();
 }
 
-int BVHLightSampler::build(std::vector<Entry>& entries, int begin, int end, uint64_t trail, int depth) {
+std::vector<BVHLightSampler::Entry> BVHLightSampler::group(std::vector<Member> lights,
+                                                           const std::vector<LightBounds>& bounds) {
+    // Sorted by every part of their bounds but power, equal bounds are neighbours.
+    auto key = [&](const Member& m) {
+        const LightBounds& b = bounds[size_t(m.light)];
+        return std::make_tuple(b.bounds.lo.x, b.bounds.lo.y, b.bounds.lo.z, b.bounds.hi.x, b.bounds.hi.y,
+                               b.bounds.hi.z, b.w.x, b.w.y, b.w.z, b.cosTheta_o, b.cosTheta_e, b.twoSided);
+    };
+    std::stable_sort(lights.begin(), lights.end(), [&](const Member& a, const Member& b) { return key(a) < key(b); });
+    members_ = std::move(lights);
+    std::vector<Entry> entries;
+    for (size_t i = 0; i < members_.size();) {
+        size_t j = i + 1;
+        LightBounds united = bounds[size_t(members_[i].light)];
+        while (j < members_.size() && key(members_[j]) == key(members_[i])) {
+            united = unite(united, bounds[size_t(members_[j].light)]);
+            ++j;
+        }
+        entries.push_back({int(i), int(j - i), united});
+        i = j;
+    }
+    return entries;
+}
+
+LightBounds BVHLightSampler::build(std::vector<Entry>& entries, int begin, int end, uint64_t trail, int depth) {
     depth_ = std::max(depth_, depth);
-    const int index = int(nodes_.size());
+    const size_t index = nodes_.size();
     if (end - begin == 1) {
         const Entry& e = entries[size_t(begin)];
-        nodes_.push_back(Node{e.bounds, e.light, true});
-        trail_[size_t(e.light)] = trail;
-        return index;
+        double total = 0;
+        for (int k = 0; k < e.count; ++k) total += members_[size_t(e.first + k)].phi;
+        const int first = int(slotLight_.size());
+        double running = 0;
+        for (int k = 0; k < e.count; ++k) {
+            const Member& m = members_[size_t(e.first + k)];
+            slotOf_[size_t(m.light)] = int(slotLight_.size());
+            slotLight_.push_back(m.light);
+            slotShare_.push_back(float(m.phi / total));
+            running += m.phi;
+            slotCdf_.push_back(k + 1 == e.count ? 1.0f : float(running / total));
+            trail_[size_t(m.light)] = trail;
+        }
+        nodes_.push_back(Node{LightImportance(e.bounds), first, e.count});
+        return e.bounds;
     }
     const int mid = split(entries, begin, end, depth);
     nodes_.emplace_back();  // filled once both children exist
-    build(entries, begin, mid, trail, depth + 1);
-    const int second = build(entries, mid, end, trail | (uint64_t(1) << depth), depth + 1);
-    nodes_[size_t(index)] = Node{unite(nodes_[size_t(index) + 1].bounds, nodes_[size_t(second)].bounds), second, false};
-    return index;
+    const LightBounds first = build(entries, begin, mid, trail, depth + 1);
+    const int second = int(nodes_.size());
+    const LightBounds bounds = unite(first, build(entries, mid, end, trail | (uint64_t(1) << depth), depth + 1));
+    nodes_[index] = Node{LightImportance(bounds), second, 0};
+    return bounds;
 }
 
 int BVHLightSampler::split(std::vector<Entry>& entries, int begin, int end, int depth) const {
@@ -140,8 +183,8 @@ bool BVHLightSampler::rootImportances(const LightSampleContext& ctx, float c[2])
         c[0] = c[1] = 0;
         return false;
     }
-    if (nodes_[0].leaf) {
-        c[0] = nodes_[0].bounds.importance(ctx.p, ctx.ng);
+    if (nodes_[0].leaf()) {
+        c[0] = infinite_.empty() ? 1.0f : nodes_[0].importance.at(ctx.p, ctx.ng);
         c[1] = 0;
     } else {
         childImportances(nodes_, 0, ctx, c);
@@ -150,6 +193,9 @@ bool BVHLightSampler::rootImportances(const LightSampleContext& ctx, float c[2])
 }
 
 SampledLight BVHLightSampler::sample(const LightSampleContext& ctx, float u) const {
+    // One leaf and nothing at infinity (an area light of one quad or mesh): the choice is the
+    // leaf's, the same at every point.
+    if (nodes_.size() == 1 && infinite_.empty()) return chooseInLeaf(nodes_[0], u, 1);
     float c[2];
     const bool treeCanLight = rootImportances(ctx, c);
     const float pInfinite = infiniteShare(treeCanLight);
@@ -164,7 +210,7 @@ SampledLight BVHLightSampler::sample(const LightSampleContext& ctx, float u) con
     u = std::min((u - pInfinite) / (1 - pInfinite), kOneMinusEpsilon);
     float pmf = 1 - pInfinite;
     int node = 0;
-    while (!nodes_[size_t(node)].leaf) {
+    while (!nodes_[size_t(node)].leaf()) {
         if (node != 0) childImportances(nodes_, node, ctx, c);
         const float total = c[0] + c[1];
         if (!(total > 0)) return {};  // neither child can light ctx (nor could any leaf below)
@@ -178,9 +224,21 @@ SampledLight BVHLightSampler::sample(const LightSampleContext& ctx, float u) con
             u = std::min((u - p0) / (1 - p0), kOneMinusEpsilon);
         }
         pmf *= c[child] / total;
-        node = child == 0 ? node + 1 : nodes_[size_t(node)].childOrLight;
+        node = child == 0 ? node + 1 : nodes_[size_t(node)].childOrSlot;
     }
-    return {lights_[size_t(nodes_[size_t(node)].childOrLight)], pmf};
+    return chooseInLeaf(nodes_[size_t(node)], u, pmf);
+}
+
+SampledLight BVHLightSampler::chooseInLeaf(const Node& leaf, float u, float pmf) const {
+    int slot = leaf.childOrSlot;
+    if (leaf.leafLights > 1 && leaf.leafLights <= 8) {
+        // Counted without branches: u is random, and a search's branches mispredict.
+        for (int k = 0; k < leaf.leafLights - 1; ++k) slot += u >= slotCdf_[size_t(leaf.childOrSlot + k)];
+    } else if (leaf.leafLights > 8) {
+        const auto first = slotCdf_.begin() + slot, last = first + (leaf.leafLights - 1);
+        slot = int(std::upper_bound(first, last, u) - slotCdf_.begin());
+    }
+    return {lights_[size_t(slotLight_[size_t(slot)])], pmf * slotShare_[size_t(slot)]};
 }
 
 // The same walk as sample's, in the same order of operations (so the two agree to the last
@@ -197,15 +255,15 @@ float BVHLightSampler::pmf(const LightSampleContext& ctx, const Light* light) co
     const uint64_t trail = trail_[size_t(light->index)];
     float pmf = 1 - pInfinite;
     int node = 0, depth = 0;
-    while (!nodes_[size_t(node)].leaf) {
+    while (!nodes_[size_t(node)].leaf()) {
         if (node != 0) childImportances(nodes_, node, ctx, c);
         const float total = c[0] + c[1];
         const int child = int((trail >> depth++) & 1);
         if (!(c[child] > 0)) return 0;
         pmf *= c[child] / total;
-        node = child == 0 ? node + 1 : nodes_[size_t(node)].childOrLight;
+        node = child == 0 ? node + 1 : nodes_[size_t(node)].childOrSlot;
     }
-    return pmf;
+    return pmf * slotShare_[size_t(slotOf_[size_t(light->index)])];
 }
 
 }  // namespace ps

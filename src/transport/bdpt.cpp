@@ -98,12 +98,17 @@ template <typename S>
 void BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stats, const SampledWavelengths* lambda,
                                Join& j) const {
     if (!pt.connectible()) return;
-    float pmf;
-    const Light* lt = paths_.scene().sampleLight(sampler.get1D(), &pmf);
+    // The light is chosen for pt (the scene's light sampler); the weights know the choice
+    // through Subpaths::lightChoiceRatio, since the vertex's origin density is by power.
+    const LightSampleContext ctx{pt.p, pt.ng, lambda};
+    const SampledLight sl = paths_.scene().lightSampler().sample(ctx, sampler.get1D());
+    const Light* lt = sl.light;
+    const float pmf = sl.pmf;
     Vec2 u = sampler.get2D();
     if (!lt || !(pmf > 0)) return;
-    auto ls = lt->sampleLi(LightSampleContext{pt.p, pt.ng, lambda}, u);
+    auto ls = lt->sampleLi(ctx, u);
     if (!ls || ls->L.isBlack() || !(ls->pdf > 0)) return;
+    const float powerPmf = paths_.scene().lightPmf(lt);
     PathVertex& lv = j.sampled.emplace();
     lv.kind = VertexKind::Light;
     lv.mode = TransportMode::Importance;
@@ -120,7 +125,7 @@ void BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stat
             // The light gave its emission densities; only their conversions to area remain.
             float toPt, toLight;
             areaFactors(lv, pt, &toPt, &toLight);
-            lv.pdfFwd = pmf * ls->pdfEmitPos;
+            lv.pdfFwd = powerPmf * ls->pdfEmitPos;
             j.known.pt = ls->pdfEmitDir * toPt;
             j.known.qs = e.pdfFwd * toLight;
         } else {
@@ -128,6 +133,8 @@ void BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stat
             j.known.qs = e.pdfFwd * areaFactor(pt, lv);
         }
         j.known.ptMinus = e.pdfRev * pt.toPrevArea;
+        // Lights at infinity share the vertex: the ratio is over all of them.
+        if (!lv.infinite) j.known.lightChoice = powerPmf > 0 ? pmf / powerPmf : 0.0f;
         j.haveKnown = true;
     } else {
         lv.pdfFwd = paths_.pdfLightOrigin(lv, pt);
@@ -195,10 +202,19 @@ double cameraPrefixStep(const PathVertex* camera, int m, double before) {
     bool valid = !camera[m].delta && !camera[m - 1].delta;
     return misTerm<H>(camera[m].pdfRev, camera[m].pdfFwd) * ((valid ? 1 : 0) + before);
 }
+// The term of the s = 1 strategy's light choice (Subpaths::lightChoiceRatio k): its density
+// ratio to any other strategy carries k, as a factor of the ratio.
 template <MisHeuristic H>
-double lightPrefixStep(const PathVertex* light, int m, double before) {
+double choiceTerm(float k) {
+    if constexpr (H == MisHeuristic::Uniform) return k > 0 ? 1.0 : 0.0;
+    if constexpr (H == MisHeuristic::Power) return double(k) * k;
+    return k;
+}
+// At m = 1 the strategy counted is s = 1, whose term carries its light choice (choice).
+template <MisHeuristic H>
+double lightPrefixStep(const PathVertex* light, int m, double before, float choice) {
     bool valid = !light[m].delta && !(m > 0 ? light[m - 1].delta : light[0].isDeltaLight());
-    return misTerm<H>(light[m].pdfRev, light[m].pdfFwd) * ((valid ? 1 : 0) + before);
+    return misTerm<H>(light[m].pdfRev, light[m].pdfFwd) * ((valid ? (m == 1 ? choiceTerm<H>(choice) : 1) : 0) + before);
 }
 
 // Calls f with the heuristic as a compile-time constant.
@@ -218,13 +234,16 @@ BDPTIntegrator::MisPrefixes BDPTIntegrator::misPrefixes(const PathVertex* light,
                                                         int nCamera, ScratchBuffer& scratch) const {
     auto* cam = static_cast<double*>(scratch.allocBytes(sizeof(double) * size_t(std::max(nCamera, 1)), alignof(double)));
     auto* lig = static_cast<double*>(scratch.allocBytes(sizeof(double) * size_t(std::max(nLight, 1)), alignof(double)));
+    // The s = 1 strategy's light choice for this light subpath's first two vertices (unused
+    // when the second is specular: s = 1 cannot connect to it).
+    const float choice = nLight >= 2 && !light[1].delta ? paths_.lightChoiceRatio(light[0], light[1]) : 1.0f;
     withHeuristic(heuristic_, [&](auto h) {
         constexpr MisHeuristic H = decltype(h)::value;
         cam[0] = 0;
         for (int m = 1; m <= nCamera - 2; ++m) cam[m] = cameraPrefixStep<H>(camera, m, cam[m - 1]);
-        for (int m = 0; m <= nLight - 2; ++m) lig[m] = lightPrefixStep<H>(light, m, m > 0 ? lig[m - 1] : 0.0);
+        for (int m = 0; m <= nLight - 2; ++m) lig[m] = lightPrefixStep<H>(light, m, m > 0 ? lig[m - 1] : 0.0, choice);
     });
-    return {cam, lig};
+    return {cam, lig, choice};
 }
 
 // The weight of strategy (s, t) relative to every other strategy (s', t') with s' + t' = s + t
@@ -254,6 +273,17 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
         if (qsMinus) rev.qsMinus = paths_.pdf(*qs, pt, *qsMinus, true);
     }
 
+    // The s = 1 strategy's light choice (Subpaths::lightChoiceRatio) for the path's light
+    // vertex y0 and its neighbour y1, where some term needs it.
+    float choice = 1;
+    if (s == 1) {
+        choice = known && known->lightChoice >= 0 ? known->lightChoice : paths_.lightChoiceRatio(*qs, *pt);
+    } else if (s == 0 && !camera[t - 2].delta) {
+        choice = paths_.lightChoiceRatio(*pt, *ptMinus);
+    } else if (s >= 2 && !light[1].delta) {
+        choice = prefixes ? prefixes->lightChoice : paths_.lightChoiceRatio(light[0], light[1]);
+    }
+
     double sum = withHeuristic(heuristic_, [&](auto h) {
         constexpr MisHeuristic H = decltype(h)::value;
         // Beyond the two vertices at each side of the join, each side contributes its
@@ -264,9 +294,10 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
             for (int m = 1; m <= t - 3; ++m) cameraTail = cameraPrefixStep<H>(camera, m, cameraTail);
         if (s >= 3 && prefixes) lightTail = prefixes->light[s - 3];
         if (s >= 3 && !prefixes)
-            for (int m = 0; m <= s - 3; ++m) lightTail = lightPrefixStep<H>(light, m, lightTail);
+            for (int m = 0; m <= s - 3; ++m) lightTail = lightPrefixStep<H>(light, m, lightTail, choice);
         // The join's own vertices take this connection's densities, and were reached by a
-        // deterministic connection, not a specular bounce.
+        // deterministic connection, not a specular bounce. Where a term counts the s = 1
+        // strategy (s' = 1 from s = 0, 2 or 3), it carries that strategy's light choice.
         double total = 0;
         if (t >= 2) {
             double inner = 0;
@@ -274,17 +305,22 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
                 bool valid = !camera[t - 2].delta && !camera[t - 3].delta;
                 inner = misTerm<H>(rev.ptMinus, camera[t - 2].pdfFwd) * ((valid ? 1 : 0) + cameraTail);
             }
-            total += misTerm<H>(rev.pt, pt->pdfFwd) * ((camera[t - 2].delta ? 0 : 1) + inner);
+            const double sOne = s == 0 ? choiceTerm<H>(choice) : 1.0;
+            total += misTerm<H>(rev.pt, pt->pdfFwd) * ((camera[t - 2].delta ? 0 : sOne) + inner);
         }
         if (s >= 1) {
             double inner = 0;
             if (s >= 2) {
                 bool valid = !light[s - 2].delta && !(s >= 3 ? light[s - 3].delta : light[0].isDeltaLight());
-                inner = misTerm<H>(rev.qsMinus, light[s - 2].pdfFwd) * ((valid ? 1 : 0) + lightTail);
+                const double sOne = s == 3 ? choiceTerm<H>(choice) : 1.0;
+                inner = misTerm<H>(rev.qsMinus, light[s - 2].pdfFwd) * ((valid ? sOne : 0) + lightTail);
             }
             bool valid = s >= 2 ? !light[s - 2].delta : !qs->isDeltaLight();
-            total += misTerm<H>(rev.qs, qs->pdfFwd) * ((valid ? 1 : 0) + inner);
+            const double sOne = s == 2 ? choiceTerm<H>(choice) : 1.0;
+            total += misTerm<H>(rev.qs, qs->pdfFwd) * ((valid ? sOne : 0) + inner);
         }
+        // From s = 1 itself, every other strategy's ratio divides by its light choice.
+        if (s == 1) total = choice > 0 ? total * choiceTerm<H>(1 / choice) : 0;
         return total;
     });
     if (!std::isfinite(sum)) return 0;

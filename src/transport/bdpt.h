@@ -39,9 +39,12 @@ public:
     // 1..m by connection, the terms of the density ratios from there to m; light[m] likewise
     // over light vertices 0..m. With them a weight costs O(1) instead of a walk along both
     // subpaths. Entries exist up to n - 2 (the last vertex has no reverse density yet).
+    // The light sums include the s = 1 strategy's light choice (lightChoiceRatio of the light
+    // subpath's first two vertices, kept in lightChoice).
     struct MisPrefixes {
         const double* camera = nullptr;
         const double* light = nullptr;
+        float lightChoice = 1;
     };
     MisPrefixes misPrefixes(const PathVertex* light, int nLight, const PathVertex* camera, int nCamera,
                             ScratchBuffer& scratch) const;
@@ -60,6 +63,7 @@ public:
     // what the weight needs beyond the densities stored by the walks.
     struct EndpointDensities {
         float pt = 0, ptMinus = 0, qs = 0, qsMinus = 0;
+        float lightChoice = -1;  // s = 1: Subpaths::lightChoiceRatio of the join (-1: evaluate it)
     };
     // The MIS weight of strategy (s, t) for the path its vertices form. `sampled` replaces
     // light[0] (s = 1) or camera[0] (t = 1): the vertex the connection itself sampled

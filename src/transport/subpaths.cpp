@@ -326,6 +326,26 @@ bool Subpaths::visible(const PathVertex& a, const PathVertex& b, PathStats& stat
     return !scene_.occluded(spawnRayTo(a.p, a.ng, b.p, a.time));  // both ends share the path's time
 }
 
+float Subpaths::lightChoiceRatio(const PathVertex& y0, const PathVertex& y1) const {
+    const LightSampler& sampler = scene_.lightSampler();
+    const LightSampleContext ctx{y1.p, y1.ng};
+    const bool deltaDirection = y0.light && y0.light->type() == LightType::DeltaDirection;
+    if (y0.isInfiniteLight() && !deltaDirection) {
+        // Any light at infinity may have given the direction: the densities of all of them.
+        const Vec3 w = directionTo(y1, y0);
+        double atPoint = 0, byPower = 0;
+        for (const Light* light : scene_.infiniteLights()) {
+            const double pdf = light->pdfLi(LightSampleContext{}, w, nullptr);
+            atPoint += double(sampler.pmf(ctx, light)) * pdf;
+            byPower += double(scene_.lightPmf(light)) * pdf;
+        }
+        return byPower > 0 ? float(atPoint / byPower) : 0.0f;
+    }
+    if (!y0.light) return 0;
+    const float byPower = scene_.lightPmf(y0.light);
+    return byPower > 0 ? sampler.pmf(ctx, y0.light) / byPower : 0.0f;
+}
+
 float Subpaths::infiniteLightDensity(Vec3 wToLight) const {
     float pdf = 0;
     for (const Light* light : scene_.infiniteLights())

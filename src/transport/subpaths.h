@@ -90,6 +90,12 @@ public:
     bool visible(const PathVertex& a, const PathVertex& b, PathStats& stats) const;
     // Density of choosing direction wToLight from all infinite lights together.
     float infiniteLightDensity(Vec3 wToLight) const;
+    // Next-event estimation (s = 1) chooses the light of emitter vertex y0 for the point y1
+    // (the scene's light sampler); light subpaths choose it by power, and the origin
+    // densities (pdfLightOrigin) say so. This is the ratio of the first choice's probability
+    // to the second's: the factor by which the s = 1 strategy's density of a path differs from
+    // the one its light vertex's origin density gives (0: s = 1 cannot choose this light).
+    float lightChoiceRatio(const PathVertex& y0, const PathVertex& y1) const;
 
     const Scene& scene() const { return scene_; }
 

@@ -12,11 +12,12 @@ namespace {
 // The base light's quad under the ceiling, facing down, with `emission` (AreaLightSource's
 // parameters).
 // The film, filter and Integrator lines every variant shares (an N x N film).
-std::string filmAndDepth(int n, int maxDepth) {
+// `integrator`: more of the Integrator's parameters.
+std::string filmAndDepth(int n, int maxDepth, const std::string& integrator = "") {
     const std::string res = std::to_string(n);
     return "Film \"rgb\" \"integer xresolution\" [ " + res + " ] \"integer yresolution\" [ " + res +
            " ]\nPixelFilter \"box\"\nIntegrator \"path\" \"integer maxdepth\" [ " + std::to_string(maxDepth) +
-           " ]\nWorldBegin\n";
+           " ] " + integrator + "\nWorldBegin\n";
 }
 
 std::string quadLight(const std::string& emission) {
@@ -32,6 +33,7 @@ struct Box {
     std::string camera = R"(LookAt 0 0.5 2.2  0 0.5 0  0 1 0
 Camera "perspective" "float fov" [ 30 ])";
     int maxDepth = 5;
+    std::string integrator;   // more Integrator parameters
     std::string environment;  // infinite and distant lights
     std::string light = quadLight(R"("rgb L" [ 5 5 5 ])");
     std::string floorMaterial = R"(Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ])";
@@ -43,7 +45,7 @@ AttributeEnd)";
     std::string extra;
 
     std::string text() const {
-        return camera + "\n" + filmAndDepth(24, maxDepth) + environment + "\n" + light +
+        return camera + "\n" + filmAndDepth(24, maxDepth, integrator) + environment + "\n" + light +
                "\n" + floorMaterial + R"(
 Shape "bilinearmesh" "point3 P" [ -0.5 0 0.5   0.5 0 0.5   -0.5 0 -0.5   0.5 0 -0.5 ]
 Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]
@@ -235,6 +237,46 @@ AttributeEnd)";
     box("light/distant", [](Box& b) {
         b.light = R"(LightSource "distant" "point3 from" [ 0.3 1 3 ] "point3 to" [ 0 0.5 0 ] "rgb L" [ 2 2 2 ])";
     });
+    // Many lights of every finite kind and one at infinity, chosen by each of the scene's
+    // light samplers: by the receiving point ("bvh", the default: next-event estimation and
+    // BDPT's s = 1 with their MIS weights), by power and uniformly. The three must agree.
+    const auto manyLights = [](Box& b) {
+        std::string quads;
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i) {
+                const double x = -0.3 + 0.3 * i, z = -0.3 + 0.3 * j, h = 0.06;
+                const double r = 1 + 2.5 * i, g = 1 + 1.5 * j, bl = 4 - i - j;
+                quads += "AttributeBegin\n  AreaLightSource \"diffuse\" \"rgb L\" [ " + std::to_string(r) + " " +
+                         std::to_string(g) + " " + std::to_string(bl) + " ]\n  Shape \"bilinearmesh\" \"point3 P\" [ " +
+                         std::to_string(x - h) + " 0.99 " + std::to_string(z - h) + "  " + std::to_string(x + h) +
+                         " 0.99 " + std::to_string(z - h) + "  " + std::to_string(x - h) + " 0.99 " +
+                         std::to_string(z + h) + "  " + std::to_string(x + h) + " 0.99 " + std::to_string(z + h) +
+                         " ]\nAttributeEnd\n";
+            }
+        b.light = quads + R"(LightSource "point" "point3 from" [ -0.35 0.3 0.2 ] "rgb I" [ 0.05 0.08 0.1 ]
+LightSource "point" "point3 from" [ 0.4 0.85 -0.4 ] "rgb I" [ 0.2 0.1 0.05 ]
+LightSource "point" "point3 from" [ 0.1 0.6 0.3 ] "rgb I" [ 0.02 0.02 0.02 ]
+LightSource "spot" "point3 from" [ 0.3 0.9 0.3 ] "point3 to" [ -0.2 0 -0.2 ] "float coneangle" [ 25 ]
+  "float conedelta" [ 8 ] "rgb I" [ 0.8 0.8 0.6 ]
+AttributeBegin
+  ReverseOrientation
+  AreaLightSource "diffuse" "rgb L" [ 3 3 3 ]
+  Shape "bilinearmesh" "point3 P" [ -0.49 0.2 -0.1   -0.49 0.2 0.1   -0.49 0.4 -0.1   -0.49 0.4 0.1 ]
+AttributeEnd)";
+        b.environment = R"(LightSource "distant" "point3 from" [ 0.3 1 3 ] "point3 to" [ 0 0.5 0 ] "rgb L" [ 0.5 0.5 0.5 ])";
+    };
+    box("light/many", manyLights)->sppScale = 2;
+    Box manyBase;
+    manyLights(manyBase);
+    for (const char* sampler : {"power", "uniform"}) {
+        Variant* var = box(std::string("light/many-") + sampler, [&](Box& b) {
+            manyLights(b);
+            b.integrator = std::string("\"string lightsampler\" \"") + sampler + "\"";
+        });
+        var->sameAs = manyBase.text();
+        // Uniform choice spends most light samples on the dim lights.
+        if (std::string(sampler) == "uniform") var->integratorScale = {{"path", 4}};
+    }
     box(
         "light/infinite-uniform", [](Box& b) { b.environment = R"(LightSource "infinite" "rgb L" [ 0.4 0.4 0.4 ])"; },
         noLight);

@@ -355,5 +355,5 @@ TEST(LightAgreement, ImageAreaLight) {
           )" + quad({-0.7f, 1.1f, -0.9f}, {0.5f, 1.1f, -0.9f}, {-0.7f, 1.3f, -0.1f}, {0.5f, 1.3f, -0.1f}) + R"(
         AttributeEnd
     )" + groundAndBall();
-    expectAgreement(AgreementCase{"image area light", scene, {"path", "light", "bdpt"}, 32, 16, {{"light", 256}}});
+    expectAgreement(AgreementCase{"image area light", scene, {"path", "light", "bdpt"}, 48, 16, {{"light", 384}}});
 }

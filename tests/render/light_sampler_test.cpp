@@ -274,7 +274,7 @@ TEST(LightSampler, BvhShareOfLightsAtInfinity) {
     for (const auto& l : scene->lights()) lights.push_back(l.get());
     ASSERT_EQ(lights.size(), 3u);  // two triangles and the sky
     BVHLightSampler bvh(lights);
-    EXPECT_EQ(bvh.nodeCount(), 3);
+    EXPECT_EQ(bvh.nodeCount(), 1);  // the two triangles have the same bounds: one leaf
     // In front of the quad (+z): the sky has its pbrt-v4 share 1/2, the triangles the rest.
     LightSampleContext front{{0.2f, 0.1f, 3}, {0, 0, -1}};
     EXPECT_FLOAT_EQ(bvh.pmf(front, lights[2]), 0.5f);
@@ -286,6 +286,51 @@ TEST(LightSampler, BvhShareOfLightsAtInfinity) {
     EXPECT_EQ(bvh.pmf(behind, lights[1]), 0.0f);
     EXPECT_EQ(bvh.pmf(behind, lights[2]), 1.0f);
     for (float u : {0.0f, 0.3f, 0.7f, 0.999f}) EXPECT_EQ(bvh.sample(behind, u).light, lights[2]);
+}
+
+// Lights with the same bounds but for power share a leaf and are chosen by power within it,
+// at every point as the tree would choose them; a light elsewhere still has a node of its own.
+TEST(LightSampler, BvhLeafOfLightsWithTheSameBounds) {
+    const std::string world = R"(
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+          Shape "trianglemesh" "point3 P" [ -1 -1 0  1 -1 0  1 1 0  -1 1 0 ] "integer indices" [ 0 1 2 0 2 3 ]
+        AttributeEnd
+        LightSource "point" "point3 from" [ 0 0 5 ] "rgb I" [ 1 1 1 ]
+        LightSource "point" "point3 from" [ 0 0 5 ] "rgb I" [ 3 3 3 ]
+        LightSource "point" "point3 from" [ 9 0 5 ] "rgb I" [ 1 1 1 ]
+    )";
+    auto scene = buildWorld(world);
+    std::vector<const Light*> lights;
+    for (const auto& l : scene->lights()) lights.push_back(l.get());
+    ASSERT_EQ(lights.size(), 5u);
+    // Which is which, by bounds and power.
+    std::vector<const Light*> quad, atOnePoint;
+    for (const Light* l : lights) {
+        const LightBounds b = *l->bounds();
+        if (b.bounds.lo.x != b.bounds.hi.x) quad.push_back(l);
+        else if (b.bounds.lo.x == 0) atOnePoint.push_back(l);
+    }
+    ASSERT_EQ(quad.size(), 2u);
+    ASSERT_EQ(atOnePoint.size(), 2u);
+    if (atOnePoint[0]->bounds()->phi > atOnePoint[1]->bounds()->phi) std::swap(atOnePoint[0], atOnePoint[1]);
+    BVHLightSampler bvh(lights);
+    EXPECT_EQ(bvh.nodeCount(), 5);  // three leaves: the quad, the two lights at one point, the last
+    for (Vec3 p : {Vec3(0.2f, 0.1f, 3), Vec3(5, -2, 1), Vec3(-3, 4, 8)}) {
+        LightSampleContext ctx{p, {0, 0, 0}};
+        EXPECT_FLOAT_EQ(bvh.pmf(ctx, quad[0]), bvh.pmf(ctx, quad[1]));
+        EXPECT_GT(bvh.pmf(ctx, atOnePoint[0]), 0.0f);
+        EXPECT_NEAR(bvh.pmf(ctx, atOnePoint[1]), 3 * bvh.pmf(ctx, atOnePoint[0]), 1e-6f);
+        float sum = 0;
+        for (const Light* l : lights) sum += bvh.pmf(ctx, l);
+        EXPECT_NEAR(sum, 1.0f, 1e-5f);
+        // Within a leaf, u chooses by power, and sample() reports the pmf that pmf() gives.
+        for (int i = 0; i < 64; ++i) {
+            SampledLight sl = bvh.sample(ctx, (float(i) + 0.5f) / 64);
+            ASSERT_NE(sl.light, nullptr);
+            EXPECT_EQ(sl.pmf, bvh.pmf(ctx, sl.light));
+        }
+    }
 }
 
 // "lightsampler" chooses the scene's sampler; an unknown name is an error at the parameter.
