@@ -7,10 +7,12 @@ For each scene of bench/scenes/many-lights (or the scenes given):
   2. equal-time runs of the same whole-process wall time T (--time), 2 threads, --seeds seeds
      each: pbrt-v4 path with lightsampler bvh and power, pathspace path bvh and power,
      pathspace bdpt. pathspace stops at `--time T`; pbrt-v4 has no time budget, so its --spp
-     comes from two timed probes (whole process, a + b spp fitted) to take T in all;
+     comes from two timed probes (whole process, a + b spp fitted): the power of two (its
+     zsobol sampler renders no other counts) whose time is nearest T;
   3. relMSE of each image against the reference (mean over pixels and channels of
      (x - r)^2 / (r^2 + 0.01), as bench/README.md's equal-time figures), mean and spread over
-     the seeds, and the ratios to pbrt-v4's bvh.
+     the seeds, and the ratios to pbrt-v4's bvh; also "at T", each run's relMSE times its own
+     whole-process time over T (relMSE falls as 1/time), for runs that missed T.
 
 The lightsampler is the scene's Integrator parameter: the power runs read a copy of the scene
 with "bvh" replaced by "power" (a temporary file). Run from the repository root, under the
@@ -53,7 +55,7 @@ def timed(cmd, cwd=None):
     if p.returncode != 0:
         sys.exit(f"failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr}")
     noise = [l for l in p.stderr.splitlines() if ("Warning" in l or "warning" in l)
-             and "Output filename supplied on command line" not in l and "non power-of-two" not in l]
+             and "Output filename supplied on command line" not in l]
     if noise:
         print(f"  warnings from {' '.join(cmd)}:\n    " + "\n    ".join(noise[:5]), flush=True)
     return elapsed
@@ -84,13 +86,17 @@ def pbrt(scene, out, seed, threads, spp):
 
 
 def pbrt_spp_for(scene, seconds, threads, tmp):
-    """pbrt-v4's spp whose whole process takes `seconds`: t = a + b spp from probes at 4 and 16 spp."""
+    """pbrt-v4's spp for a whole process of about `seconds`. Its zsobol sampler (these scenes')
+    renders 2^floor(log2 spp) samples per pixel whatever --spp says, so the count is the power
+    of two whose time, t = a + b spp fitted to probes at 4 and 16 spp, is nearest; the runs'
+    own times then scale their relMSE to T ("at T")."""
     out = os.path.join(tmp, "probe.pfm")
     t1 = min(pbrt(scene, out, 90, threads, 4) for _ in range(2))
     t2 = min(pbrt(scene, out, 91, threads, 16) for _ in range(2))
     b = max((t2 - t1) / 12, 1e-6)
-    a = max(t1 - 4 * b, 0.0)
-    return max(1, round((seconds - a) / b)), a, b
+    a = min(max(t1 - 4 * b, 0.0), 0.5 * seconds)
+    spp = min((2 ** k for k in range(16)), key=lambda n: abs(a + b * n - seconds))
+    return spp, a, b
 
 
 def main():
@@ -157,19 +163,24 @@ def main():
             for label, rs in runs.items():
                 e = [r["relmse"] for r in rs]
                 m, se, sd = mean_and_error(e) if len(e) > 1 else (e[0], 0.0, 0.0)
-                table[label] = {"relmse": m, "relmse_sd": sd, "relmse_min": min(e), "relmse_max": max(e),
+                # relMSE falls as 1/time: scaled to the budget T by each run's own whole-process time
+                scaled = sum(r["relmse"] * r["seconds"] for r in rs) / len(rs) / args.time
+                table[label] = {"relmse": m, "relmse_sd": sd, "relmse_at_T": scaled, "relmse_min": min(e), "relmse_max": max(e),
                                 "seconds": [r["seconds"] for r in rs], "spp": [r["spp"] for r in rs],
                                 "image_mean_over_ref": sum(r["mean"] for r in rs) / len(rs) / m_ours, "runs": rs}
             base = table["pbrt-v4 path bvh"]["relmse"]
+            base_t = table["pbrt-v4 path bvh"]["relmse_at_T"]
             print(f"  {'configuration':20s} {'relMSE':>10s} {'sd':>9s} {'min-max':>19s} {'/pbrt bvh':>9s} "
-                  f"{'seconds':>17s} {'spp':>14s} {'mean/ref':>8s}")
+                  f"{'at T':>10s} {'/pbrt bvh':>9s} {'seconds':>17s} {'spp':>17s} {'mean/ref':>8s}")
             for label, row in table.items():
                 row["over_pbrt_bvh"] = row["relmse"] / base
+                row["at_T_over_pbrt_bvh"] = row["relmse_at_T"] / base_t
                 secs = " ".join(f"{x:.2f}" for x in row["seconds"])
                 spps = " ".join(str(x) for x in row["spp"])
                 print(f"  {label:20s} {row['relmse']:10.4g} {row['relmse_sd']:9.2g} "
-                      f"{row['relmse_min']:9.3g}-{row['relmse_max']:<9.3g} {row['over_pbrt_bvh']:9.3f} {secs:>17s} "
-                      f"{spps:>14s} {row['image_mean_over_ref']:8.4f}", flush=True)
+                      f"{row['relmse_min']:9.3g}-{row['relmse_max']:<9.3g} {row['over_pbrt_bvh']:9.3f} "
+                      f"{row['relmse_at_T']:10.4g} {row['at_T_over_pbrt_bvh']:9.3f} {secs:>17s} "
+                      f"{spps:>17s} {row['image_mean_over_ref']:8.4f}", flush=True)
             results[name] = {"reference_check": check, "pbrt_spp": spp, "table": table}
     if args.json:
         with open(args.json, "w") as f:
