@@ -17,11 +17,16 @@ import tempfile
 PATHSPACE = os.environ.get("PATHSPACE", os.path.join(os.path.dirname(__file__), "..", "build", "pathspace"))
 
 
-def pfm_mean_luminance(path):
+def read_pfm(path):
+    """(width, height, values): an RGB PFM's floats, 3 per pixel, in the file's row order."""
     with open(path, "rb") as f:
         kind, size, scale, body = f.read().split(b"\n", 3)
     w, h = map(int, size.split())
-    values = struct.unpack(("<" if float(scale) < 0 else ">") + "f" * (3 * w * h), body[: 12 * w * h])
+    return w, h, struct.unpack(("<" if float(scale) < 0 else ">") + "f" * (3 * w * h), body[: 12 * w * h])
+
+
+def pfm_mean_luminance(path):
+    w, h, values = read_pfm(path)
     return sum(0.2126 * values[i] + 0.7152 * values[i + 1] + 0.0722 * values[i + 2]
                for i in range(0, len(values), 3)) / (w * h)
 
