@@ -40,11 +40,18 @@ public:
     virtual float pmf(const Light* light) const = 0;
 };
 
-class UniformLightSampler final : public LightSampler {
+// A sampler whose choice does not depend on the receiving point.
+class PointFreeLightSampler : public LightSampler {
+public:
+    SampledLight sample(const LightSampleContext&, float u) const final { return sample(u); }
+    float pmf(const LightSampleContext&, const Light* light) const final { return pmf(light); }
+    using LightSampler::pmf;
+    using LightSampler::sample;
+};
+
+class UniformLightSampler final : public PointFreeLightSampler {
 public:
     explicit UniformLightSampler(std::span<const Light* const> lights);
-    SampledLight sample(const LightSampleContext&, float u) const override { return sample(u); }
-    float pmf(const LightSampleContext&, const Light* light) const override { return pmf(light); }
     SampledLight sample(float u) const override;
     float pmf(const Light* light) const override;
 
@@ -52,12 +59,10 @@ private:
     std::vector<const Light*> lights_;
 };
 
-class PowerLightSampler final : public LightSampler {
+class PowerLightSampler final : public PointFreeLightSampler {
 public:
     // By the luminance of each light's phi(); all zero: uniform (AliasTable's rule).
     explicit PowerLightSampler(std::span<const Light* const> lights);
-    SampledLight sample(const LightSampleContext&, float u) const override { return sample(u); }
-    float pmf(const LightSampleContext&, const Light* light) const override { return pmf(light); }
     SampledLight sample(float u) const override;
     float pmf(const Light* light) const override;
 

@@ -355,19 +355,22 @@ TEST(LightSampler, SceneHonoursLightsampler) {
 
 namespace {
 
+// The camera, film, sampler and Integrator lines of the scenes below.
+std::string header(const std::string& lookAt, int fov, int w, int h, int maxDepth, const std::string& lightsampler) {
+    std::ostringstream s;
+    s << "LookAt " << lookAt << "\nCamera \"perspective\" \"float fov\" [ " << fov << " ]\n"
+      << "Film \"rgb\" \"integer xresolution\" [ " << w << " ] \"integer yresolution\" [ " << h << " ]\n"
+      << "PixelFilter \"box\"\nSampler \"independent\"\n"
+      << "Integrator \"path\" \"integer maxdepth\" [ " << maxDepth << " ] \"string lightsampler\" [ \"" << lightsampler
+      << "\" ]\nWorldBegin\n";
+    return s.str();
+}
+
 // A room (floor, back wall) lit by 24 lights of several kinds at different heights, a
 // distant light and a dim sky; the camera sees floor, wall and some of the lights.
 std::string roomScene(const std::string& lightsampler) {
     std::ostringstream s;
-    s << R"(
-        LookAt 0 3 9  0 1 0  0 1 0
-        Camera "perspective" "float fov" [ 50 ]
-        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 16 ]
-        PixelFilter "box"
-        Sampler "independent"
-        Integrator "path" "integer maxdepth" [ 3 ] "string lightsampler" [ ")"
-      << lightsampler << R"(" ]
-        WorldBegin
+    s << header("0 3 9  0 1 0  0 1 0", 50, 24, 16, 3, lightsampler) << R"(
         LightSource "distant" "rgb L" [ 0.5 0.5 0.5 ] "point3 from" [ 1 4 3 ] "point3 to" [ 0 0 0 ]
         LightSource "infinite" "rgb L" [ 0.05 0.05 0.05 ]
         Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]
@@ -408,15 +411,7 @@ std::string roomScene(const std::string& lightsampler) {
 // the few lights above it.
 std::string corridorScene(const std::string& lightsampler) {
     std::ostringstream s;
-    s << R"(
-        LookAt 0 1.8 0  0 0 -3  0 1 0
-        Camera "perspective" "float fov" [ 40 ]
-        Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 16 ]
-        PixelFilter "box"
-        Sampler "independent"
-        Integrator "path" "integer maxdepth" [ 1 ] "string lightsampler" [ ")"
-      << lightsampler << R"(" ]
-        WorldBegin
+    s << header("0 1.8 0  0 0 -3  0 1 0", 40, 24, 16, 1, lightsampler) << R"(
         Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]
         Shape "trianglemesh" "point3 P" [ -1 0 2  1 0 2  1 0 -80  -1 0 -80 ] "integer indices" [ 0 1 2 0 2 3 ]
         Shape "trianglemesh" "point3 P" [ -1 2.01 2  1 2.01 2  1 2.01 -80  -1 2.01 -80 ] "integer indices" [ 0 2 1 0 3 2 ]
@@ -437,15 +432,7 @@ std::string corridorScene(const std::string& lightsampler) {
 // The camera, below the lights, sees only the floor.
 std::string misScene(const std::string& lightsampler) {
     std::ostringstream s;
-    s << R"(
-        LookAt 0 0.4 0  0 0 0  0 0 1
-        Camera "perspective" "float fov" [ 90 ]
-        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
-        PixelFilter "box"
-        Sampler "independent"
-        Integrator "path" "integer maxdepth" [ 1 ] "string lightsampler" [ ")"
-      << lightsampler << R"(" ]
-        WorldBegin
+    s << header("0 0.4 0  0 0 0  0 0 1", 90, 16, 16, 1, lightsampler) << R"(
         LightSource "infinite" "rgb L" [ 0.4 0.4 0.4 ]
         Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
         Shape "trianglemesh" "point3 P" [ -5 0 -5  5 0 -5  5 0 5  -5 0 5 ] "integer indices" [ 0 1 2 0 2 3 ]
