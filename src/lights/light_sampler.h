@@ -51,6 +51,8 @@ public:
 
 class UniformLightSampler final : public PointFreeLightSampler {
 public:
+    using PointFreeLightSampler::pmf;
+    using PointFreeLightSampler::sample;
     explicit UniformLightSampler(std::span<const Light* const> lights);
     SampledLight sample(float u) const override;
     float pmf(const Light* light) const override;
@@ -61,6 +63,8 @@ private:
 
 class PowerLightSampler final : public PointFreeLightSampler {
 public:
+    using PointFreeLightSampler::pmf;
+    using PointFreeLightSampler::sample;
     // By the luminance of each light's phi(); all zero: uniform (AliasTable's rule).
     explicit PowerLightSampler(std::span<const Light* const> lights);
     SampledLight sample(float u) const override;
