@@ -58,16 +58,14 @@ BVHLightSampler::BVHLightSampler(std::span<const Light* const> lights)
             place_[i] = Place::Tree;
         }
     }
-    std::vector<Entry> entries = group(std::move(bounded), bounds);
+    std::vector<Entry> entries = group(bounded, bounds);
     if (!entries.empty()) {
         nodes_.reserve(2 * entries.size() - 1);
-        build(entries, 0, int(entries.size()), 0, 0);
+        build(entries, bounded, 0, int(entries.size()), 0, 0);
     }
-    members_.clear();
-    members_.shrink_to_fit();
 }
 
-std::vector<BVHLightSampler::Entry> BVHLightSampler::group(std::vector<Member> lights,
+std::vector<BVHLightSampler::Entry> BVHLightSampler::group(std::vector<Member>& members,
                                                            const std::vector<LightBounds>& bounds) {
     // Sorted by every part of their bounds but power, equal bounds are neighbours.
     auto key = [&](const Member& m) {
@@ -75,14 +73,13 @@ std::vector<BVHLightSampler::Entry> BVHLightSampler::group(std::vector<Member> l
         return std::make_tuple(b.bounds.lo.x, b.bounds.lo.y, b.bounds.lo.z, b.bounds.hi.x, b.bounds.hi.y,
                                b.bounds.hi.z, b.w.x, b.w.y, b.w.z, b.cosTheta_o, b.cosTheta_e, b.twoSided);
     };
-    std::stable_sort(lights.begin(), lights.end(), [&](const Member& a, const Member& b) { return key(a) < key(b); });
-    members_ = std::move(lights);
+    std::stable_sort(members.begin(), members.end(), [&](const Member& a, const Member& b) { return key(a) < key(b); });
     std::vector<Entry> entries;
-    for (size_t i = 0; i < members_.size();) {
+    for (size_t i = 0; i < members.size();) {
         size_t j = i + 1;
-        LightBounds united = bounds[size_t(members_[i].light)];
-        while (j < members_.size() && key(members_[j]) == key(members_[i])) {
-            united = unite(united, bounds[size_t(members_[j].light)]);
+        LightBounds united = bounds[size_t(members[i].light)];
+        while (j < members.size() && key(members[j]) == key(members[i])) {
+            united = unite(united, bounds[size_t(members[j].light)]);
             ++j;
         }
         entries.push_back({int(i), int(j - i), united});
@@ -91,17 +88,17 @@ std::vector<BVHLightSampler::Entry> BVHLightSampler::group(std::vector<Member> l
     return entries;
 }
 
-LightBounds BVHLightSampler::build(std::vector<Entry>& entries, int begin, int end, uint64_t trail, int depth) {
+LightBounds BVHLightSampler::build(std::vector<Entry>& entries, const std::vector<Member>& members, int begin, int end, uint64_t trail, int depth) {
     depth_ = std::max(depth_, depth);
     const size_t index = nodes_.size();
     if (end - begin == 1) {
         const Entry& e = entries[size_t(begin)];
         double total = 0;
-        for (int k = 0; k < e.count; ++k) total += members_[size_t(e.first + k)].phi;
+        for (int k = 0; k < e.count; ++k) total += members[size_t(e.first + k)].phi;
         const int first = int(slotLight_.size());
         double running = 0;
         for (int k = 0; k < e.count; ++k) {
-            const Member& m = members_[size_t(e.first + k)];
+            const Member& m = members[size_t(e.first + k)];
             slotOf_[size_t(m.light)] = int(slotLight_.size());
             slotLight_.push_back(m.light);
             slotShare_.push_back(float(m.phi / total));
@@ -114,9 +111,9 @@ LightBounds BVHLightSampler::build(std::vector<Entry>& entries, int begin, int e
     }
     const int mid = split(entries, begin, end, depth);
     nodes_.emplace_back();  // filled once both children exist
-    const LightBounds first = build(entries, begin, mid, trail, depth + 1);
+    const LightBounds first = build(entries, members, begin, mid, trail, depth + 1);
     const int second = int(nodes_.size());
-    const LightBounds bounds = unite(first, build(entries, mid, end, trail | (uint64_t(1) << depth), depth + 1));
+    const LightBounds bounds = unite(first, build(entries, members, mid, end, trail | (uint64_t(1) << depth), depth + 1));
     nodes_[index] = Node{LightImportance(bounds), second, 0};
     return bounds;
 }

@@ -45,7 +45,8 @@ private:
         bool leaf() const { return leafLights > 0; }
     };
     // A group of lights with the same bounds but for power (often one light): the tree's
-    // leaves. Its lights are members_[first, first + count); bounds has their total power.
+    // leaves. Its lights are members[first, first + count) of the build; bounds has their total
+    // power.
     struct Entry {
         int first, count;
         LightBounds bounds;
@@ -56,7 +57,8 @@ private:
     };
     // Builds the subtree over entries [begin, end) from node nodes_.size() on and returns its
     // bounds; trail holds the way down to it (bit d: the second child at depth d).
-    LightBounds build(std::vector<Entry>& entries, int begin, int end, uint64_t trail, int depth);
+    LightBounds build(std::vector<Entry>& entries, const std::vector<Member>& members, int begin, int end,
+                      uint64_t trail, int depth);
     // Where to split [begin, end): the bucket split of least cost (pbrt-v4's surface area and
     // orientation heuristic), else the median along the widest spread of centroids. Reorders
     // entries and returns the middle.
@@ -75,16 +77,16 @@ private:
     std::vector<const Light*> lights_, infinite_;
     // The light of leaf that u in [0, 1) chooses by power, its probability times pmf.
     SampledLight chooseInLeaf(const Node& leaf, float u, float pmf) const;
-    // Gathers the lights with the same bounds but for power into entries (members_ holds
+    // Gathers the lights with the same bounds but for power into entries, sorting members so
+    // that each entry's are consecutive
     // their lights).
-    std::vector<Entry> group(std::vector<Member> lights, const std::vector<LightBounds>& bounds);
+    static std::vector<Entry> group(std::vector<Member>& members, const std::vector<LightBounds>& bounds);
 
     std::vector<Node> nodes_;  // nodes_[0] is the root
     // The leaves' lights, by slot: each leaf's are consecutive; the chance of each within its
     // leaf, and their running sum (which sample() searches).
     std::vector<int> slotLight_;
     std::vector<float> slotShare_, slotCdf_;
-    std::vector<Member> members_;   // by entry, while the tree is built
     enum class Place : uint8_t { None, Tree, Infinite };
     std::vector<Place> place_;      // by light index
     std::vector<uint64_t> trail_;   // by light index: the way from the root to its leaf
