@@ -81,7 +81,7 @@ public:
     const std::vector<std::unique_ptr<Light>>& lights() const { return lights_; }
     const std::vector<const Light*>& infiniteLights() const { return infiniteLights_; }
     const std::vector<std::shared_ptr<Material>>& materials() const { return materials_; }
-    // Every shape rays can hit (`interface` shapes are not among them), instanced ones included.
+    // Every shape rays can hit, instanced ones included (`interface` shapes only in scenes with media).
     std::vector<const Shape*> shapes() const {
         std::vector<const Shape*> v;
         for (const auto& s : shapes_) v.push_back(s.get());

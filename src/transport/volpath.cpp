@@ -149,30 +149,22 @@ Spectrum PathTracer::estimateInMedia(const Ray& cameraRay, Sampler& sampler, Scr
             st.rL *= Tmaj / th;
         }
 
-        if (!hit) {
-            for (const Light* light : scene_.infiniteLights()) {
-                const Spectrum Le = light->Le(ray, lambda);
-                if (Le.isBlack()) continue;
-                if (depth == 0 || specularBounce) {
-                    st.L += st.beta * Le / st.mean(st.rU);
-                } else {
-                    const float pl = scene_.lightSampler().pmf(prevCtx, light) * light->pdfLi(prevCtx, normalize(ray.d), nullptr);
-                    st.L += st.beta * Le / st.mean(st.rU + st.rL * pl);
-                }
+        // Emission found by the walk, weighed against light sampling from the previous vertex
+        // (whose density joins rL) unless that vertex could not sample lights.
+        auto addEmission = [&](const Spectrum& Le, const Light* light, const SurfaceInteraction* at) {
+            if (Le.isBlack()) return;
+            if (depth == 0 || specularBounce) {
+                st.L += st.beta * Le / st.mean(st.rU);
+                return;
             }
+            const float pl = scene_.lightSampler().pmf(prevCtx, light) * light->pdfLi(prevCtx, normalize(ray.d), at);
+            st.L += st.beta * Le / st.mean(st.rU + st.rL * pl);
+        };
+        if (!hit) {
+            for (const Light* light : scene_.infiniteLights()) addEmission(light->Le(ray, lambda), light, nullptr);
             break;
         }
-        if (si.areaLight) {
-            const Spectrum Le = si.areaLight->L(si.p, si.ng, si.uv, si.wo, lambda);
-            if (!Le.isBlack()) {
-                if (depth == 0 || specularBounce) {
-                    st.L += st.beta * Le / st.mean(st.rU);
-                } else {
-                    const float pl = scene_.lightSampler().pmf(prevCtx, si.areaLight) * si.areaLight->pdfLi(prevCtx, normalize(ray.d), &si);
-                    st.L += st.beta * Le / st.mean(st.rU + st.rL * pl);
-                }
-            }
-        }
+        if (si.areaLight) addEmission(si.areaLight->L(si.p, si.ng, si.uv, si.wo, lambda), si.areaLight, &si);
 
         const BxDF* bxdf = surfaceBxDF(si, scratch, lambda);
         if (!bxdf) {

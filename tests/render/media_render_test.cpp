@@ -69,6 +69,17 @@ void expectTransmittance(const std::array<Mean, 3>& got, const std::array<double
     }
 }
 
+// Each channel of an image's mean within 4 sigma of `exact`, with sigma small enough to catch a
+// 2% error.
+void expectImageMean(const RegionStats& s, const std::array<double, 3>& exact) {
+    for (int c = 0; c < 3; ++c) {
+        std::printf("  channel %d: %.5f +- %.5f, exact %.5f, %+.2f sigma\n", c, s.mean[c], s.stdErr[c], exact[c],
+                    (s.mean[c] - exact[c]) / std::max(1e-12, s.stdErr[c]));
+        EXPECT_NEAR(s.mean[c], exact[c], 4 * s.stdErr[c] + kSpectralSystematic * exact[c]) << "channel " << c;
+        EXPECT_LT(4 * s.stdErr[c], 0.02 * exact[c]) << "channel " << c << ": cannot resolve a 2% error";
+    }
+}
+
 }  // namespace
 
 // A homogeneous medium: exp(-sigma_t d) per channel, sigma_t chromatic (the hero's tracking
@@ -140,13 +151,7 @@ TEST(MediaRender, LightSeenThroughAnAbsorbingSlab) {
     RenderResult r = renderString(scene, spectral ? 512 : 256);
     const Lifted sigma{{0.2f, 0.5f, 1.0f}, SpectrumSource::rgbUnbounded(srgbColorSpace(), {0.2f, 0.5f, 1.0f}), 1};
     const auto exact = exactPixel(spectral, [](double L, double s) { return L * std::exp(-1.5 * s); }, emission({1, 1, 1}), sigma);
-    const RegionStats s = wholeImage(r.image);
-    for (int c = 0; c < 3; ++c) {
-        std::printf("  channel %d: %.5f +- %.5f, exact %.5f, %+.2f sigma\n", c, s.mean[c], s.stdErr[c], exact[c],
-                    (s.mean[c] - exact[c]) / s.stdErr[c]);
-        EXPECT_NEAR(s.mean[c], exact[c], 4 * s.stdErr[c] + kSpectralSystematic * exact[c]) << "channel " << c;
-        EXPECT_LT(4 * s.stdErr[c], 0.02 * exact[c]) << "channel " << c << ": cannot resolve a 2% error";
-    }
+    expectImageMean(wholeImage(r.image), exact);
 }
 
 namespace {
@@ -175,13 +180,7 @@ void expectFurnace(const std::string& medium, int spp) {
     const bool spectral = defaultSpectral();
     RenderResult r = renderString(enclosedFurnace(medium), spp);
     const auto exact = exactPixel(spectral, itself, emission({1, 1, 1}));
-    const RegionStats s = wholeImage(r.image);
-    for (int c = 0; c < 3; ++c) {
-        std::printf("  channel %d: %.5f +- %.5f, exact %.5f, %+.2f sigma\n", c, s.mean[c], s.stdErr[c], exact[c],
-                    (s.mean[c] - exact[c]) / std::max(1e-12, s.stdErr[c]));
-        EXPECT_NEAR(s.mean[c], exact[c], 4 * s.stdErr[c] + kSpectralSystematic * exact[c]) << "channel " << c;
-        EXPECT_LT(4 * s.stdErr[c], 0.02 * exact[c]) << "channel " << c << ": cannot resolve a 2% error";
-    }
+    expectImageMean(wholeImage(r.image), exact);
 }
 
 }  // namespace
