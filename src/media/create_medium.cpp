@@ -4,6 +4,8 @@
 #include "media/homogeneous_medium.h"
 #include "util/error.h"
 
+#include <cmath>
+
 namespace ps {
 
 namespace {
@@ -71,6 +73,8 @@ std::unique_ptr<Medium> createMedium(const MediumEntity& e) {
     const ParamSet& ps = e.params;
     const float g = ps.getFloat("g", 0);
     const float scale = ps.getFloat("scale", 1);
+    // A negative coefficient has no meaning and would make the majorant's flights run backwards.
+    if (!(scale >= 0) || !std::isfinite(scale)) fail(e, "\"scale\" must be a finite number at least 0");
     if (e.type == "homogeneous") {
         if (ps.has("preset"))
             fail(e, "named \"preset\" media (" + quoteForMessage(ps.getString("preset", "")) +
@@ -84,6 +88,8 @@ std::unique_ptr<Medium> createMedium(const MediumEntity& e) {
     if (e.type == "uniformgrid") {
         std::vector<float> density = ps.getFloats("density");
         if (density.empty()) fail(e, "a \"uniformgrid\" medium needs \"density\" values");
+        for (float v : density)
+            if (!(v >= 0) || !std::isfinite(v)) fail(e, "\"density\" values must be finite and at least 0");
         if (ps.has("temperature")) fail(e, "\"temperature\" grids are not supported yet");
         VoxelGrid<float> dg = gridOf(e, std::move(density), "density");
         VoxelGrid<float> le;

@@ -256,3 +256,13 @@ TEST(MediaErrors, IntegratorsWithoutMediaRefuse) {
     }
     EXPECT_NO_THROW(createIntegrator("path", *scene));
 }
+
+// Negative coefficients would run the majorant's flights backwards: errors, not renders.
+TEST(MediaErrors, NegativeDensityOrScaleIsALocatedError) {
+    const std::string d = buildError("WorldBegin\nMakeNamedMedium \"g\" \"string type\" \"uniformgrid\" \"float density\" [ -1 ]\n");
+    EXPECT_NE(d.find("scene.pbrt:2:1"), std::string::npos) << d;
+    EXPECT_NE(d.find("\"density\" values must be finite and at least 0"), std::string::npos) << d;
+    const std::string s = buildError("WorldBegin\nMakeNamedMedium \"h\" \"string type\" \"homogeneous\" \"float scale\" [ -2 ]\n");
+    EXPECT_NE(s.find("scene.pbrt:2:1"), std::string::npos) << s;
+    EXPECT_NE(s.find("\"scale\" must be"), std::string::npos) << s;
+}
