@@ -7,7 +7,8 @@ cd "$(dirname "$0")/.."
 ./scripts/setup.sh
 ./scripts/build.sh
 cd build
-ctest --output-on-failure --no-tests=error -j"$(nproc 2>/dev/null || echo 2)" --timeout 1200
+# The long tier (label long: scripts/test-long.sh) is left to that command.
+ctest --output-on-failure --no-tests=error -j"$(nproc 2>/dev/null || echo 2)" --timeout 1200 -LE long
 cd ..
 ./scripts/test-sanitizers.sh
 # Whoever runs this script holds the shared build lock, if any, for all of it.
