@@ -8,6 +8,7 @@ namespace ps {
 
 class Material;
 class Light;
+class Medium;
 
 struct SurfaceInteraction {
     Vec3 p;
@@ -23,6 +24,14 @@ struct SurfaceInteraction {
     Vec3 wo;        // towards the ray origin
     const Material* material = nullptr;
     const Light* areaLight = nullptr;  // the emitter at this point, if any
+    // The shape's media when it bounds a medium (mediumTransition); a ray leaving here on
+    // the side of ng enters the outside one (pbrt-v4's SpawnRay).
+    const Medium* mediumInside = nullptr;
+    const Medium* mediumOutside = nullptr;
+    bool mediumTransition = false;
+    const Medium* mediumToward(Vec3 w, const Medium* current) const {
+        return mediumTransition ? (dot(w, ng) > 0 ? mediumOutside : mediumInside) : current;
+    }
 
     // dpdu is already the unit tangent of the shading frame (orthogonal to ns), as triangles
     // with a fixed normal precompute it, so the frame needs no Gram-Schmidt step per hit.

@@ -13,6 +13,8 @@
 
 namespace ps {
 
+class Medium;
+
 struct ShapeSample {
     Vec3 p, n;          // point and its oriented geometric normal
     Vec2 uv;
@@ -64,6 +66,11 @@ public:
     bool keepsHit(const Ray& r, float t, int embreePrim, float u, float v) const;
 
     const Material* material = nullptr;
+    // Its MediumInterface when a transition (inside != outside): a ray crossing it changes
+    // medium (both null otherwise: the ray keeps its own, as pbrt-v4's primitives do).
+    const Medium* mediumInside = nullptr;
+    const Medium* mediumOutside = nullptr;
+    bool mediumTransition = false;
     std::shared_ptr<const AlphaMask> alpha;  // null: opaque (no filter, no cost)
     // Per-primitive emitters (empty when the shape does not emit).
     std::vector<const Light*> areaLights;

@@ -54,6 +54,9 @@ bool Scene::intersect(const Ray& r, SurfaceInteraction& si) const {
         int prim = shape->interaction(r, t, int(rh.hit.primID), rh.hit.u, rh.hit.v, si);
         si.material = shape->material;
         si.areaLight = shape->areaLights.empty() ? nullptr : shape->areaLights[prim];
+        si.mediumInside = shape->mediumInside;
+        si.mediumOutside = shape->mediumOutside;
+        si.mediumTransition = shape->mediumTransition;
     } else {
         // Instances: compute the hit in the prototype's space, then map it to the world.
         const Instance& inst = instances_[instanceOfGeometry_[rh.hit.instID[0]]];
@@ -76,6 +79,9 @@ bool Scene::intersect(const Ray& r, SurfaceInteraction& si) const {
         }
         si.material = shape->material;
         si.areaLight = nullptr;  // emitters inside instances are not supported (as in pbrt-v4)
+        si.mediumInside = shape->mediumInside;
+        si.mediumOutside = shape->mediumOutside;
+        si.mediumTransition = shape->mediumTransition;
     }
     si.t = t;
     si.wo = -normalize(r.d);

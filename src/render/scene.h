@@ -17,6 +17,7 @@
 #include "lights/light_sampler.h"
 #include "mc/alias_table.h"
 #include "materials/material.h"
+#include "media/medium.h"
 #include "util/error.h"
 
 namespace ps {
@@ -80,12 +81,17 @@ public:
     const std::vector<std::unique_ptr<Light>>& lights() const { return lights_; }
     const std::vector<const Light*>& infiniteLights() const { return infiniteLights_; }
     const std::vector<std::shared_ptr<Material>>& materials() const { return materials_; }
-    // Every shape rays can hit (`interface` shapes are not among them), instanced ones included.
+    // Every shape rays can hit, instanced ones included (`interface` shapes only in scenes with media).
     std::vector<const Shape*> shapes() const {
         std::vector<const Shape*> v;
         for (const auto& s : shapes_) v.push_back(s.get());
         return v;
     }
+    // Participating media: whether any shape or the camera is in one (then `interface`
+    // shapes are in the BVH, and shadow rays go through Transmittance, not occluded()), and
+    // the camera's medium (pbrt-v4's CameraMedium; null: vacuum).
+    bool hasMedia() const { return hasMedia_; }
+    const Medium* cameraMedium() const { return cameraMedium_; }
     const Camera& camera() const { return *camera_; }
     Camera& camera() { return *camera_; }
     const Filter& filter() const { return *filter_; }
@@ -127,6 +133,9 @@ private:
     std::vector<Instance> instances_;
     std::vector<std::vector<const Shape*>> prototypeGeometry_;  // by prototype, by geomID
     std::vector<std::shared_ptr<Material>> materials_;
+    std::vector<std::unique_ptr<Medium>> media_;
+    const Medium* cameraMedium_ = nullptr;
+    bool hasMedia_ = false;
     std::vector<std::unique_ptr<Light>> lights_;
     std::vector<const Light*> infiniteLights_;
     AliasTable lightDistribution_;  // by power

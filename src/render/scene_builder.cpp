@@ -1,4 +1,5 @@
 #include "render/scene_builder.h"
+#include "media/create_medium.h"
 
 #include <mutex>
 
@@ -18,6 +19,15 @@ public:
 private:
     void createMaterials();
     const Material* materialFor(const ShapeEntity& e) const;
+    // MakeNamedMedium's media, all of them (pbrt-v4 creates every named medium), the camera's
+    // medium and whether any shape bounds a medium.
+    void createMedia();
+    const Medium* mediumNamed(const std::string& name, const SourceLoc& loc) const;
+    void assignMedia(const ShapeEntity& e, Shape& shape) const;
+    // An `interface` shape is left out of the BVH unless it may bound a medium.
+    bool skipped(const Shape& shape) const {
+        return !scene_.hasMedia_ && shape.material && shape.material->isInterface();
+    }
     void addAreaLights(const ShapeEntity& e, Shape& shape);
     void addWorldShapes();
     void addInstances();
@@ -40,6 +50,7 @@ private:
     Scene& scene_;
     TextureRegistry textures_;
     std::map<std::string, std::shared_ptr<Material>> named_;
+    std::map<std::string, const Medium*> media_;
 };
 
 namespace {
@@ -150,10 +161,46 @@ void SceneBuilder::addAreaLights(const ShapeEntity& e, Shape& shape) {
 }
 
 // An `interface` shape only marks where a medium begins: it neither scatters nor emits, so
-// no ray of any integrator (camera, shadow, connection) may stop at it. Media are not
-// supported yet, so such a shape is left out of the geometry altogether; kept, it blocked
-// every shadow and connection ray through it (the agreement matrix's Interface cells).
-static bool boundsMediumOnly(const Shape& shape) { return shape.material && shape.material->isInterface(); }
+// no ray may stop at it. Without media it is left out of the geometry altogether (kept, it
+// blocked every shadow and connection ray through it: the agreement matrix's Interface
+// cells); with media it stays, and rays cross it changing medium (media/, path_tracer).
+const Medium* SceneBuilder::mediumNamed(const std::string& name, const SourceLoc& loc) const {
+    if (name.empty()) return nullptr;  // "" is vacuum
+    auto it = media_.find(name);
+    if (it == media_.end()) {
+        std::string known;
+        for (const auto& [n, m] : media_) known += (known.empty() ? "" : ", ") + quoteForMessage(n);
+        throw InputError(loc, "MediumInterface: medium " + quoteForMessage(name) + " is not defined" +
+                                  (known.empty() ? std::string(" (no MakeNamedMedium defines any)") : " (defined: " + known + ")"));
+    }
+    return it->second;
+}
+
+void SceneBuilder::createMedia() {
+    for (const auto& [name, e] : desc_.media) {
+        scene_.media_.push_back(createMedium(e));
+        media_[name] = scene_.media_.back().get();
+    }
+    scene_.cameraMedium_ = mediumNamed(desc_.camera.medium, desc_.camera.mediumLoc);
+    bool transitions = false;
+    auto check = [&](const ShapeEntity& e) {
+        // Both names resolve even when equal: an undefined name is an error wherever it is.
+        mediumNamed(e.media.inside, e.media.loc);
+        mediumNamed(e.media.outside, e.media.loc);
+        transitions = transitions || e.media.transition();
+    };
+    for (const ShapeEntity& e : desc_.shapes) check(e);
+    for (const auto& [n, def] : desc_.instances)
+        for (const ShapeEntity& e : def.shapes) check(e);
+    scene_.hasMedia_ = scene_.cameraMedium_ || transitions;
+}
+
+void SceneBuilder::assignMedia(const ShapeEntity& e, Shape& shape) const {
+    if (!e.media.transition()) return;
+    shape.mediumInside = mediumNamed(e.media.inside, e.media.loc);
+    shape.mediumOutside = mediumNamed(e.media.outside, e.media.loc);
+    shape.mediumTransition = true;
+}
 
 unsigned SceneBuilder::attach(RTCScene target, const Shape& shape) {
     RTCGeometry g = shape.buildGeometry(scene_.device_);
@@ -171,8 +218,9 @@ void SceneBuilder::addWorldShapes() {
         std::unique_ptr<Shape> shape = createShape(e, e.worldFromObject, desc_.baseDirectory, textures_);
         if (!shape || shape->primitiveCount() == 0) continue;
         shape->material = materialFor(e);
+        assignMedia(e, *shape);
         addAreaLights(e, *shape);
-        if (boundsMediumOnly(*shape)) continue;
+        if (skipped(*shape)) continue;
         unsigned id = attach(scene_.scene_, *shape);
         if (scene_.worldGeometry_.size() <= id) {
             scene_.worldGeometry_.resize(id + 1, nullptr);
@@ -198,7 +246,8 @@ int SceneBuilder::buildPrototype(const InstanceDefinition& def, const Transform&
         std::unique_ptr<Shape> shape = createShape(e, prototypeFromInstance * e.worldFromObject, desc_.baseDirectory, textures_);
         if (!shape || shape->primitiveCount() == 0) continue;
         shape->material = materialFor(e);
-        if (boundsMediumOnly(*shape)) continue;
+        assignMedia(e, *shape);
+        if (skipped(*shape)) continue;
         unsigned id = attach(proto, *shape);
         std::vector<const Shape*>& geoms = scene_.prototypeGeometry_[size_t(index)];
         if (geoms.size() <= id) geoms.resize(id + 1, nullptr);
@@ -288,6 +337,7 @@ void SceneBuilder::build() {
     rtcSetSceneFlags(scene_.scene_, kSceneFlags);
 
     createMaterials();
+    createMedia();
     addWorldShapes();
     addInstances();
     addLights();

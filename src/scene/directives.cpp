@@ -158,6 +158,8 @@ void DescriptionBuilder::camera(const Token& d, const std::string& type, ParamSe
     desc_.camera.transformStartTime = desc_.transformStartTime;
     desc_.camera.transformEndTime = desc_.transformEndTime;
     desc_.cameraGiven = true;
+    desc_.camera.medium = gs_.media.outside;  // pbrt-v4's CameraMedium
+    desc_.camera.mediumLoc = gs_.media.loc;
     namedCoordSys_["camera"] = {desc_.camera.worldFromCamera, desc_.camera.worldFromCameraEnd};
 }
 
@@ -230,17 +232,27 @@ void DescriptionBuilder::attribute(const Token& d, const std::string& target, Pa
     gs_.addAttributes(*t, std::move(ps.params));
 }
 
-void DescriptionBuilder::makeNamedMedium(const Token& d, const std::string& name, ParamSet) {
-    if (!warnedMedia_) {
-        warnedMedia_ = true;
-        warning(d.loc(), "participating media are not supported; medium " + quote(name) + " is ignored");
-    }
+// Allowed anywhere, as in pbrt-v4 (a camera's medium is made before WorldBegin). The class
+// is the "string type" parameter; the medium keeps the CTM here (grids are placed by it).
+void DescriptionBuilder::makeNamedMedium(const Token& d, const std::string& name, ParamSet ps) {
+    applyAttributes(AttributeTarget::Medium, ps, d);
+    if (desc_.media.count(name)) fail(d, "medium " + quote(name) + " is already defined (at " + desc_.media[name].loc.str() + ")");
+    const std::string type = ps.getString("type", "");
+    if (type.empty()) fail(d, "medium " + quote(name) + " needs a \"string type\" parameter");
+    requireInvertibleCtm(d);
+    MediumEntity e;
+    e.name = name;
+    e.type = type;
+    e.params = std::move(ps);
+    e.loc = d.loc();
+    e.worldFromMedium = gs_.ctm;
+    desc_.media[name] = std::move(e);
 }
 
+// Names are resolved once the whole file is read (render/scene_builder.cpp): a medium may be
+// defined after the MediumInterface that names it, as pbrt-v4 creates media after parsing.
 void DescriptionBuilder::mediumInterface(const Token& d, const std::string& inside, const std::string& outside) {
-    if ((inside.empty() && outside.empty()) || warnedMedia_) return;  // "" is vacuum: nothing lost
-    warnedMedia_ = true;
-    warning(d.loc(), "participating media are not supported; MediumInterface is ignored");
+    gs_.media = MediumNames{inside, outside, d.loc()};
 }
 
 // ---- world block ----
@@ -376,6 +388,7 @@ void DescriptionBuilder::shape(const Token& d, const std::string& type, ParamSet
     e.reverseOrientation = gs_.reverseOrientation;
     e.material = gs_.material;
     e.areaLight = gs_.areaLight;
+    e.media = gs_.media;
     if (instance_) {
         if (e.areaLight >= 0) {
             warning(d.loc(), "area lights inside ObjectBegin are not supported (as in pbrt-v4); the shape does not emit");

@@ -102,7 +102,7 @@ private:
     InstanceDefinition* instance_ = nullptr;  // the ObjectBegin being defined
     bool instanceFromOuterFile_ = false;      // ... opened outside the current Import
     size_t attributeBudget_;                  // values Attribute defaults may still copy
-    bool warnedTransformBegin_ = false, warnedMedia_ = false;
+    bool warnedTransformBegin_ = false;
 };
 
 struct DescriptionBuilder::ImportScope {

@@ -21,6 +21,7 @@ struct GraphicsState {
     bool reverseOrientation = false;
     MaterialRef material{0, ""};  // the default material is SceneDescription::materials[0]
     int areaLight = -1;
+    MediumNames media;  // MediumInterface: the current inside and outside media
     bool startTransformActive = true, endTransformActive = true;
     // The directive (and where) that made the CTM singular or non-finite, for the error if
     // a shape is then placed under it.

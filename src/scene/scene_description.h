@@ -16,10 +16,26 @@ struct SceneEntity {
     SourceLoc loc;
 };
 
+// The media a MediumInterface directive named (PBRT-CONVENTIONS §8: part of the graphics
+// state), resolved against MakeNamedMedium after parsing as pbrt-v4 does; "" is vacuum.
+struct MediumNames {
+    std::string inside, outside;
+    SourceLoc loc;  // the MediumInterface directive, for an undefined name's error
+    bool transition() const { return inside != outside; }
+};
+
+struct MediumEntity : SceneEntity {
+    std::string name;
+    Transform worldFromMedium;  // the CTM at MakeNamedMedium (grid media's placement)
+};
+
 struct CameraEntity : SceneEntity {
     Transform worldFromCamera;     // inverse of the CTM at the Camera directive
     Transform worldFromCameraEnd;  // ... of its end keyframe (equal unless the camera moves)
     float transformStartTime = 0, transformEndTime = 1;  // TransformTimes at the Camera directive
+    // pbrt-v4's CameraMedium: the outside medium current at the Camera directive.
+    std::string medium;
+    SourceLoc mediumLoc;
 };
 
 struct MaterialEntity : SceneEntity {
@@ -49,6 +65,7 @@ struct ShapeEntity : SceneEntity {
     bool reverseOrientation = false;
     MaterialRef material;
     int areaLight = -1;  // index into SceneDescription::areaLights, -1 when not emissive
+    MediumNames media;   // only a transition (inside != outside) changes a crossing ray's medium
 };
 
 struct InstanceDefinition {
@@ -83,6 +100,7 @@ struct SceneDescription {
     std::vector<ShapeEntity> shapes;
     std::vector<LightEntity> lights;
     std::vector<SceneEntity> areaLights;  // AreaLightSource entities referenced by shapes
+    std::map<std::string, MediumEntity> media;  // MakeNamedMedium, by name
     std::map<std::string, InstanceDefinition> instances;
     std::vector<InstanceUse> instanceUses;
     std::map<std::string, std::string> options;  // Option "name" value, raw text

@@ -84,4 +84,10 @@ std::string missingPaths(const Scene& scene, const std::string& integrator) {
     return "";
 }
 
+std::string unsupportedMedia(const Scene& scene, const std::string& integrator) {
+    if (!scene.hasMedia() || integrator == "path") return "";
+    return "integrator \"" + integrator + "\" does not support participating media yet; render this scene with \"path\" "
+           "(pbrt-v4's \"volpath\")";
+}
+
 }  // namespace ps

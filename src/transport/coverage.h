@@ -22,6 +22,11 @@ std::string missingPaths(const Scene& scene, const std::string& integrator);
 // pbrt-v4.
 std::string inconsistentSurfaces(const Scene& scene, const std::string& integrator);
 
+// Why `integrator` cannot render the scene's participating media, or "" when it can: only the
+// path tracer (pbrt-v4's volpath) has medium vertices yet (issue 36); the others refuse such
+// a scene (createIntegrator) rather than render it without its media.
+std::string unsupportedMedia(const Scene& scene, const std::string& integrator);
+
 // Why "light" or "mlt" cannot render through a camera without importance (orthographic,
 // spherical, realistic): a phrase that follows the integrator's name.
 std::string lensRequirement(const std::string& integrator);

@@ -23,6 +23,9 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
     if (name == "path") return std::make_unique<PathTracer>(scene, maxDepth);
     if (name == "light" || name == "bdpt" || name == "pssmlt" || name == "mmlt" ||
         name == "mlt") {
+        // Light subpaths and connections do not yet cross media or scatter in them: rendered,
+        // such a scene would be silently wrong (issue 36).
+        if (const std::string why = unsupportedMedia(scene, name); !why.empty()) throw InputError(why);
         // Light tracing and Veach's lens mutations need the camera's importance; BDPT and the
         // primary-sample chains do without its t = 1 strategies.
         if ((name == "light" || name == "mlt") && !scene.camera().hasImportance())

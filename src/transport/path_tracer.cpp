@@ -28,6 +28,7 @@ Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& fra
 }
 
 Spectrum PathTracer::Li(const Ray& ray, SampleContext& ctx) const {
+    if (scene_.hasMedia()) return estimateInMedia(ray, ctx.sampler, ctx.scratch, ctx.stats, ctx.lambda);
     return withConcreteSampler(ctx.sampler,
                                [&](auto& sampler) { return estimate(ray, sampler, ctx.scratch, ctx.stats, ctx.lambda); });
 }

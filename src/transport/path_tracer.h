@@ -2,6 +2,7 @@
 // the power heuristic (thesis ch. 9), Russian roulette after the second bounce (thesis
 // §2.5.3.2 / pbrt-v4's rule), maxdepth = number of scattering events.
 #pragma once
+#include "mc/rng.h"
 #include "transport/integrator.h"
 
 namespace ps {
@@ -13,6 +14,21 @@ public:
     bool supportsSpectral() const override { return true; }
 
 private:
+    // A scattering vertex of a path in media: on a surface (bxdf, si) or in a medium (the
+    // phase function of `medium`).
+    struct VolVertex {
+        Vec3 p, ng, wo, woLocal;
+        Frame frame;
+        const BxDF* bxdf = nullptr;
+        const SurfaceInteraction* si = nullptr;
+        const Medium* medium = nullptr;  // the medium the vertex is in (surfaces: the arriving ray's)
+        float time = 0;
+    };
+    // pbrt-v4's volpath, for scenes with media (volpath.cpp).
+    Spectrum estimateInMedia(const Ray& ray, Sampler& sampler, ScratchBuffer& scratch, PathStats& stats,
+                             SampledWavelengths* lambda) const;
+    Spectrum sampleDirectInMedia(const VolVertex& v, const Spectrum& beta, const Spectrum& rPath, int hero, Sampler& sampler,
+                                 Rng& rng, const SampledWavelengths* lambda, PathStats& stats) const;
     // The estimator, instantiated per concrete sampler so its calls inline on the hot path.
     template <typename S>
     Spectrum estimate(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats, SampledWavelengths* lambda) const;

@@ -110,7 +110,8 @@ VerifyReport verifyScene(Scene& scene, const VerifyOptions& o, const Reference* 
         IntegratorResult r;
         r.name = name;
         r.runs = RunSet(o.blocksX, o.blocksY);
-        r.skipped = missingPaths(scene, name);
+        r.skipped = unsupportedMedia(scene, name);
+        if (r.skipped.empty()) r.skipped = missingPaths(scene, name);
         if (r.skipped.empty()) r.skipped = inconsistentSurfaces(scene, name);
         toRun += r.skipped.empty();
         report.results.push_back(std::move(r));

@@ -423,6 +423,17 @@ Camera "realistic" "string lensfile" [ ")" + data + R"(/lenses/dgauss.50mm.dat" 
                  lensless);
     // The camera inside an emitter whose material is black sees exactly its emission.
     exactFurnace("light/inside-black-emitter", inside + R"(Camera "perspective" "float fov" [ 60 ])", 0, 5, {});
+    // ---- participating media ----
+    // The same emitter filled with fog of albedo 1 (coloured, forward-scattering) around the
+    // camera: scattering only redistributes the wall's radiance, so the image is still L. At
+    // most about 3 optical radii, paths past maxdepth 100 are negligible. Only `path` (volpath)
+    // has medium vertices; the others refuse the scene and are left out (coverage.h).
+    exactFurnace("medium/fog-furnace",
+                 R"(MakeNamedMedium "fog" "string type" "homogeneous" "rgb sigma_a" [ 0 0 0 ]
+  "rgb sigma_s" [ 0.3 0.6 1 ] "float g" [ 0.5 ]
+MediumInterface "" "fog"
+)" + inside + R"(Camera "perspective" "float fov" [ 60 ])",
+                 0, 100, {});
 
     // ---- path depth ----
     box("depth/0", [](Box& b) { b.maxDepth = 0; })->sppScale = 8;

@@ -1,0 +1,71 @@
+// Participating media as pbrt-v4 defines them (media.h): at each point an absorption and a
+// scattering coefficient, an emitted radiance and a Henyey-Greenstein phase function, and
+// along any ray a majorant sigma_maj >= sigma_a + sigma_s that delta and ratio tracking
+// sample against (Novak et al. 2014; pbrt-v4's SampleT_maj).
+#pragma once
+#include <cmath>
+#include "math/spectrum.h"
+#include "math/vec.h"
+#include "materials/phase_function.h"
+#include "spectral/sampled_spectrum.h"
+
+namespace ps {
+
+struct MediumProperties {
+    Spectrum sigmaA, sigmaS, Le;
+};
+
+// A part of a ray, in distance along its unit direction, where a medium may interact, with
+// the majorant that bounds sigma_t over it.
+struct MajorantSegment {
+    float t0 = 0, t1 = 0;
+    Spectrum sigmaMaj;
+};
+
+// A scene spectrum in both colour modes: an RGB value, or a spectrum's values at a path's
+// wavelengths (spectral mode, lambda not null) times a scale.
+class MediumSpectrum {
+public:
+    MediumSpectrum() = default;
+    MediumSpectrum(Spectrum rgb, SpectrumSource s, float spectralScale) : rgb_(rgb), src_(std::move(s)), scale_(spectralScale) {}
+    Spectrum operator()(const SampledWavelengths* lambda) const {
+        return lambda ? sampleSpectrum(src_, *lambda) * scale_ : rgb_;
+    }
+    float maxValue() const { return std::max(rgb_.maxComponent(), src_.maxValue() * scale_); }
+
+private:
+    Spectrum rgb_;
+    SpectrumSource src_ = SpectrumSource::constant(0);
+    float scale_ = 0;
+};
+
+class Medium {
+public:
+    explicit Medium(float g) : phase_(g) {}
+    virtual ~Medium() = default;
+    const HGPhaseFunction& phase() const { return phase_; }
+    virtual bool emissive() const { return false; }
+    // The coefficients at a world-space point.
+    virtual MediumProperties at(Vec3 p, const SampledWavelengths* lambda) const = 0;
+    // Where along o + t d (d unit, t in [0, tMax]) the medium can interact, and its majorant
+    // there; false when nowhere (a grid's box missed).
+    virtual bool segment(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda, MajorantSegment* seg) const = 0;
+
+private:
+    HGPhaseFunction phase_;
+};
+
+inline Spectrum expNeg(const Spectrum& s) {
+    return Spectrum::sampled(std::exp(-s.r), std::exp(-s.g), std::exp(-s.b), std::exp(-s.c3));
+}
+inline Spectrum clampZero(const Spectrum& s) {
+    return Spectrum::sampled(std::max(0.0f, s.r), std::max(0.0f, s.g), std::max(0.0f, s.b), std::max(0.0f, s.c3));
+}
+// The mean over the channels that carry colour: the four wavelengths in spectral mode, r, g
+// and b in RGB mode (whose fourth channel copies g). Spectral MIS (pbrt-v4's volpath) divides
+// by the mean of the channels' path densities.
+inline float channelMean(const Spectrum& s, bool spectral) {
+    return spectral ? (s.r + s.g + s.b + s.c3) * 0.25f : s.average();
+}
+
+}  // namespace ps

@@ -1,0 +1,268 @@
+// Participating media (issue 36): transmittance by ratio tracking against exp(-sigma_t d),
+// a light seen through an absorbing slab bounded by `interface` shapes, enclosed furnaces
+// filled with scattering (and emitting) media, and the located errors of bad media.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "media/transmittance.h"
+#include "spectral_answer.h"
+#include "transport/integrator.h"
+
+using namespace ps;
+using namespace ps::test;
+
+namespace {
+
+// Mean and standard error of n draws.
+struct Mean {
+    double mean = 0, se = 0;
+};
+template <class F>
+Mean meanOf(int n, F&& draw) {
+    double s = 0, s2 = 0;
+    for (int i = 0; i < n; ++i) {
+        const double x = draw();
+        s += x;
+        s2 += x * x;
+    }
+    Mean m;
+    m.mean = s / n;
+    m.se = std::sqrt(std::max(0.0, s2 / n - m.mean * m.mean) / (n - 1));
+    return m;
+}
+
+// A scene whose camera is in `medium` (pbrt-v4's CameraMedium), to reach the medium.
+std::unique_ptr<Scene> sceneInMedium(const std::string& medium) {
+    setWarningsQuiet(true);
+    const std::string text = "MakeNamedMedium \"m\" " + medium + R"(
+        MediumInterface "" "m"
+        Camera "perspective"
+        WorldBegin
+    )";
+    return buildScene(parseSceneString(text, ".", "<test>"), false);
+}
+
+// Ratio tracking from p0 to p1, per channel in RGB mode with the hero drawn uniformly as the
+// path tracer draws it: the estimate of each channel's transmittance is T / mean(rL), what a
+// shadow ray towards a delta light contributes (media/transmittance.h).
+std::array<Mean, 3> ratioTracked(const Scene& scene, Vec3 p0, Vec3 p1, int n) {
+    std::array<Mean, 3> out;
+    Rng rng(11);
+    for (int c = 0; c < 3; ++c) {
+        Rng local(17 + c);
+        out[c] = meanOf(n, [&] {
+            const int hero = std::min(2, int(local.uniform() * 3));
+            TransmittanceEstimate e = transmittance(scene, p0, Vec3(0, 0, 0), scene.cameraMedium(), p1, 0, nullptr, hero, false, rng);
+            return e.T.isBlack() ? 0.0 : double(e.T[c] / channelMean(e.rL, false));
+        });
+    }
+    return out;
+}
+
+void expectTransmittance(const std::array<Mean, 3>& got, const std::array<double, 3>& exact, const char* what) {
+    for (int c = 0; c < 3; ++c) {
+        std::printf("  %s channel %d: %.5f +- %.5f, exp(-tau) %.5f, %+.2f sigma\n", what, c, got[c].mean, got[c].se, exact[c],
+                    (got[c].mean - exact[c]) / got[c].se);
+        EXPECT_NEAR(got[c].mean, exact[c], 4 * got[c].se) << what << " channel " << c;
+        EXPECT_LT(4 * got[c].se, 0.02 * exact[c]) << what << ": cannot resolve a 2% error";
+    }
+}
+
+// Each channel of an image's mean within 4 sigma of `exact`, with sigma small enough to catch a
+// 2% error.
+void expectImageMean(const RegionStats& s, const std::array<double, 3>& exact) {
+    for (int c = 0; c < 3; ++c) {
+        std::printf("  channel %d: %.5f +- %.5f, exact %.5f, %+.2f sigma\n", c, s.mean[c], s.stdErr[c], exact[c],
+                    (s.mean[c] - exact[c]) / std::max(1e-12, s.stdErr[c]));
+        EXPECT_NEAR(s.mean[c], exact[c], 4 * s.stdErr[c] + kSpectralSystematic * exact[c]) << "channel " << c;
+        EXPECT_LT(4 * s.stdErr[c], 0.02 * exact[c]) << "channel " << c << ": cannot resolve a 2% error";
+    }
+}
+
+}  // namespace
+
+// A homogeneous medium: exp(-sigma_t d) per channel, sigma_t chromatic (the hero's tracking
+// weighs the other channels by their majorants' ratios).
+TEST(MediaTransmittance, HomogeneousRatioTrackingIsExpMinusSigmaTD) {
+    auto scene = sceneInMedium(R"("string type" "homogeneous" "rgb sigma_a" [ 0.1 0.3 0.6 ] "rgb sigma_s" [ 0.2 0.2 0.3 ]
+                                  "float scale" [ 1.0 ])");
+    const float d = 2;
+    const auto got = ratioTracked(*scene, {0, 0, 0}, {0, 0, d}, 200000);
+    expectTransmittance(got, {std::exp(-0.3 * d), std::exp(-0.5 * d), std::exp(-0.9 * d)}, "homogeneous");
+}
+
+// A uniform grid of one voxel (density 2) in the unit box: pbrt-v4 places the value at the
+// cell's centre and interpolates towards zero beyond it, so along the box's axis through
+// the centre the density is 2(1 - |2x - 1|/2) and the optical depth sigma_t * 2 * 0.75. The
+// majorant (sigma_t * 2) exceeds sigma_t almost everywhere: real ratio tracking.
+TEST(MediaTransmittance, UniformGridRatioTrackingIsExpMinusOpticalDepth) {
+    auto scene = sceneInMedium(R"("string type" "uniformgrid" "float density" [ 2 ] "rgb sigma_a" [ 0.2 0.2 0.2 ]
+                                  "rgb sigma_s" [ 0.3 0.5 0.8 ])");
+    const auto got = ratioTracked(*scene, {-1, 0.5f, 0.5f}, {2, 0.5f, 0.5f}, 100000);
+    expectTransmittance(got, {std::exp(-0.5 * 1.5), std::exp(-0.7 * 1.5), std::exp(-1.0 * 1.5)}, "uniformgrid");
+}
+
+// An rgbgrid of 2 x 1 x 1 voxels in a box scaled by the CTM (x from 0 to 4): the density
+// rises linearly from voxel 0's centre (x = 1) to voxel 1's (x = 3); on [1, 3] the optical
+// depth is the mean of the two values times 2.
+TEST(MediaTransmittance, RgbGridIsPlacedByItsTransform) {
+    setWarningsQuiet(true);
+    auto scene = buildScene(parseSceneString(R"(
+        Scale 4 1 1
+        MakeNamedMedium "m" "string type" "rgbgrid" "integer nx" [ 2 ]
+            "rgb sigma_a" [ 0.1 0.2 0.3  0.3 0.2 0.1 ] "rgb sigma_s" [ 0 0 0  0.2 0.2 0.2 ]
+        Identity
+        MediumInterface "" "m"
+        Camera "perspective"
+        WorldBegin
+    )", ".", "<test>"), false);
+    const auto got = ratioTracked(*scene, {1, 0.5f, 0.5f}, {3, 0.5f, 0.5f}, 100000);
+    expectTransmittance(got, {std::exp(-0.3 * 2), std::exp(-0.3 * 2), std::exp(-0.3 * 2)}, "rgbgrid");
+}
+
+// A light of radiance 1 seen through a slab 1.5 thick of an absorbing, coloured medium between
+// two `interface` quads (MediumInterface "slab" "" with N towards the vacuum): every
+// orthographic ray crosses 1.5 of it, so each pixel is L exp(-sigma_a 1.5), per wavelength
+// in spectral mode. The interfaces add no vertex and change no throughput.
+TEST(MediaRender, LightSeenThroughAnAbsorbingSlab) {
+    const char* scene = R"(
+        LookAt 0 0 0  0 0 1  0 1 0
+        Camera "orthographic"
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        Sampler "independent"
+        MakeNamedMedium "slab" "string type" "homogeneous" "rgb sigma_a" [ 0.2 0.5 1.0 ] "rgb sigma_s" [ 0 0 0 ]
+        WorldBegin
+        AttributeBegin
+          Material "interface"
+          MediumInterface "slab" ""
+          Shape "trianglemesh" "point3 P" [ -5 -5 1  5 -5 1  5 5 1  -5 5 1 ] "integer indices" [ 0 1 2  0 2 3 ]
+              "normal N" [ 0 0 -1  0 0 -1  0 0 -1  0 0 -1 ]
+          Shape "trianglemesh" "point3 P" [ -5 -5 2.5  5 -5 2.5  5 5 2.5  -5 5 2.5 ] "integer indices" [ 0 1 2  0 2 3 ]
+              "normal N" [ 0 0 1  0 0 1  0 0 1  0 0 1 ]
+        AttributeEnd
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+          ReverseOrientation
+          Shape "disk" "float height" [ 3 ] "float radius" [ 10 ]
+        AttributeEnd
+    )";
+    const bool spectral = defaultSpectral();
+    RenderResult r = renderString(scene, spectral ? 512 : 256);
+    const Lifted sigma{{0.2f, 0.5f, 1.0f}, SpectrumSource::rgbUnbounded(srgbColorSpace(), {0.2f, 0.5f, 1.0f}), 1};
+    const auto exact = exactPixel(spectral, [](double L, double s) { return L * std::exp(-1.5 * s); }, emission({1, 1, 1}), sigma);
+    expectImageMean(wholeImage(r.image), exact);
+}
+
+namespace {
+
+// The camera inside an emitting sphere of radiance 1 whose surface is black, all of it filled
+// with `medium`: whatever the medium scatters, every path ends on the wall or in absorption,
+// and where it absorbs it also emits Le = 1 (sigma_a Le), so the radiance is 1 everywhere
+// (with the depth limit far beyond what the paths reach).
+std::string enclosedFurnace(const std::string& medium) {
+    return "MakeNamedMedium \"fog\" " + medium + R"(
+        MediumInterface "" "fog"
+        LookAt 0 0 0  0 0 1  0 1 0
+        Camera "perspective" "float fov" [ 70 ]
+        Film "rgb" "integer xresolution" [ 12 ] "integer yresolution" [ 12 ]
+        Sampler "independent"
+        Integrator "volpath" "integer maxdepth" [ 200 ]
+        WorldBegin
+        AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+        Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+        ReverseOrientation
+        Shape "sphere" "float radius" [ 1 ]
+    )";
+}
+
+void expectFurnace(const std::string& medium, int spp) {
+    const bool spectral = defaultSpectral();
+    RenderResult r = renderString(enclosedFurnace(medium), spp);
+    const auto exact = exactPixel(spectral, itself, emission({1, 1, 1}));
+    expectImageMean(wholeImage(r.image), exact);
+}
+
+}  // namespace
+
+// Albedo 1, coloured sigma_s (each channel's own free flights, reached through the hero's),
+// forward-scattering HG: next-event estimation from medium vertices and phase sampling,
+// combined by spectral MIS, must add up to the wall's radiance.
+TEST(MediaRender, ScatteringMediumFurnaceWithAlbedoOne) {
+    expectFurnace(R"("string type" "homogeneous" "rgb sigma_a" [ 0 0 0 ] "rgb sigma_s" [ 0.5 1.5 3 ] "float g" [ 0.6 ])", 2048);
+}
+
+// The same with absorption balanced by emission Le = 1 (sigma_a Le along every flight).
+TEST(MediaRender, EmittingMediumFurnace) {
+    expectFurnace(R"("string type" "homogeneous" "rgb sigma_a" [ 1 0.5 0.2 ] "rgb sigma_s" [ 0.5 1 0.5 ] "float g" [ -0.3 ]
+                     "rgb Le" [ 1 1 1 ])", 2048);
+}
+
+// ---- bad input ----
+
+namespace {
+std::string buildError(const std::string& text) {
+    setWarningsQuiet(true);
+    try {
+        buildScene(parseSceneString(text, ".", "scene.pbrt"), false);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+}  // namespace
+
+TEST(MediaErrors, UndefinedMediumIsALocatedError) {
+    const std::string e = buildError("MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\nWorldBegin\n"
+                                     "  MediumInterface \"smoke\" \"\"\n  Material \"interface\"\n  Shape \"sphere\"\n");
+    EXPECT_NE(e.find("scene.pbrt:3:3"), std::string::npos) << e;
+    EXPECT_NE(e.find("\"smoke\" is not defined"), std::string::npos) << e;
+    // The camera's medium too.
+    const std::string c = buildError("MediumInterface \"\" \"haze\"\nCamera \"perspective\"\nWorldBegin\n");
+    EXPECT_NE(c.find("scene.pbrt:1:1"), std::string::npos) << c;
+    EXPECT_NE(c.find("\"haze\" is not defined"), std::string::npos) << c;
+}
+
+TEST(MediaErrors, WrongSizedGridIsALocatedError) {
+    const std::string e = buildError("WorldBegin\n  MakeNamedMedium \"g\" \"string type\" \"uniformgrid\" \"integer nx\" [ 2 ]\n"
+                                     "    \"integer ny\" [ 2 ] \"float density\" [ 1 2 3 ]\n");
+    EXPECT_NE(e.find("scene.pbrt:2:3"), std::string::npos) << e;
+    EXPECT_NE(e.find("3 \"density\" values; expected nx*ny*nz = 2*2*1 = 4"), std::string::npos) << e;
+    const std::string r = buildError("MakeNamedMedium \"g\" \"string type\" \"rgbgrid\" \"integer nz\" [ 2 ]\n"
+                                     "  \"rgb sigma_s\" [ 1 1 1 ]\nWorldBegin\n");
+    EXPECT_NE(r.find("scene.pbrt:1:1"), std::string::npos) << r;
+    EXPECT_NE(r.find("\"sigma_s\" values"), std::string::npos) << r;
+}
+
+TEST(MediaErrors, UnsupportedMediaAreLocatedErrorsNotIgnored) {
+    for (const char* type : {"cloud", "nanovdb"}) {
+        const std::string e = buildError(std::string("WorldBegin\nMakeNamedMedium \"c\" \"string type\" \"") + type + "\"\n");
+        EXPECT_NE(e.find("scene.pbrt:2:1"), std::string::npos) << e;
+        EXPECT_NE(e.find("not supported yet"), std::string::npos) << e;
+    }
+}
+
+// Integrators without medium vertices refuse a scene with media rather than render it wrong.
+TEST(MediaErrors, IntegratorsWithoutMediaRefuse) {
+    setWarningsQuiet(true);
+    auto scene = buildScene(parseSceneString(enclosedFurnace(R"("string type" "homogeneous")"), ".", "<test>"), false);
+    for (const char* name : {"light", "bdpt", "pssmlt", "mmlt", "mlt"}) {
+        try {
+            createIntegrator(name, *scene);
+            ADD_FAILURE() << name << " accepted a scene with media";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("participating media"), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_NO_THROW(createIntegrator("path", *scene));
+}
+
+// Negative coefficients would run the majorant's flights backwards: errors, not renders.
+TEST(MediaErrors, NegativeDensityOrScaleIsALocatedError) {
+    const std::string d = buildError("WorldBegin\nMakeNamedMedium \"g\" \"string type\" \"uniformgrid\" \"float density\" [ -1 ]\n");
+    EXPECT_NE(d.find("scene.pbrt:2:1"), std::string::npos) << d;
+    EXPECT_NE(d.find("\"density\" values must be finite and at least 0"), std::string::npos) << d;
+    const std::string s = buildError("WorldBegin\nMakeNamedMedium \"h\" \"string type\" \"homogeneous\" \"float scale\" [ -2 ]\n");
+    EXPECT_NE(s.find("scene.pbrt:2:1"), std::string::npos) << s;
+    EXPECT_NE(s.find("\"scale\" must be"), std::string::npos) << s;
+}
