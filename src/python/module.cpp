@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <array>
 #include <filesystem>
 
 #include "python/errors.h"
@@ -32,6 +33,25 @@ SceneObject loadScene(Parse parse, std::string file) {
     }
 }
 
+Vec3 vec(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
+
+// A number is a "float" parameter, three numbers an "rgb" one.
+void setMaterial(SceneObject& scene, const std::string& name, const std::string& parameter, py::object value) {
+    Param p;
+    p.name = parameter;
+    if (py::isinstance<py::sequence>(value) && !py::isinstance<py::str>(value)) {
+        for (const py::handle& v : value) p.numbers.push_back(v.cast<double>());
+        if (p.numbers.size() != 3) raiseValueError("set_material: a colour is three numbers (\"rgb\")");
+        p.type = ParamType::RGB;
+        p.typeName = "rgb";
+    } else {
+        p.numbers = {value.cast<double>()};
+        p.type = ParamType::Float;
+        p.typeName = "float";
+    }
+    scene.setMaterialParam(name, std::move(p));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(pathspace, m) {
@@ -54,6 +74,23 @@ PYBIND11_MODULE(pathspace, m) {
     py::class_<SceneObject>(m, "Scene", py::dynamic_attr(),
                             "A parsed pbrt-v4 scene (pathspace.load, pathspace.load_string).")
         .def_property_readonly("file", &SceneObject::file)
+        .def("set_resolution", &SceneObject::setResolution, py::arg("width"), py::arg("height"),
+             "Overrides the Film's xresolution and yresolution.")
+        .def(
+            "set_camera",
+            [](SceneObject& s, std::array<float, 3> eye, std::array<float, 3> target, std::array<float, 3> up) {
+                s.setCamera(vec(eye), vec(target), vec(up));
+            },
+            py::arg("position"), py::arg("look_at"), py::arg("up") = std::array<float, 3>{0, 1, 0},
+            "Places the camera as `LookAt position look_at up` would, replacing its whole transform.")
+        .def(
+            "set_material", &setMaterial, py::arg("name"), py::arg("parameter"), py::arg("value"),
+            "Sets a parameter of the named material (MakeNamedMaterial): a number (\"float\") or three (\"rgb\").")
+        .def("set_light_scale", &SceneObject::setLightScale, py::arg("index"), py::arg("scale"),
+             "Sets a light's \"scale\"; the index is into Scene.lights.")
+        .def_property_readonly("lights", &SceneObject::lights,
+                               "The lights set_light_scale names by index: LightSource directives, then "
+                               "AreaLightSource ones, in file order.")
         .def(
             "render",
             [](py::object self, py::kwargs options) {
