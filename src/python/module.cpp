@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "python/errors.h"
+#include "python/mc_module.h"
 #include "python/render_call.h"
 #include "python/result_object.h"
 #include "python/scene_object.h"
@@ -59,6 +60,7 @@ PYBIND11_MODULE(pathspace, m) {
     m.attr("__version__") = PATHSPACE_VERSION;
     registerErrors(m);
     registerResult(m);
+    registerMc(m);
 
     py::class_<Progress>(m, "Progress", "The figures of the command line's progress line, given to progress=.")
         .def_property_readonly("phase", [](const Progress& p) { return std::string(p.phase); },
