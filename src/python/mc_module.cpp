@@ -9,6 +9,7 @@
 #include "mc/point_sets.h"
 #include "mc/rng.h"
 #include "python/errors.h"
+#include "python/mc_techniques.h"
 
 namespace py = pybind11;
 
@@ -43,6 +44,7 @@ void registerMc(py::module_& m) {
            "(a k^dims grid, k = floor(n^(1/dims)): count may be below n), \"lhs\" (Latin hypercube) or \"sobol\" "
            "(Owen-scrambled, up to 10 dimensions). Each point is uniform: the mean of f over them is an unbiased "
            "estimate of f's integral; the same seed gives the same points.");
+    registerMcTechniques(mc);
 }
 
 }  // namespace ps::python
