@@ -101,8 +101,9 @@ PYBIND11_MODULE(pathspace, m) {
             "render(**options) -> Result. The options are `pathspace render`'s, spelt as Python names: spp, "
             "time, threads, seed, maxdepth, integrator, mis, sampler, adaptive, color, aovs=[...], "
             "crop=(x0, x1, y0, y1), pixelbounds=(...), max_memory and the Metropolis ones (chains, bootstrap, "
-            "large_step_probability, ...); also bdpt_strategies=True and progress=callable (or True for the "
-            "command line's bar). Bad values raise ValueError with the command line's message; Ctrl-C raises "
+            "large_step_probability, ...); also bdpt_strategies=True and progress= (a callable given each "
+            "Progress, True for a tqdm bar when tqdm is installed, else the command line's bar, \"tqdm\" or "
+            "\"stderr\"). Bad values raise ValueError with the command line's message; Ctrl-C raises "
             "KeyboardInterrupt, whose .result holds the image so far.");
 
     m.def(

@@ -12,6 +12,7 @@
 #include "app/interrupt.h"
 #include "app/render_options.h"
 #include "python/errors.h"
+#include "python/progress_bar.h"
 #include "python/result_object.h"
 #include "python/scene_object.h"
 #include "transport/bdpt.h"
@@ -118,6 +119,14 @@ std::mutex gRenderMutex;
 py::object renderScene(py::object sceneObject, SceneObject& scene, const py::kwargs& options) {
     py::object progress = py::none();
     const RenderArgs args = parseOptions(options, progress);
+    const ProgressReporting reporting = chooseProgress(progress);
+    // The tqdm bar is closed however the render ends (after the GIL is back).
+    struct Finish {
+        const ProgressReporting& r;
+        ~Finish() {
+            if (r.finish) r.finish();
+        }
+    } finish{reporting};
     auto out = std::make_shared<RenderOutput>();
     std::exception_ptr callbackError;
     {
@@ -132,14 +141,14 @@ py::object renderScene(py::object sceneObject, SceneObject& scene, const py::kwa
             configureRender(*built, args, setup);
         }
         RenderOptions& opts = setup.opts;
-        opts.progress = progress.ptr() == Py_True;  // the command line's bar on stderr
-        opts.errorEstimate = true;                   // the statistics' noise figures
-        if (!progress.is_none() && progress.ptr() != Py_True && progress.ptr() != Py_False)
+        opts.progress = reporting.stderrBar;  // the command line's bar on stderr
+        opts.errorEstimate = true;            // the statistics' noise figures
+        if (reporting.report)
             opts.onProgress = [&](const Progress& p) {
                 py::gil_scoped_acquire gil;
                 if (callbackError) return;
                 try {
-                    progress(p);
+                    reporting.report(p);
                 } catch (...) {
                     // Stops the render; raised once it has returned.
                     callbackError = std::current_exception();
