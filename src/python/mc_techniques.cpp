@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "app/mc_command.h"
 #include "mc/convergence.h"
 #include "mc/estimator.h"
 #include "mc/sobol_matrices.h"
@@ -156,23 +159,13 @@ void registerMcTechniques(py::module_& mc) {
             const Technique& tech = checkedTechnique(technique, p);
             ConvergenceStudy study = studyConvergence(
                 [&](int n, Rng& rng) { return runTechnique(p, tech, n, rng); }, exact, ns, runs, seed);
-            py::list points;
-            for (const ConvergencePoint& c : study.points) {
-                py::dict d;
-                d["n"] = c.n;
-                d["evaluations"] = c.evaluations;
-                d["mean"] = c.mean;
-                d["standard_error"] = c.standardError;
-                d["reported_error"] = c.reportedError;
-                d["rmse"] = c.rmse;
-                d["seconds"] = c.seconds;
-                d["efficiency"] = c.efficiency;
-                points.append(d);
-            }
+            // The keys and values of pathspace mc --json.
+            nlohmann::json points = nlohmann::json::array();
+            for (const ConvergencePoint& c : study.points) points.push_back(convergencePointJson(c));
             py::dict result;
             result["technique"] = technique;
             result["slope"] = study.slope;
-            result["points"] = points;
+            result["points"] = py::module_::import("json").attr("loads")(points.dump());
             return result;
         },
         py::arg("f"), py::arg("dims"), py::arg("exact"), py::arg("n"), py::arg("technique") = "independent",
