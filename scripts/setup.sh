@@ -12,6 +12,7 @@ if [ "${1:-}" != "--renderer" ]; then
   packages+=(
     libgtest-dev libbenchmark-dev
     clang-14 libclang-rt-14-dev llvm-14  # sanitizer and fuzz builds (llvm-14: symbolized reports)
+    pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib  # the Python module, its tests and examples
   )
 fi
 missing=()

@@ -68,6 +68,17 @@ void writeFile(const std::string& path, const std::string& text) {
 
 }  // namespace
 
+nlohmann::json convergencePointJson(const ConvergencePoint& p) {
+    return {{"n", p.n},
+            {"evaluations", p.evaluations},
+            {"mean", p.mean},
+            {"standard_error", p.standardError},
+            {"reported_error", p.reportedError},
+            {"rmse", p.rmse},
+            {"seconds", p.seconds},
+            {"efficiency", p.efficiency}};
+}
+
 void McCommand::attach(CLI::App& app) {
     cmd_ = app.add_subcommand("mc", "Monte Carlo toolbox (thesis ch. 2): compare estimators on test integrands "
                                     "with known integrals");
@@ -131,14 +142,7 @@ int McCommand::run() {
                 nlohmann::json pts = nlohmann::json::array();
                 PlotSeries series{tech.name, {}, {}};
                 for (const ConvergencePoint& p : study.points) {
-                    pts.push_back({{"n", p.n},
-                                   {"evaluations", p.evaluations},
-                                   {"mean", p.mean},
-                                   {"standard_error", p.standardError},
-                                   {"reported_error", p.reportedError},
-                                   {"rmse", p.rmse},
-                                   {"seconds", p.seconds},
-                                   {"efficiency", p.efficiency}});
+                    pts.push_back(convergencePointJson(p));
                     series.x.push_back(p.evaluations);
                     series.y.push_back(p.rmse);
                 }

@@ -3,11 +3,17 @@
 // shows the largest N and the convergence rate fitted over all of them.
 #pragma once
 #include <CLI/CLI.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace ps {
+
+struct ConvergencePoint;
+
+// One sample count's measurements as --json writes them (also pathspace.mc.convergence's).
+nlohmann::json convergencePointJson(const ConvergencePoint& p);
 
 class McCommand {
 public:

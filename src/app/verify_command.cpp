@@ -13,6 +13,7 @@
 
 #include "app/command_line.h"
 #include "app/exit_codes.h"
+#include "app/interrupt.h"
 #include "app/output_checks.h"
 #include "image/image.h"
 #include "render/scene_builder.h"
@@ -23,11 +24,6 @@
 namespace ps {
 
 namespace {
-
-std::atomic<bool> gStop{false};
-extern "C" void onVerifySignal(int) {
-    if (gStop.exchange(true)) _exit(kExitInterrupted);
-}
 
 std::string fixed(const char* f, double v) {
     char buf[64];
@@ -166,15 +162,14 @@ int VerifyCommand::run() {
     o.threads = threads_;
     o.seed = uint64_t(seed_);
     o.blocksX = o.blocksY = blocks_;
-    o.cancel = &gStop;
+    const InterruptHandlers interrupts{SIGINT, SIGTERM};
+    o.cancel = InterruptHandlers::flag();
     o.configure = [this](const std::string&, RenderSettings& st) { st.mltTwoStage = float(twoStage_); };
     if (!quiet_ && isatty(fileno(stderr)))
         o.onRun = [](const std::string& name, int run, int runs) {
             std::fprintf(stderr, "\r  rendering %-6s run %d/%d ", name.c_str(), run + 1, runs);
             std::fflush(stderr);
         };
-    std::signal(SIGINT, onVerifySignal);
-    std::signal(SIGTERM, onVerifySignal);
     if (!quiet_)
         std::printf("verify %s: %d runs per integrator, %s\n", scene_.c_str(), runs_,
                     spp_ > 0 ? (std::to_string(spp_) + " samples per pixel each").c_str()

@@ -12,7 +12,7 @@
 #include "materials/create.h"
 #include "materials/textures.h"
 #include "render/scene_builder.h"
-#include "scene/ply.h"
+#include "scene/ply_cache.h"
 #include "util/memory_limit.h"
 
 namespace ps {
@@ -111,7 +111,7 @@ std::unique_ptr<Shape> createPlyMesh(const ShapeEntity& e, const Transform& toSc
         warning(e.loc, "plymesh: \"displacement\" is not supported yet; the mesh is rendered undisplaced");
     e.params.getTexture("displacement");
     e.params.getFloat("edgelength", 1);
-    PlyMesh ply = readNamedBy(e.loc, [&] { return readPly(resolvePath(base, file)); });
+    PlyMesh ply = readNamedBy(e.loc, [&] { return readPlyCached(resolvePath(base, file)); });
     TriangleMeshData d;
     d.P = std::move(ply.P);
     d.N = std::move(ply.N);

@@ -20,8 +20,10 @@ std::string formatSeconds(double s) {
 }  // namespace
 
 Monitor::Monitor(bool show, double timeLimit, const std::atomic<bool>* cancel, std::atomic<bool>& stop,
-                 const std::atomic<long long>& done, long long total, const char* phase)
+                 const std::atomic<long long>& done, long long total, const char* phase,
+                 const ProgressCallback* callback)
     : show_(show), timeLimit_(timeLimit), cancel_(cancel), stop_(stop), done_(done), total_(total), phase_(phase),
+      callback_(callback && *callback ? callback : nullptr),
       start_(std::chrono::steady_clock::now()), interactive_(isatty(fileno(stderr)) != 0), thread_([this] { run(); }) {}
 
 Monitor::~Monitor() {
@@ -35,6 +37,7 @@ Monitor::~Monitor() {
         print(true);
         std::fputc('\n', stderr);
     }
+    if (callback_) (*callback_)(figures(true));
 }
 
 void Monitor::run() {
@@ -44,20 +47,34 @@ void Monitor::run() {
         if (finished_) break;
         if ((cancel_ && cancel_->load()) || (timeLimit_ > 0 && elapsed() >= timeLimit_)) stop_ = true;
         // Redraw in place on a terminal; elsewhere (logs, CI) only the final line is printed.
-        if (show_ && interactive_ && ++ticks_ % 3 == 0) print(false);
+        if (++ticks_ % 3 != 0) continue;
+        if (show_ && interactive_) print(false);
+        if (callback_) {
+            lock.unlock();  // the callback may take its time (the Python module waits for the GIL)
+            (*callback_)(figures(false));
+            lock.lock();
+        }
     }
 }
 
+Progress Monitor::figures(bool final) const {
+    Progress p{phase_, 0, elapsed(), 0, final};
+    p.fraction = total_ > 0 ? std::min(1.0, double(done_.load()) / double(total_)) : 1.0;
+    const double t = p.elapsed, frac = p.fraction;
+    if (!final) {
+        if (timeLimit_ > 0) p.eta = std::max(0.0, std::min(timeLimit_ - t, t / std::max(frac, 1e-9) - t));
+        else if (frac > 0) p.eta = t / frac - t;
+    }
+    return p;
+}
+
 void Monitor::print(bool final) {
-    double t = elapsed();
-    double frac = total_ > 0 ? std::min(1.0, double(done_.load()) / double(total_)) : 1.0;
-    int width = 30, filled = int(frac * width + 0.5);
+    const Progress p = figures(final);
+    int width = 30, filled = int(p.fraction * width + 0.5);
     std::string bar(filled, '=');
     bar.resize(width, ' ');
-    std::string eta = frac > 0 && !final ? formatSeconds(t / frac - t) : "0s";
-    if (timeLimit_ > 0 && !final) eta = formatSeconds(std::max(0.0, std::min(timeLimit_ - t, t / std::max(frac, 1e-9) - t)));
-    std::fprintf(stderr, "\r%s [%s] %5.1f%%  elapsed %s  eta %s   ", phase_, bar.c_str(), 100 * frac,
-                 formatSeconds(t).c_str(), eta.c_str());
+    std::fprintf(stderr, "\r%s [%s] %5.1f%%  elapsed %s  eta %s   ", phase_, bar.c_str(), 100 * p.fraction,
+                 formatSeconds(p.elapsed).c_str(), formatSeconds(p.eta).c_str());
     std::fflush(stderr);
 }
 

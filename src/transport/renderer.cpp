@@ -170,7 +170,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     distributed::barrier();
     {
         Monitor monitor(options.progress && distributed::isRoot(), options.timeLimit, options.cancel, stop, samplesDone,
-                        (bounds.area() * (spp - s0) + ranks - 1) / ranks);
+                        (bounds.area() * (spp - s0) + ranks - 1) / ranks, "rendering", &options.onProgress);
         switch (options.adaptive) {
             case AdaptiveMode::None:
                 complete = renderUniform(passes, film, spp, at, bool(options.checkpoint), afterPass);

@@ -11,6 +11,7 @@
 #include "render/scene.h"
 #include "transport/adaptive.h"
 #include "transport/integrator.h"
+#include "transport/render_monitor.h"
 
 namespace ps {
 
@@ -23,6 +24,7 @@ struct RenderOptions {
     uint64_t seed = 0;
     std::string sampler = "sobol";  // see createSampler
     bool progress = true;        // progress bar on stderr
+    ProgressCallback onProgress;  // also handed the progress bar's figures, when set (transport/render_monitor.h)
     const std::atomic<bool>* cancel = nullptr;  // set asynchronously (Ctrl-C) to stop early
     // Per-pixel sample counts (see transport/adaptive.h); spp is then the average. Not for
     // splatting integrators (light, bdpt): render() throws InputError.

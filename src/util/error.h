@@ -23,7 +23,14 @@ struct SourceLoc {
 class InputError : public std::runtime_error {
 public:
     explicit InputError(const std::string& msg) : std::runtime_error(msg) {}
-    InputError(const SourceLoc& loc, const std::string& msg) : std::runtime_error(loc.str() + ": error: " + msg) {}
+    InputError(const SourceLoc& loc, const std::string& msg)
+        : std::runtime_error(loc.str() + ": error: " + msg), loc_(loc) {}
+    // The place the message names, for a caller that reports it field by field (the Python
+    // module's SceneError); an empty file when the error has no place in an input file.
+    const SourceLoc& where() const { return loc_; }
+
+private:
+    SourceLoc loc_;
 };
 
 // Runs read(), which reads a file that a scene directive names (an image, a PLY mesh): an

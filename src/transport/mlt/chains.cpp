@@ -305,7 +305,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
         std::atomic<bool> shown{false};
         Monitor monitor(options.progress && distributed::isRoot() && !checkpoints.resuming(), 0, nullptr, shown,
                         startupDone, std::max<long long>(1, (nAll + nPilot + distributed::size() - 1) / distributed::size()),
-                        "bootstrap");
+                        "bootstrap", &options.onProgress);
         if (!checkpoints.resuming()) {
             runImportancePilot(bctx, nAll, nPilot, importance);
             boot = runBootstrap(bctx, nAll);
@@ -395,7 +395,7 @@ RenderResult renderMetropolis(const Scene& scene, const MetropolisIntegrator& in
         const double startSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - chainsStart).count();
         if (chainTime > 0) chainTime = std::max(chainTime - startSeconds, 1e-6);
         Monitor monitor(options.progress && distributed::isRoot(), chainTime, options.cancel, stop, done,
-                        std::max(1LL, mineTotal - doneBefore));
+                        std::max(1LL, mineTotal - doneBefore), "rendering", &options.onProgress);
         // The processes agree after every pass whether to go on (a time limit, a signal to any).
         bool halt = false;
         {

@@ -352,7 +352,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         std::atomic<bool> shown{false};
         Monitor monitor(options.progress && distributed::isRoot(), 0, nullptr, shown, startupDone,
                         std::max<long long>(1, (nBoot + nPilot + distributed::size() - 1) / distributed::size()),
-                        "bootstrap");
+                        "bootstrap", &options.onProgress);
         // Two-stage MLT (pilot_importance.h): the pilot's own samples, past the bootstrap's
         // indices (a resumed render takes the map from its checkpoint).
         importance.learn(arena, nPilot, [&](int64_t j, double* sums) {
@@ -452,7 +452,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         const double startSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - chainsStart).count();
         if (chainTime > 0) chainTime = std::max(chainTime - startSeconds, 1e-6);
         Monitor monitor(options.progress && distributed::isRoot(), chainTime, options.cancel, stop, done,
-                        std::max(1LL, mineTotal - doneBefore));
+                        std::max(1LL, mineTotal - doneBefore), "rendering", &options.onProgress);
         // The processes agree after every pass whether to go on (a time limit, a signal to any).
         bool halt = false;
         {
