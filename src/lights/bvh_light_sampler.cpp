@@ -124,8 +124,11 @@ int BVHLightSampler::split(std::vector<Entry>& entries, int begin, int end, int 
         bounds.expand(entries[size_t(i)].bounds.bounds);
         centroids.expand(entries[size_t(i)].bounds.centroid());
     }
+    // Clamped before the conversion: lights at enormous coordinates make the offset inf or NaN
+    // (inf - inf), and converting either to int is undefined (found by the scene fuzzer).
     auto bucketOf = [&](const Entry& e, int dim) {
-        return std::min(int(kBuckets * centroids.offset(e.bounds.centroid())[dim]), kBuckets - 1);
+        const float o = centroids.offset(e.bounds.centroid())[dim];
+        return o > 0 ? std::min(int(kBuckets * std::min(o, 1.0f)), kBuckets - 1) : 0;
     };
 
     float bestCost = std::numeric_limits<float>::infinity();
