@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The long statistical tier, outside the README's test command and CI: the Metropolis
-# families' spectral instances (label `long`, tests/CMakeLists.txt), about 13 minutes of test
-# time. Run it before changing the chains, the mutations or the spectral sampling.
+# The long statistical tier, outside the README's test command and CI: the tests labelled
+# `long` in tests/CMakeLists.txt (84 tests, about 20 minutes of test time; docs/testing.md).
+# Run it before changing the chains, the mutations or the spectral sampling.
 # Builds first (scripts/build.sh); extra arguments go to ctest (e.g. -R VeachMLT).
 set -euo pipefail
 cd "$(dirname "$0")/.."

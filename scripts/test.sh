@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Set up, build and run the whole test suite; then the same suite under ASan+UBSan, and a short
-# seeded fuzz run of each fuzz target (57 minutes in all on 2 cores for a clean clone, 9 of
-# them the agreement matrix; see docs/hardening.md).
+# seeded fuzz run of each fuzz target (about 50 minutes in all on 2 cores for a clean clone, 9
+# of them the agreement matrix; see docs/hardening.md). The long tier: scripts/test-long.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
