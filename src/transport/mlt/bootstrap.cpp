@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "mc/rng.h"
+#include "transport/mlt/startup_budget.h"
 #include "render/distributed.h"
 #include "transport/mlt/chain_ranks.h"
 
@@ -175,7 +176,7 @@ void probeBootstrap(const BootstrapContext& ctx, int64_t count) {
     // Evaluators of its own, so that its rays are not counted as the render's (the pilot
     // image, not yet made, would divide by 1 anyway).
     tbb::enumerable_thread_specific<ChainEvaluator> evaluators;
-    const BootstrapContext probe{ctx.integrator, ctx.pss,       mix64(ctx.seed ^ 0x3243f6a8885a308dULL),
+    const BootstrapContext probe{ctx.integrator, ctx.pss,       startupProbeSeed(ctx.seed),
                                  ctx.cancel,     ctx.arena,     evaluators,
                                  nullptr};
     std::atomic<bool> cancelled{false};

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "mc/rng.h"
 #include "render/distributed.h"
 
 namespace ps {
@@ -32,5 +33,7 @@ int64_t scaledCount(int64_t count, double fraction, int64_t floor) {
     if (fraction >= 1) return count;
     return std::min(count, std::max(floor, int64_t(double(count) * fraction)));
 }
+
+uint64_t startupProbeSeed(uint64_t seed) { return mix64(seed ^ 0x3243f6a8885a308dULL); }
 
 }  // namespace ps

@@ -30,4 +30,8 @@ double startupFraction(double timeLimit, int64_t planned, int64_t probed, const 
 // `count` scaled by `fraction`, at least `floor` (and never more than count).
 int64_t scaledCount(int64_t count, double fraction, int64_t floor);
 
+// The seed of the probe's own streams, for a render seeded with `seed`: apart from every
+// stream the start-up and the chains draw from.
+uint64_t startupProbeSeed(uint64_t seed);
+
 }  // namespace ps

@@ -336,7 +336,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         // on samples of streams of their own.
         const int64_t probed = startupProbeSamples(nBoot + nPilot);
         const double fraction = startupFraction(options.timeLimit > 0 ? std::max(1e-3, options.timeLimit - direct.seconds) : 0.0, nBoot + nPilot, probed, [&] {
-            bootstrapRun(mix64(options.seed ^ 0x3243f6a8885a308dULL), probed, nullptr);
+            bootstrapRun(startupProbeSeed(options.seed), probed, nullptr);
         });
         if (fraction < 1) {
             // The start-up --bootstrap N' gives, N' as the statistics' bootstrap samples say.
