@@ -49,9 +49,13 @@ std::optional<LightLeSample> DiffuseAreaLight::sampleLe(Vec2 uPos, Vec2 uDir, co
     return ls;
 }
 
+// Weighed by the spectrum's maximum (an image: its channels' mean) times pi times the area, as
+// pbrt-v4: a two-sided emitter is not counted twice, since a point sees one of its sides.
 std::optional<LightBounds> DiffuseAreaLight::bounds() const {
     DirectionCone normals = shape_->normalBounds(prim_);
-    return LightBounds(shape_->primitiveBounds(prim_), normals.w, phi().luminance(), normals.cosTheta, 0, twoSided_);
+    const float radiance = image_ ? image_->mean().average() * Lemit_.rgb().g : Lemit_.maxValue();
+    return LightBounds(shape_->primitiveBounds(prim_), normals.w, radiance * kPi * shape_->area(prim_),
+                       normals.cosTheta, 0, twoSided_);
 }
 
 void DiffuseAreaLight::pdfLe(Vec3, Vec3 n, Vec3 w, float* pdfPos, float* pdfDir) const {

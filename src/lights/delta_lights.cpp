@@ -23,7 +23,7 @@ void PointLight::pdfLe(Vec3, Vec3, Vec3, float* pdfPos, float* pdfDir) const {
 // power: what a point receives from them is intensity / d^2 wherever they shine at all, so a
 // spot light weighs as much as a point light of its intensity inside its cone.
 std::optional<LightBounds> PointLight::bounds() const {
-    return LightBounds(Bounds3(pos_), {0, 0, 1}, 4 * kPi * I_.rgb().luminance(), -1, 0, false);
+    return LightBounds(Bounds3(pos_), {0, 0, 1}, 4 * kPi * I_.maxValue(), -1, 0, false);
 }
 
 static float smoothStep(float x, float a, float b) {
@@ -64,7 +64,7 @@ Spectrum SpotLight::phi() const {
 // bound for directions the light still reaches (for a cone without falloff, theta_e is 0).
 std::optional<LightBounds> SpotLight::bounds() const {
     float thetaE = safeAcos(cosEnd_) - safeAcos(cosStart_) + 1e-3f;
-    return LightBounds(Bounds3(pos_), frame_.n, 4 * kPi * I_.rgb().luminance(), cosStart_, std::cos(thetaE), false);
+    return LightBounds(Bounds3(pos_), frame_.n, 4 * kPi * I_.maxValue(), cosStart_, std::cos(thetaE), false);
 }
 
 std::optional<LightLiSample> DistantLight::sampleLi(const LightSampleContext& ctx, Vec2) const {

@@ -50,10 +50,17 @@ void GoniometricLight::pdfLe(Vec3, Vec3, Vec3 w, float* pdfPos, float* pdfDir) c
     *pdfDir = frame_.toWorldDensity(distribution_.pdf(equalAreaSphereToSquare(wLight)) / (4 * kPi), wLight);
 }
 
-Spectrum GoniometricLight::phi() const {
+float GoniometricLight::meanValue() const {
     double sum = 0;
     for (float v : values_) sum += v;
-    return I_.rgb() * float(4 * kPi * sum / values_.size());
+    return float(sum / values_.size());
+}
+
+Spectrum GoniometricLight::phi() const { return I_.rgb() * (4 * kPi * meanValue()); }
+
+// Bounded as a point light of its mean intensity, weighed by its spectrum's maximum.
+std::optional<LightBounds> GoniometricLight::bounds() const {
+    return LightBounds(Bounds3(pos_), {0, 0, 1}, 4 * kPi * meanValue() * I_.maxValue(), -1, 0, false);
 }
 
 }  // namespace ps

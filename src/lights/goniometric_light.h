@@ -25,10 +25,10 @@ public:
     Spectrum L(Vec3, Vec3, Vec2, Vec3 w, const SampledWavelengths* lambda) const override { return intensity(w, lambda); }
     // 4 pi I times the image's mean (pbrt-v4's, exact for a rotation).
     Spectrum phi() const override;
+    // The mean of the image's values (its intensity averaged over the sphere, in units of I).
+    float meanValue() const;
     // At its position, emitting every way (4 pi times the mean intensity: its power).
-    std::optional<LightBounds> bounds() const override {
-        return LightBounds(Bounds3(pos_), {0, 0, 1}, phi().luminance(), -1, 0, false);
-    }
+    std::optional<LightBounds> bounds() const override;
     // Intensity towards unit world direction w leaving the light (at lambda; null: RGB).
     Spectrum intensity(Vec3 w, const SampledWavelengths* lambda = nullptr) const {
         return intensityLight(frame_.toLight(w), lambda);

@@ -21,6 +21,17 @@ public:
         return lambda ? sampleSpectrum(spectrum_, *lambda) * scale_ : rgb_;
     }
     const Spectrum& rgb() const { return rgb_; }
+    // The spectral values' maximum over wavelengths, in units where the colour space's white
+    // of RGB (1, 1, 1) is 1. The light BVH weighs emitters by it, as pbrt-v4 by MaxValue: a
+    // saturated light's luminance understates its strongest wavelengths, and the estimates
+    // there (and the channel they land in) then get too few samples (fireflies).
+    float maxValue() const {
+        static const float white = [] {
+            const SpectrumSource w = SpectrumSource::rgbIlluminant(srgbColorSpace(), {1, 1, 1});
+            return float(w.maxValue() / w.photometric());
+        }();
+        return spectrum_.maxValue() * scale_ / white;
+    }
     LightSpectrum operator*(float s) const {
         LightSpectrum r = *this;
         r.rgb_ *= s;

@@ -90,7 +90,7 @@ void ProjectionLight::pdfLe(Vec3, Vec3, Vec3 w, float* pdfPos, float* pdfDir) co
 std::optional<LightBounds> ProjectionLight::bounds() const {
     double sum = 0;
     for (int y = 0; y < image_.height; ++y)
-        for (int x = 0; x < image_.width; ++x) sum += image_.get(x, y).luminance();
+        for (int x = 0; x < image_.width; ++x) sum += image_.get(x, y).maxComponent();
     float meanI = float(sum / (double(image_.width) * image_.height)) * scale_;
     // The frustum's four edges, carried to the world (the transform may shear it), bound the
     // cone about the axis; an edge at or beyond 90 degrees from it leaves every direction.
