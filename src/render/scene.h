@@ -70,8 +70,8 @@ public:
     // Any hit within r.tMax.
     bool occluded(const Ray& r) const;
 
-    // Light choice in proportion to power (luminance of phi), for callers without a
-    // receiving point (light subpaths) and the integrators that do not yet use lightSampler().
+    // The choice of the light that starts a light subpath (lights/emission_choice.h: by power,
+    // or with the light BVH mostly by what each light sends to the camera's position).
     const Light* sampleLight(float u, float* pmf) const;
     float lightPmf(const Light* light) const;
     // The choice the scene's "lightsampler" names, which may depend on the receiving point
@@ -138,7 +138,7 @@ private:
     bool hasMedia_ = false;
     std::vector<std::unique_ptr<Light>> lights_;
     std::vector<const Light*> infiniteLights_;
-    AliasTable lightDistribution_;  // by power
+    AliasTable lightDistribution_;  // light subpaths' choice (emission_choice.h)
     std::unique_ptr<LightSampler> lightSampler_;  // always set once the scene is built
     std::unique_ptr<Camera> camera_;
     std::unique_ptr<Filter> filter_;

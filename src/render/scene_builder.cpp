@@ -1,4 +1,7 @@
 #include "render/scene_builder.h"
+
+#include "lights/bvh_light_sampler.h"
+#include "lights/emission_choice.h"
 #include "media/create_medium.h"
 
 #include <mutex>
@@ -368,10 +371,15 @@ void SceneBuilder::build() {
         if (l.type() == LightType::Infinite) scene_.infiniteLights_.push_back(&l);
         power.push_back(l.phi().luminance());
     }
-    scene_.lightDistribution_ = AliasTable(power);
     std::vector<const Light*> lights;
     for (const auto& l : scene_.lights_) lights.push_back(l.get());
     scene_.lightSampler_ = createLightSampler(scene_.settings().lightSampler, lights);
+    // Light subpaths' choice: with a light tree of more than one leaf, mostly by what each light
+    // sends to the camera (lights/emission_choice.h); otherwise by power.
+    const auto* tree = dynamic_cast<const BVHLightSampler*>(scene_.lightSampler_.get());
+    const LightSampler* towardsCamera = tree && tree->nodeCount() > 1 ? tree : nullptr;
+    scene_.lightDistribution_ =
+        AliasTable(emissionChoiceWeights(lights, power, towardsCamera, scene_.camera().position()));
 }
 
 std::unique_ptr<Scene> buildScene(const SceneDescription& desc, bool spectral) {

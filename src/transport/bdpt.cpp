@@ -99,7 +99,8 @@ void BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stat
                                Join& j) const {
     if (!pt.connectible()) return;
     // The light is chosen for pt (the scene's light sampler); the weights know the choice
-    // through Subpaths::lightChoiceRatio, since the vertex's origin density is by power.
+    // through Subpaths::lightChoiceRatio, since the vertex's origin density is the
+    // light subpaths' choice (Scene::lightPmf).
     const LightSampleContext ctx{pt.p, pt.ng, lambda};
     const SampledLight sl = paths_.scene().lightSampler().sample(ctx, sampler.get1D());
     const Light* lt = sl.light;
@@ -108,7 +109,7 @@ void BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stat
     if (!lt || !(pmf > 0)) return;
     auto ls = lt->sampleLi(ctx, u);
     if (!ls || ls->L.isBlack() || !(ls->pdf > 0)) return;
-    const float powerPmf = paths_.scene().lightPmf(lt);
+    const float emissionPmf = paths_.scene().lightPmf(lt);
     PathVertex& lv = j.sampled.emplace();
     lv.kind = VertexKind::Light;
     lv.mode = TransportMode::Importance;
@@ -125,7 +126,7 @@ void BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stat
             // The light gave its emission densities; only their conversions to area remain.
             float toPt, toLight;
             areaFactors(lv, pt, &toPt, &toLight);
-            lv.pdfFwd = powerPmf * ls->pdfEmitPos;
+            lv.pdfFwd = emissionPmf * ls->pdfEmitPos;
             j.known.pt = ls->pdfEmitDir * toPt;
             j.known.qs = e.pdfFwd * toLight;
         } else {
@@ -134,7 +135,7 @@ void BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stat
         }
         j.known.ptMinus = e.pdfRev * pt.toPrevArea;
         // Lights at infinity share the vertex: the ratio is over all of them.
-        if (!lv.infinite) j.known.lightChoice = powerPmf > 0 ? pmf / powerPmf : 0.0f;
+        if (!lv.infinite) j.known.lightChoice = emissionPmf > 0 ? pmf / emissionPmf : 0.0f;
         j.haveKnown = true;
     } else {
         lv.pdfFwd = paths_.pdfLightOrigin(lv, pt);

@@ -333,17 +333,17 @@ float Subpaths::lightChoiceRatio(const PathVertex& y0, const PathVertex& y1) con
     if (y0.isInfiniteLight() && !deltaDirection) {
         // Any light at infinity may have given the direction: the densities of all of them.
         const Vec3 w = directionTo(y1, y0);
-        double atPoint = 0, byPower = 0;
+        double atPoint = 0, byEmission = 0;
         for (const Light* light : scene_.infiniteLights()) {
             const double pdf = light->pdfLi(LightSampleContext{}, w, nullptr);
             atPoint += double(sampler.pmf(ctx, light)) * pdf;
-            byPower += double(scene_.lightPmf(light)) * pdf;
+            byEmission += double(scene_.lightPmf(light)) * pdf;
         }
-        return byPower > 0 ? float(atPoint / byPower) : 0.0f;
+        return byEmission > 0 ? float(atPoint / byEmission) : 0.0f;
     }
     if (!y0.light) return 0;
-    const float byPower = scene_.lightPmf(y0.light);
-    return byPower > 0 ? sampler.pmf(ctx, y0.light) / byPower : 0.0f;
+    const float byEmission = scene_.lightPmf(y0.light);
+    return byEmission > 0 ? sampler.pmf(ctx, y0.light) / byEmission : 0.0f;
 }
 
 float Subpaths::infiniteLightDensity(Vec3 wToLight) const {

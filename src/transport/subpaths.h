@@ -43,7 +43,7 @@ public:
     template <typename S>
     int cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats, PathVertex* path,
                       int maxVertices = 0, SampledWavelengths* lambda = nullptr) const;
-    // Vertex 0 on a light chosen by power, then the walk; returns the number of vertices.
+    // Vertex 0 on a light chosen as light subpaths choose (Scene::sampleLight), then the walk; returns the number of vertices.
     // `time`: the scene time of the whole path (the camera sample's, for BDPT).
     template <typename S>
     int lightSubpath(S& sampler, float time, ScratchBuffer& scratch, PathStats& stats, PathVertex* path,
@@ -91,7 +91,7 @@ public:
     // Density of choosing direction wToLight from all infinite lights together.
     float infiniteLightDensity(Vec3 wToLight) const;
     // Next-event estimation (s = 1) chooses the light of emitter vertex y0 for the point y1
-    // (the scene's light sampler); light subpaths choose it by power, and the origin
+    // (the scene's light sampler); light subpaths by Scene::sampleLight, and the origin
     // densities (pdfLightOrigin) say so. This is the ratio of the first choice's probability
     // to the second's: the factor by which the s = 1 strategy's density of a path differs from
     // the one its light vertex's origin density gives (0: s = 1 cannot choose this light).

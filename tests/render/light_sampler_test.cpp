@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "lights/bvh_light_sampler.h"
+#include "lights/emission_choice.h"
 #include "materials/stats.h"
 #include "mc/rng.h"
 #include "render_helpers.h"
@@ -224,6 +225,54 @@ TEST(LightSampler, ChoiceWithoutAPoint) {
             EXPECT_EQ(s.pmf, sampler->pmf(s.light)) << name;
         }
     }
+}
+
+// Light subpaths' choice (lights/emission_choice.h): with the bvh sampler, the bounded lights'
+// share of power is split between the tree's choice at the camera's position and power; every
+// light keeps at least kEmissionPowerShare of its power share (so none that emits is left
+// out), the lights at infinity keep theirs, and sampleLight agrees with lightPmf.
+TEST(LightSampler, EmissionChoiceFollowsTheCamera) {
+    ManyLights m;
+    const Scene& scene = *m.scene;
+    double total = 0, bounded = 0, treeTotal = 0;
+    const LightSampleContext eye{scene.camera().position(), Vec3()};
+    for (const Light* l : m.lights) {
+        total += l->phi().luminance();
+        if (l->bounds()) {
+            bounded += l->phi().luminance();
+            treeTotal += scene.lightSampler().pmf(eye, l);
+        }
+    }
+    ASSERT_GT(treeTotal, 0);
+    double sum = 0;
+    int moved = 0;
+    for (const Light* l : m.lights) {
+        const double power = l->phi().luminance() / total, p = scene.lightPmf(l);
+        sum += p;
+        double want = power;
+        if (l->bounds()) {
+            want = ((1 - kEmissionPowerShare) * scene.lightSampler().pmf(eye, l) / treeTotal +
+                    kEmissionPowerShare * l->phi().luminance() / bounded) * bounded / total;
+            EXPECT_GE(p, 0.999 * kEmissionPowerShare * power) << "light " << l->index;
+        }
+        EXPECT_NEAR(p, want, 1e-5 + 1e-4 * want) << "light " << l->index;
+        moved += std::fabs(p - power) > 0.2 * power;
+    }
+    EXPECT_NEAR(sum, 1, 1e-5);
+    EXPECT_GT(moved, 5);  // the choice is not power's
+    for (int j = 0; j < 64; ++j) {
+        float pmf = 0;
+        const Light* l = scene.sampleLight((j + 0.5f) / 64, &pmf);
+        ASSERT_TRUE(l);
+        EXPECT_EQ(pmf, scene.lightPmf(l));
+    }
+    // Other light samplers, and a tree of one leaf, leave it by power.
+    auto power = buildWorld(manyLightsWorld(m.tmp.write("slide2.pfm", Image(1, 1))),
+                            R"(Integrator "path" "string lightsampler" [ "power" ])");
+    double totalPower = 0;
+    for (const auto& l : power->lights()) totalPower += l->phi().luminance();
+    for (const auto& l : power->lights())
+        EXPECT_NEAR(power->lightPmf(l.get()), l->phi().luminance() / totalPower, 1e-6) << "light " << l->index;
 }
 
 // bvh gives a light zero probability only where it cannot reach the point: at 2000 points, a

@@ -336,7 +336,7 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
     if (!canContinue(int(side.size()), mode)) return false;
     Ray ray;
     if (mode == TransportMode::Importance && side.empty()) {
-        // A light chosen by power, a point and a direction on it.
+        // A light chosen as light subpaths choose (Scene::sampleLight), a point and a direction on it.
         ++stats.lightPaths;
         const float uLight = rng.uniform();
         const Vec2 uPos(rng.uniform(), rng.uniform()), uDir(rng.uniform(), rng.uniform());
