@@ -17,6 +17,18 @@ double MisWeighting::weight(double p, const double* others, int n) const {
     return weightFromRatios(r, n);
 }
 
+namespace {
+
+// Cutoff and maximum compare densities. The same density computed along two code paths
+// (a light's pdf when it is sampled and when a BSDF sample hits it) differs by rounding,
+// and where techniques sample alike (a diffuse furnace: light and cosine sampling have
+// equal densities) a comparison falling either way by rounding alone left both weights 0
+// (the maximum heuristic rendered the closed furnace 29% dark). Densities within this
+// relative distance of the largest count as the largest.
+constexpr double kTie = 1e-2;
+
+}  // namespace
+
 double MisWeighting::weightFromRatios(const double* r, int n) const {
     double sum = 0;
     switch (heuristic) {
@@ -32,19 +44,22 @@ double MisWeighting::weightFromRatios(const double* r, int n) const {
             // are balanced. This one (ratio 1) may itself drop out.
             double largest = 1;
             for (int i = 0; i < n; ++i) largest = std::fmax(largest, r[i]);
-            if (!std::isfinite(largest) || 1 < alpha * largest) return 0;
+            const double threshold = alpha * largest * (1 - kTie);
+            if (!std::isfinite(largest) || 1 < threshold) return 0;
             for (int i = 0; i < n; ++i)
-                if (r[i] >= alpha * largest) sum += r[i];
+                if (r[i] >= threshold) sum += r[i];
             break;
         }
         case MisHeuristic::Maximum: {
-            // §9.2.4: all weight to the technique of largest density; equal largest
-            // densities share it (the cutoff heuristic at alpha = 1), so weights sum to one.
+            // §9.2.4: all weight to the technique of largest density; the techniques at
+            // the largest density (within kTie, measured from the largest so that every
+            // technique sees the same set) share it, so weights sum to one.
+            double largest = 1;
+            for (int i = 0; i < n; ++i) largest = std::fmax(largest, r[i]);
+            const double threshold = largest * (1 - kTie);
+            if (!std::isfinite(largest) || 1 < threshold) return 0;
             int ties = 0;
-            for (int i = 0; i < n; ++i) {
-                if (!(r[i] <= 1)) return 0;
-                ties += r[i] == 1;
-            }
+            for (int i = 0; i < n; ++i) ties += r[i] >= threshold;
             return 1.0 / (1 + ties);
         }
         case MisHeuristic::Uniform:

@@ -67,6 +67,33 @@ TEST(Mis, WeightsSumToOneForRandomDensities) {
     std::printf("  %d density sets checked\n", sets);
 }
 
+// Where techniques sample alike (a diffuse furnace: light and cosine sampling have equal
+// densities), each technique's evaluation of the densities differs from the others' by
+// rounding; the weights must still sum to one. Here every technique sees every density
+// with its own relative error of up to 1e-6 (floats give about 1e-7), several densities
+// being equal before it.
+TEST(Mis, WeightsSumToOneWhenEqualDensitiesDifferByRounding) {
+    Rng rng(5);
+    for (const MisWeighting& h : everyHeuristic()) {
+        SCOPED_TRACE(misWeightingName(h));
+        for (int trial = 0; trial < 2000; ++trial) {
+            const int n = 2 + int(rng.uniform() * 5);
+            std::vector<double> p(static_cast<size_t>(n), 0.0);
+            const double common = std::exp(10 * (rng.uniform() - 0.5));
+            for (double& x : p) x = rng.uniform() < 0.6f ? common : common * std::exp(4 * (rng.uniform() - 0.5));
+            double sum = 0;
+            for (int i = 0; i < n; ++i) {
+                auto seen = [&](double x) { return x * (1 + 1e-6 * (2 * rng.uniformDouble() - 1)); };
+                std::vector<double> others;
+                for (int j = 0; j < n; ++j)
+                    if (j != i) others.push_back(seen(p[size_t(j)]));
+                sum += h.weight(seen(p[size_t(i)]), others.data(), int(others.size()));
+            }
+            EXPECT_NEAR(sum, 1.0, 1e-5) << "n " << n;
+        }
+    }
+}
+
 // The heuristics' defining values (§9.2.2, §9.2.4) on two techniques.
 TEST(Mis, HeuristicsTakeTheirDefiningValues) {
     EXPECT_NEAR(parseMisWeighting("balance").weight(3, 1), 0.75, 1e-12);

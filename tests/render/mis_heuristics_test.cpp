@@ -38,7 +38,9 @@ class MisHeuristics : public ::testing::TestWithParam<std::tuple<const char*, co
 
 TEST_P(MisHeuristics, UnbiasedOnTheClosedFurnace) {
     const auto [integrator, mis] = GetParam();
-    const RenderResult r = renderFurnace(integrator, mis, std::string(integrator) == "path" ? 64 : 32);
+    // Uniform weights (none) keep every strategy's noise: BDPT needs 4x the samples with them.
+    const bool uniformBdpt = std::string(integrator) == "bdpt" && std::string(mis) == "none";
+    const RenderResult r = renderFurnace(integrator, mis, std::string(integrator) == "path" ? 64 : uniformBdpt ? 128 : 32);
     const RenderResult ref = renderFurnace(integrator, "", std::string(integrator) == "path" ? 64 : 32);
     const RegionStats st = wholeImage(r.image);
     std::printf("  %s --mis %s: %.5f +- %.5f, exact %.5f\n", integrator, mis, st.mean[1], st.stdErr[1], kFurnaceValue);
@@ -46,7 +48,9 @@ TEST_P(MisHeuristics, UnbiasedOnTheClosedFurnace) {
         EXPECT_NEAR(st.mean[c], kFurnaceValue, 4 * st.stdErr[c] + 1e-5) << "channel " << c;
         EXPECT_LT(st.stdErr[c], 0.015 / 4 * kFurnaceValue) << "channel " << c;
     }
-    if (std::string(mis) != "power") EXPECT_NE(r.image.rgb, ref.image.rgb) << "--mis " << mis << " changed nothing";
+    if (std::string(mis) != "power") {
+        EXPECT_NE(r.image.rgb, ref.image.rgb) << "--mis " << mis << " changed nothing";
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(
