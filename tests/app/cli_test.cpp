@@ -13,6 +13,7 @@
 
 #include "image/image.h"
 #include "mc/sampler.h"
+#include "furnace_scene.h"
 #include "run_binary.h"
 #include "sky_scene.h"
 
@@ -371,15 +372,7 @@ TEST_F(Cli, EveryMisHeuristicAndItsRefusals) {
         const std::string chains = integrator == "mlt" ? " --chains 4 --bootstrap 200" : "";
         EXPECT_EQ(run(base + " --integrator " + integrator + chains).status, 0) << integrator;
     }
-    const std::string fog = write("fog.pbrt", std::string(R"(LookAt 0 0 5  0 0 0  0 1 0
-MakeNamedMedium "fog" "string type" "homogeneous" "rgb sigma_a" [ 0.1 0.1 0.1 ] "rgb sigma_s" [ 0.1 0.1 0.1 ]
-MediumInterface "" "fog"
-Camera "perspective" "float fov" [ 30 ]
-Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
-WorldBegin
-LightSource "infinite" "rgb L" [ 1 1 1 ]
-Shape "sphere" "float radius" [ 1 ]
-)"));
+    const std::string fog = write("fog.pbrt", ps::test::kFogFurnace);
     Result media = run("render --quiet --spp 1 " + fog + " -o " + out + " --mis power");
     EXPECT_EQ(media.status, 2);
     EXPECT_NE(media.out.find("only --mis balance applies"), std::string::npos) << media.out;

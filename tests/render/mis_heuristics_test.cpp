@@ -80,18 +80,7 @@ TEST(MisOption, WhereItAppliesAndWhereItIsRefused) {
         EXPECT_THROW(createIntegrator(name, *scene, "power"), InputError) << name;
     }
     EXPECT_THROW(createIntegrator("bdpt", *scene, "max"), InputError);
-    const std::string media = std::string("Integrator \"path\" \"integer maxdepth\" [ 5 ]\n") + R"(
-        LookAt 0 0 0  0 0 1  0 1 0
-        MakeNamedMedium "fog" "string type" "homogeneous" "rgb sigma_a" [ 0.1 0.1 0.1 ] "rgb sigma_s" [ 0.2 0.2 0.2 ]
-        MediumInterface "" "fog"
-        Camera "perspective" "float fov" [ 60 ]
-        Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
-        WorldBegin
-        AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
-        ReverseOrientation
-        Shape "sphere" "float radius" [ 1 ]
-    )";
-    auto fog = buildScene(parseSceneString(media, ".", "<test>"), false);
+    auto fog = buildScene(parseSceneString(kFogFurnace, ".", "<test>"), false);
     EXPECT_NO_THROW(createIntegrator("path", *fog, ""));
     EXPECT_NO_THROW(createIntegrator("path", *fog, "balance"));
     EXPECT_THROW(createIntegrator("path", *fog, "power"), InputError);
