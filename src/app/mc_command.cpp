@@ -12,6 +12,7 @@
 #include "app/exit_codes.h"
 #include "app/svg_plot.h"
 #include "mc/convergence.h"
+#include "mc/mis_study.h"
 #include "mc/techniques.h"
 #include "mc/test_integrands.h"
 #include "util/error.h"
@@ -89,7 +90,7 @@ void McCommand::attach(CLI::App& app) {
         ->capture_default_str();
     cmd_->add_option("--technique", techniques_, "Technique(s): " + joined(techniqueNames()) + ", or all")
         ->capture_default_str();
-    cmd_->add_option("--n", ns_, "Sample counts N (integrand evaluations per run, at least 16); the table shows the "
+    nOption_ = cmd_->add_option("--n", ns_, "Sample counts N (integrand evaluations per run, at least 16); the table shows the "
                                  "largest, the slope is fitted over all")
         ->check(CLI::Range(16, 1 << 24))
         ->capture_default_str();
@@ -100,10 +101,16 @@ void McCommand::attach(CLI::App& app) {
     cmd_->add_option("--json", jsonFile_, "Write every measurement as JSON to this file");
     cmd_->add_option("--svg", svgFile_, "Write a log-log plot of RMSE against N (one panel per integrand and "
                                         "dimension, one line per technique) as SVG to this file");
+    cmd_->add_option("--study", study_,
+                     "mis: compare the MIS heuristics of thesis ch. 9 (balance, power, cutoff, maximum, and each "
+                     "technique alone) on Veach's glossy highlights, by variance and efficiency; --n sets the "
+                     "estimates per case (default 200000), --seed and --json apply")
+        ->check(CLI::IsMember({"mis"}));
     refuseOptionsAsValues(cmd_);
 }
 
 int McCommand::run() {
+    if (study_ == "mis") return runMisStudy();
     std::vector<std::string> integrands = expand(integrands_, testIntegrandNames(), "integrand");
     std::vector<std::string> names = expand(techniques_, techniqueNames(), "technique");
     std::vector<int> ns = ns_;
@@ -165,6 +172,82 @@ int McCommand::run() {
         writeFile(jsonFile_, j.dump(2) + "\n");
     }
     if (!svgFile_.empty()) writeFile(svgFile_, logLogPlotSvg(panels, 2));
+    return kExitOk;
+}
+
+// Thesis ch. 9's comparison, figs. 9.2 and 9.3: for every light size and lobe, each
+// strategy's variance of one estimate (two samples), relative to the integral squared, and
+// its efficiency 1/(V T); then how far each strategy is from the best in each case.
+int McCommand::runMisStudy() {
+    const int samples = nOption_->count() > 0 ? *std::max_element(ns_.begin(), ns_.end()) : 200000;
+    const std::vector<MisStrategy> strategies = misStudyStrategies();
+    const std::vector<MisStudyCell> cells = ps::runMisStudy(strategies, samples, seed_);
+    std::printf("pathspace mc --study mis: Veach's glossy highlights (thesis figs. 9.2, 9.3): a spherical light of "
+                "angular radius r seen in a Phong lobe of exponent n, the mirror direction r/2 from the light's "
+                "centre; one light and one BSDF sample per estimate, combined by each heuristic (or two samples "
+                "of one technique). %d estimates per case, seed %llu.\n",
+                samples, (unsigned long long)seed_);
+    auto header = [&](const char* what) {
+        std::printf("\n%s\n\n| light r | exponent n | integral |", what);
+        for (const MisStrategy& st : strategies) std::printf(" %s |", st.name.c_str());
+        std::printf("\n|---:|---:|---:|");
+        for (size_t i = 0; i < strategies.size(); ++i) std::printf("---:|");
+        std::printf("\n");
+    };
+    header("Relative variance V / I^2 of one estimate (lower is better; * the lowest):");
+    // Theorem 9.2 bounds the balance heuristic's variance by any other weighting's plus
+    // (1/min n_i - 1/sum n_i) I^2, I^2 / 2 here: the excess over the best is additive.
+    std::vector<double> excess(strategies.size(), 0), bias(strategies.size(), 0);
+    std::vector<int> nearBest(strategies.size(), 0);
+    for (const MisStudyCell& c : cells) {
+        const double best = *std::min_element(c.variance.begin(), c.variance.end());
+        const double I2 = c.exact * c.exact;
+        double bestHeuristic = 1e300;  // among the combinations alone
+        for (size_t i = 0; i < strategies.size(); ++i)
+            if (strategies[i].alone < 0) bestHeuristic = std::min(bestHeuristic, c.variance[i]);
+        std::printf("| %g | %g | %.6g |", c.setup.lightRadius, c.setup.exponent, c.exact);
+        for (size_t i = 0; i < strategies.size(); ++i) {
+            std::printf(" %s%s |", fmt("%.3g", c.variance[i] / I2).c_str(), c.variance[i] == best ? "*" : "");
+            excess[i] = std::max(excess[i], (c.variance[i] - best) / I2);
+            nearBest[i] += strategies[i].alone < 0 && c.variance[i] == bestHeuristic;
+            const double sigma = std::sqrt(c.variance[i] / samples);
+            if (sigma > 0) bias[i] = std::max(bias[i], std::abs(c.mean[i] - c.exact) / sigma);
+        }
+        std::printf("\n");
+    }
+    header("Efficiency 1 / (V T) per second, V relative (higher is better):");
+    for (const MisStudyCell& c : cells) {
+        std::printf("| %g | %g | %.6g |", c.setup.lightRadius, c.setup.exponent, c.exact);
+        for (size_t i = 0; i < strategies.size(); ++i) {
+            const double v = c.variance[i] / (c.exact * c.exact), t = c.seconds[i] / samples;
+            std::printf(" %s |", v > 0 ? fmt("%.3g", 1 / (v * t)).c_str() : "inf");
+        }
+        std::printf("\n");
+    }
+    std::printf("\nAcross the %zu cases: the largest excess of variance over the best strategy's, (V - V_best) / "
+                "I^2 (Theorem 9.2: at most 1/2 for balance), the cases where it is the best heuristic, and the largest "
+                "|mean - integral| in standard errors (unbiased: a few at most).\n\n"
+                "| strategy | largest (V - V_best) / I^2 | best heuristic in | largest bias / sigma |\n"
+                "|---|---:|---:|---:|\n",
+                cells.size());
+    for (size_t i = 0; i < strategies.size(); ++i)
+        std::printf("| %s | %s | %s | %.2f |\n", strategies[i].name.c_str(), fmt("%.3g", excess[i]).c_str(),
+                    strategies[i].alone < 0 ? std::to_string(nearBest[i]).c_str() : "-", bias[i]);
+    if (!jsonFile_.empty()) {
+        nlohmann::json jc = nlohmann::json::array();
+        for (const MisStudyCell& c : cells) {
+            nlohmann::json per = nlohmann::json::object();
+            for (size_t i = 0; i < strategies.size(); ++i)
+                per[strategies[i].name] = {{"mean", c.mean[i]}, {"variance", c.variance[i]}, {"seconds", c.seconds[i]}};
+            jc.push_back({{"light_radius", c.setup.lightRadius},
+                          {"offset", c.setup.offset},
+                          {"exponent", c.setup.exponent},
+                          {"integral", c.exact},
+                          {"strategies", per}});
+        }
+        nlohmann::json j{{"study", "mis"}, {"seed", seed_}, {"samples", samples}, {"cases", jc}};
+        writeFile(jsonFile_, j.dump(2) + "\n");
+    }
     return kExitOk;
 }
 

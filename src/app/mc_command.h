@@ -1,6 +1,7 @@
 // `pathspace mc`: the Monte Carlo toolbox on test integrands with known integrals. For each
 // integrand and dimension, every technique runs R times at each sample count N; the table
-// shows the largest N and the convergence rate fitted over all of them.
+// shows the largest N and the convergence rate fitted over all of them. `--study mis`
+// compares the MIS heuristics of ch. 9 on Veach's glossy highlights instead.
 #pragma once
 #include <CLI/CLI.hpp>
 #include <nlohmann/json_fwd.hpp>
@@ -22,6 +23,8 @@ public:
     int run();  // exit status
 
 private:
+    int runMisStudy();  // --study mis
+
     CLI::App* cmd_ = nullptr;
     std::vector<std::string> integrands_{"all"};
     std::vector<int> dims_{2, 6};
@@ -30,6 +33,8 @@ private:
     int runs_ = 32;
     uint64_t seed_ = 1;
     std::string jsonFile_, svgFile_;
+    std::string study_;  // "mis": the MIS heuristics' study instead of the integrands
+    CLI::Option* nOption_ = nullptr;
 };
 
 }  // namespace ps

@@ -17,6 +17,7 @@
 #include "app/output_checks.h"
 #include "app/render_options.h"
 #include "image/image.h"
+#include "mc/mis.h"
 #include "render/distributed.h"
 #include "render/scene_builder.h"
 #include "scene/parser.h"
@@ -139,7 +140,7 @@ void RenderCommand::load(Job& job) {
         {"seed", settings.seed},
         {"sampler", settings.sampler},
         {"maxdepth", settings.maxDepth},
-        {"mis", args_.mis},
+        {"mis", misWeightingName(args_.mis.empty() ? MisWeighting{} : parseMisWeighting(args_.mis))},
         {"resolution", {scene->camera().params().xRes, scene->camera().params().yRes}},
         {"pixels", {bounds.x0, bounds.x1, bounds.y0, bounds.y1}}};
     if (settings.spectral) checkpointSettings["color"] = "spectral";  // absent: RGB, as before the option existed

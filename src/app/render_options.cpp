@@ -8,6 +8,7 @@
 
 #include <tbb/task_arena.h>
 
+#include "mc/mis.h"
 #include "mc/sampler.h"
 #include "render/distributed.h"
 #include "transport/bdpt.h"
@@ -96,8 +97,17 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
                      "With --integrator bdpt: also write, into this directory, one EXR per strategy (s light "
                      "vertices, t camera vertices) up to path depth 5, MIS-weighted (s<S>_t<T>.exr) and "
                      "unweighted (s<S>_t<T>_unweighted.exr); the weighted ones sum to the image");
-    cmd->add_option("--mis", a.mis, "BDPT's weighting of strategies: power (default), balance, none (uniform)")
-        ->check(CLI::IsMember({"power", "balance", "none"}));
+    cmd->add_option("--mis", a.mis,
+                    "MIS heuristic of path, bdpt, pssmlt and mmlt (thesis ch. 9): power[:BETA] (default power:2), "
+                    "balance, cutoff[:ALPHA] (default 0.1), maximum, none (uniform)")
+        ->check([](const std::string& v) {
+            try {
+                parseMisWeighting(v);
+                return std::string();
+            } catch (const InputError& e) {
+                return std::string(e.what());
+            }
+        });
     cmd->add_option("--sampler", a.sampler,
                      "Sample placement per pixel: sobol (default; Owen-scrambled Sobol, padded), zsobol (Sobol in "
                      "Morton order over the image: blue-noise error), halton (Owen-scrambled Halton), orthogonal "

@@ -24,7 +24,7 @@ struct RenderArgs {
     long long seed = -1;
     int maxDepth = -1;
     std::string integrator;
-    std::string mis = "power";
+    std::string mis;  // empty: the default (power, beta 2)
     std::string strategiesDir;
     bool keepStrategies = false;  // strategy images kept in memory (the Python module), not written
     std::string sampler;

@@ -4,6 +4,7 @@
 #include <new>
 #include <optional>
 #include <type_traits>
+#include <vector>
 
 namespace ps {
 
@@ -224,12 +225,21 @@ auto withHeuristic(MisHeuristic h, F&& f) {
     switch (h) {
         case MisHeuristic::Balance: return f(std::integral_constant<MisHeuristic, MisHeuristic::Balance>{});
         case MisHeuristic::Uniform: return f(std::integral_constant<MisHeuristic, MisHeuristic::Uniform>{});
-        case MisHeuristic::Power: break;
+        case MisHeuristic::Power:
+        case MisHeuristic::Cutoff:
+        case MisHeuristic::Maximum: break;  // general_: never on this path
     }
     return f(std::integral_constant<MisHeuristic, MisHeuristic::Power>{});
 }
 
 }  // namespace
+
+BDPTIntegrator::BDPTIntegrator(const Scene& scene, int maxDepth, MisWeighting mis)
+    : paths_(scene, maxDepth), mis_(mis), heuristic_(mis.heuristic) {
+    // The default (power, beta 2), balance and uniform keep the prefix sums' O(1) weights.
+    general_ = !(mis.isDefault() || mis.heuristic == MisHeuristic::Balance || mis.heuristic == MisHeuristic::Uniform);
+    if (general_) heuristic_ = MisHeuristic::Balance;  // its prefixes are computed, unused
+}
 
 BDPTIntegrator::MisPrefixes BDPTIntegrator::misPrefixes(const PathVertex* light, int nLight, const PathVertex* camera,
                                                         int nCamera, ScratchBuffer& scratch) const {
@@ -285,6 +295,7 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
         choice = prefixes ? prefixes->lightChoice : paths_.lightChoiceRatio(light[0], light[1]);
     }
 
+    if (general_) return weightFromEveryRatio(light, camera, qs, pt, s, t, rev, choice);
     double sum = withHeuristic(heuristic_, [&](auto h) {
         constexpr MisHeuristic H = decltype(h)::value;
         // Beyond the two vertices at each side of the join, each side contributes its
@@ -326,6 +337,60 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
     });
     if (!std::isfinite(sum)) return 0;
     return 1.0f / float(1 + sum);
+}
+
+// The same walk as misWeight's sums, but each other strategy's density ratio to this one
+// is kept (balance terms: the plain ratios), for heuristics whose weight is not a sum of
+// per-strategy terms that factor along the path: cutoff and maximum compare every density
+// with the largest (thesis §9.2.4), and power with any beta is applied to the ratios here.
+// Walks both subpaths: O(path length) per weight.
+float BDPTIntegrator::weightFromEveryRatio(const PathVertex* light, const PathVertex* camera, const PathVertex* qs,
+                                           const PathVertex* pt, int s, int t, const EndpointDensities& rev,
+                                           float choice) const {
+    constexpr auto term = misTerm<MisHeuristic::Balance>;
+    constexpr int kStack = 64;
+    double stack[kStack];
+    std::vector<double> heap;
+    double* r = stack;
+    if (s + t > kStack) {
+        heap.resize(size_t(s + t));
+        r = heap.data();
+    }
+    int n = 0;
+    // Towards the camera: strategies (s + 1, t - 1), (s + 2, t - 2), ..., t' = 1.
+    if (t >= 2) {
+        double R = term(rev.pt, pt->pdfFwd);
+        if (!camera[t - 2].delta) r[n++] = R * (s == 0 ? choice : 1.0);  // s' = 1 carries its light choice
+        if (t >= 3) {
+            R *= term(rev.ptMinus, camera[t - 2].pdfFwd);
+            if (!camera[t - 2].delta && !camera[t - 3].delta) r[n++] = R;
+            for (int m = t - 3; m >= 1; --m) {
+                R *= term(camera[m].pdfRev, camera[m].pdfFwd);
+                if (!camera[m].delta && !camera[m - 1].delta) r[n++] = R;
+            }
+        }
+    }
+    // Towards the light: strategies (s - 1, t + 1), ..., s' = 0.
+    if (s >= 1) {
+        double R = term(rev.qs, qs->pdfFwd);
+        if (s >= 2 ? !light[s - 2].delta : !qs->isDeltaLight()) r[n++] = R * (s == 2 ? choice : 1.0);
+        if (s >= 2) {
+            R *= term(rev.qsMinus, light[s - 2].pdfFwd);
+            if (!light[s - 2].delta && !(s >= 3 ? light[s - 3].delta : light[0].isDeltaLight()))
+                r[n++] = R * (s == 3 ? choice : 1.0);
+            for (int m = s - 3; m >= 0; --m) {
+                R *= term(light[m].pdfRev, light[m].pdfFwd);
+                if (!light[m].delta && !(m > 0 ? light[m - 1].delta : light[0].isDeltaLight()))
+                    r[n++] = R * (m == 1 ? choice : 1.0);
+            }
+        }
+    }
+    // From s = 1 itself, every other strategy's ratio divides by its light choice.
+    if (s == 1) {
+        if (!(choice > 0)) return 1;
+        for (int i = 0; i < n; ++i) r[i] /= choice;
+    }
+    return float(mis_.weightFromRatios(r, n));
 }
 
 void BDPTIntegrator::recordStrategies(int maxDepth) {

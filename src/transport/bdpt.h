@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <vector>
+#include "mc/mis.h"
 #include "mc/primary_sample_sampler.h"
 #include "transport/integrator.h"
 #include "transport/strategy_images.h"
@@ -13,14 +14,10 @@
 
 namespace ps {
 
-// How the strategies that can produce a path are weighted (thesis §9.2): the balance
-// heuristic, the power heuristic (exponent 2), or uniformly (1 / number of strategies).
-enum class MisHeuristic { Balance, Power, Uniform };
-
 class BDPTIntegrator final : public Integrator {
 public:
-    BDPTIntegrator(const Scene& scene, int maxDepth, MisHeuristic heuristic = MisHeuristic::Power)
-        : paths_(scene, maxDepth), heuristic_(heuristic) {}
+    // mis: how the strategies that can produce a path are weighted (thesis ch. 9, mc/mis.h).
+    BDPTIntegrator(const Scene& scene, int maxDepth, MisWeighting mis = {});
     Spectrum Li(const Ray& ray, SampleContext& ctx) const override;
     bool splats() const override { return true; }
     bool supportsSpectral() const override { return true; }
@@ -146,9 +143,17 @@ private:
     template <typename S>
     void joinLight(const PathVertex& pt, S& sampler, PathStats& stats, const SampledWavelengths* lambda, Join& j) const;
     void joinInner(const PathVertex& qs, const PathVertex& pt, PathStats& stats, Join& j) const;
+    // misWeight for the heuristics off the prefix-sum path (see general_).
+    float weightFromEveryRatio(const PathVertex* light, const PathVertex* camera, const PathVertex* qs,
+                               const PathVertex* pt, int s, int t, const EndpointDensities& rev, float choice) const;
 
     Subpaths paths_;
+    MisWeighting mis_;
+    // The prefix-sum path's heuristic (balance, power 2, uniform: their terms factor along
+    // a path). general_: any other (power with another beta, cutoff, maximum), whose
+    // weights take every strategy's density ratio one by one (weightFromEveryRatio).
     MisHeuristic heuristic_;
+    bool general_ = false;
     std::unique_ptr<StrategyImages> strategies_;
     bool recomputeWeights_ = false;
 };

@@ -1,5 +1,6 @@
 #include "transport/integrator.h"
 
+#include "mc/mis.h"
 #include "transport/bdpt.h"
 #include "transport/coverage.h"
 #include "transport/light_tracer.h"
@@ -15,12 +16,23 @@
 namespace ps {
 
 std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scene& scene, const std::string& mis) {
-    MisHeuristic heuristic = MisHeuristic::Power;
-    if (mis == "balance") heuristic = MisHeuristic::Balance;
-    else if (mis == "none") heuristic = MisHeuristic::Uniform;
-    else if (mis != "power") throw InputError("unknown MIS heuristic \"" + mis + "\" (available: power, balance, none)");
+    const MisWeighting heuristic = mis.empty() ? MisWeighting{} : parseMisWeighting(mis);
+    // Light tracing has one technique per path (its splats are unweighted); Veach's mlt has
+    // no strategies to weigh: its chains sample paths by f itself (its bootstrap's weights,
+    // f over the summed density of every split, are fixed by its start-up, not a choice).
+    if (!mis.empty() && (name == "light" || name == "mlt"))
+        throw InputError("--mis " + mis + ": integrator \"" + name + "\" combines no sampling techniques by a " +
+                         "heuristic (--mis applies to path, bdpt, pssmlt and mmlt)");
     int maxDepth = scene.settings().maxDepth;
-    if (name == "path") return std::make_unique<PathTracer>(scene, maxDepth);
+    if (name == "path") {
+        // volpath divides by the densities' mean over wavelengths and techniques: spectral
+        // MIS, the balance heuristic (volpath.cpp).
+        if (scene.hasMedia() && !mis.empty() && heuristic.heuristic != MisHeuristic::Balance)
+            throw InputError("--mis " + mis + ": in a scene with participating media, path weighs light and " +
+                             "scattering samples over wavelengths by the balance heuristic (spectral MIS); " +
+                             "only --mis balance applies");
+        return std::make_unique<PathTracer>(scene, maxDepth, heuristic);
+    }
     if (name == "light" || name == "bdpt" || name == "pssmlt" || name == "mmlt" ||
         name == "mlt") {
         // Light subpaths and connections do not yet cross media or scatter in them: rendered,

@@ -98,10 +98,12 @@ public:
 };
 
 // Names: "path", "light", "bdpt", "pssmlt", "mmlt" (Markov chains over BDPT: render() runs its own
-// driver, transport/mlt/); mis (BDPT's weighting): "power", "balance" or "none"
-// (uniform weights). Throws InputError for an unknown name.
+// driver, transport/mlt/); mis: the MIS heuristic (parseMisWeighting's syntax) of path,
+// bdpt, pssmlt and mmlt, empty for the default (power, beta 2). Throws InputError for an
+// unknown name, a bad heuristic, or a heuristic given where nothing is weighted by one
+// (light, mlt) or only the balance heuristic applies (path in a scene with media).
 std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scene& scene,
-                                             const std::string& mis = "power");
+                                             const std::string& mis = "");
 
 // --two-stage's fraction for a Metropolis integrator: `setting` if >= 0, else its default.
 double metropolisTwoStage(const std::string& name, double setting);

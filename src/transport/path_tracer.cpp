@@ -1,7 +1,5 @@
 #include "transport/path_tracer.h"
 
-#include "mc/mis.h"
-
 namespace ps {
 
 Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
@@ -24,7 +22,7 @@ Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& fra
     float pLight = pmf * ls->pdf;
     if (light->isDelta()) return f * ls->L / pLight;
     float pBsdf = bxdf.pdf(woLocal, wiLocal, TransportMode::Radiance);
-    return f * ls->L * (powerHeuristic(pLight, pBsdf) / pLight);
+    return f * ls->L * (misWeight(pLight, pBsdf) / pLight);
 }
 
 Spectrum PathTracer::Li(const Ray& ray, SampleContext& ctx) const {
@@ -67,7 +65,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
                     L += beta * Le;
                 } else {
                     float pl = scene_.lightSampler().pmf(prevCtx, light) * light->pdfLi(prevCtx, ray.d, nullptr);
-                    L += beta * Le * powerHeuristic(prevBsdfPdf, pl);
+                    L += beta * Le * misWeight(prevBsdfPdf, pl);
                 }
             }
             break;
@@ -81,7 +79,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
                     L += beta * Le;
                 } else {
                     float pl = scene_.lightSampler().pmf(prevCtx, si.areaLight) * si.areaLight->pdfLi(prevCtx, ray.d, &si);
-                    L += beta * Le * powerHeuristic(prevBsdfPdf, pl);
+                    L += beta * Le * misWeight(prevBsdfPdf, pl);
                 }
             }
         }

@@ -1,7 +1,9 @@
 // Unidirectional path tracing with next-event estimation and BSDF sampling combined by
-// the power heuristic (thesis ch. 9), Russian roulette after the second bounce (thesis
-// §2.5.3.2 / pbrt-v4's rule), maxdepth = number of scattering events.
+// multiple importance sampling (thesis ch. 9; the power heuristic unless --mis says
+// otherwise), Russian roulette after the second bounce (thesis §2.5.3.2 / pbrt-v4's rule),
+// maxdepth = number of scattering events.
 #pragma once
+#include "mc/mis.h"
 #include "mc/rng.h"
 #include "transport/integrator.h"
 
@@ -9,7 +11,10 @@ namespace ps {
 
 class PathTracer final : public Integrator {
 public:
-    PathTracer(const Scene& scene, int maxDepth) : scene_(scene), maxDepth_(maxDepth) {}
+    // mis: how light and BSDF sampling are weighted (thesis ch. 9; mc/mis.h). Scenes with
+    // media always use volpath's spectral balance weights (createIntegrator refuses others).
+    PathTracer(const Scene& scene, int maxDepth, MisWeighting mis = {})
+        : scene_(scene), maxDepth_(maxDepth), mis_(mis), defaultMis_(mis.isDefault()) {}
     Spectrum Li(const Ray& ray, SampleContext& ctx) const override;
     bool supportsSpectral() const override { return true; }
 
@@ -37,8 +42,16 @@ private:
     Spectrum sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
                           float uLight, Vec2 u, float time, const SampledWavelengths* lambda, PathStats& stats) const;
 
+    // The weight of a sample of density pf against the other technique's pg: the power
+    // heuristic's inline code for the default, else mc/mis.h's general one.
+    float misWeight(float pf, float pg) const {
+        return defaultMis_ ? powerHeuristic(pf, pg) : float(mis_.weight(pf, pg));
+    }
+
     const Scene& scene_;
     int maxDepth_;
+    MisWeighting mis_;
+    bool defaultMis_;
 };
 
 }  // namespace ps

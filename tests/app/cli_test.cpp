@@ -13,6 +13,7 @@
 
 #include "image/image.h"
 #include "mc/sampler.h"
+#include "furnace_scene.h"
 #include "run_binary.h"
 #include "sky_scene.h"
 
@@ -332,6 +333,67 @@ TEST_F(Cli, MisOption) {
         for (size_t k = 0; k + 1 < images.size(); ++k) EXPECT_NE(images[k], images.back()) << "same image as #" << k;
     }
     EXPECT_EQ(run("render --quiet --integrator bdpt --mis nope " + scene + " -o " + out).status, 2);
+}
+
+// Every heuristic of thesis ch. 9 through the real binary (their unbiasedness is the
+// furnace's, render/mis_heuristics_test.cpp): accepted by path, bdpt, pssmlt and mmlt, each
+// changing the image; a bad parameter, or --mis where nothing is weighted (light, mlt) or
+// only balance applies (path with media), exits with 2 and says why.
+TEST_F(Cli, EveryMisHeuristicAndItsRefusals) {
+    const std::string scene = write("sky.pbrt", ps::test::kSkyScene);
+    const std::string out = (dir / "x.pfm").string(), stats = (dir / "s.json").string();
+    const std::string base = "render --quiet --spp 2 --seed 1 " + scene + " -o " + out;
+    for (const std::string integrator : {"path", "bdpt"}) {
+        std::vector<std::vector<float>> images;
+        for (const std::string mis : {"power", "balance", "power:3", "cutoff", "cutoff:0.5", "maximum", "none"}) {
+            SCOPED_TRACE(integrator + " --mis " + mis);
+            Result r = run(base + " --integrator " + integrator + " --mis " + mis);
+            ASSERT_EQ(r.status, 0) << r.out;
+            images.push_back(ps::readImage(out).rgb);
+            for (size_t k = 0; k + 1 < images.size(); ++k) EXPECT_NE(images[k], images.back()) << "same image as #" << k;
+        }
+        // power:2 is the default, spelled out.
+        ASSERT_EQ(run(base + " --integrator " + integrator + " --mis power:2").status, 0);
+        EXPECT_EQ(ps::readImage(out).rgb, images[0]);
+    }
+    for (const std::string integrator : {"pssmlt", "mmlt"}) {
+        Result r = run(base + " --integrator " + integrator + " --chains 4 --bootstrap 200 --mis maximum");
+        EXPECT_EQ(r.status, 0) << integrator << ": " << r.out;
+    }
+    for (const std::string bad : {"power:0", "power:-1", "power:x", "cutoff:2", "maximum:1", "max"}) {
+        Result r = run(base + " --integrator bdpt --mis " + bad);
+        EXPECT_EQ(r.status, 2) << bad;
+        EXPECT_NE(r.out.find("--mis"), std::string::npos) << r.out;
+    }
+    for (const std::string integrator : {"light", "mlt"}) {
+        Result r = run(base + " --integrator " + integrator + " --mis balance");
+        EXPECT_EQ(r.status, 2) << integrator;
+        EXPECT_NE(r.out.find("combines no sampling techniques"), std::string::npos) << r.out;
+        const std::string chains = integrator == "mlt" ? " --chains 4 --bootstrap 200" : "";
+        EXPECT_EQ(run(base + " --integrator " + integrator + chains).status, 0) << integrator;
+    }
+    const std::string fog = write("fog.pbrt", ps::test::kFogFurnace);
+    Result media = run("render --quiet --spp 1 " + fog + " -o " + out + " --mis power");
+    EXPECT_EQ(media.status, 2);
+    EXPECT_NE(media.out.find("only --mis balance applies"), std::string::npos) << media.out;
+    EXPECT_EQ(run("render --quiet --spp 1 " + fog + " -o " + out + " --mis balance").status, 0);
+}
+
+// `pathspace mc --study mis`: the glossy-highlight study prints every heuristic's variance
+// and efficiency and writes them as JSON; an unknown study is bad input.
+TEST_F(Cli, McMisStudy) {
+    const std::string json = (dir / "mis.json").string();
+    Result r = run("mc --study mis --n 2000 --seed 3 --json " + json);
+    ASSERT_EQ(r.status, 0) << r.out;
+    for (const char* name : {"| balance |", "| power:2 |", "| cutoff:0.1 |", "| maximum |", "| light alone |",
+                             "| bsdf alone |", "Relative variance", "Efficiency"})
+        EXPECT_NE(r.out.find(name), std::string::npos) << name << "\n" << r.out;
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
+    EXPECT_EQ(j["samples"], 2000);
+    ASSERT_EQ(j["cases"].size(), 16u);
+    for (const char* name : {"balance", "power:2", "cutoff:0.1", "maximum", "light alone", "bsdf alone"})
+        EXPECT_TRUE(j["cases"][0]["strategies"].contains(name)) << name;
+    EXPECT_EQ(run("mc --study nope").status, 2);
 }
 
 // --chains, --bootstrap, --large-step-probability, --camera-step-probability and --sigma

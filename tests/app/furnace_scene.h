@@ -20,4 +20,17 @@ Shape "sphere" "float radius" [ 1 ]
 )";
 inline const double kFurnaceValue = (1 - std::pow(0.6, 6)) / 0.4;
 
+// The same emitting sphere filled with fog around the camera: a scene with media, where
+// path is volpath and only --mis balance applies.
+inline const char* kFogFurnace = R"(LookAt 0 0 0  0 0 1  0 1 0
+MakeNamedMedium "fog" "string type" "homogeneous" "rgb sigma_a" [ 0.1 0.1 0.1 ] "rgb sigma_s" [ 0.2 0.2 0.2 ]
+MediumInterface "" "fog"
+Camera "perspective" "float fov" [ 60 ]
+Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
+WorldBegin
+AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+ReverseOrientation
+Shape "sphere" "float radius" [ 1 ]
+)";
+
 }  // namespace ps::test

@@ -3,7 +3,7 @@
 // densities computed afresh from the whole path, and check that (1) the weights of all
 // strategies that can produce it sum to 1 (thesis eq. 9.4's condition for an unbiased
 // combination) and (2) the weight BDPT computed from its subpaths' incrementally stored
-// densities equals the freshly computed one.
+// densities equals the freshly computed one; for every heuristic of thesis ch. 9 (mc/mis.h).
 #include <gtest/gtest.h>
 
 #include <new>
@@ -125,7 +125,14 @@ float weightOf(const BDPTIntegrator& bdpt, const FullPath& fp, int s) {
     return bdpt.misWeight(light.data(), camera.data(), nullptr, s, t);
 }
 
-class BdptMis : public ::testing::TestWithParam<MisHeuristic> {};
+class BdptMis : public ::testing::TestWithParam<const char*> {};
+
+// Whether a heuristic's weight jumps where densities cross (cutoff, maximum): there the
+// stored and the fresh densities, which differ by up to a percent (see below), may fall on
+// either side of a threshold.
+bool stepwise(const MisWeighting& w) {
+    return w.heuristic == MisHeuristic::Cutoff || w.heuristic == MisHeuristic::Maximum;
+}
 
 }  // namespace
 
@@ -133,12 +140,13 @@ TEST_P(BdptMis, WeightsOfAllStrategiesSumToOne) {
     setWarningsQuiet(true);
     SceneDescription desc = parseSceneString(kScene, ".", "<test>");
     auto scene = buildScene(desc);
-    BDPTIntegrator bdpt(*scene, scene->settings().maxDepth, GetParam());
+    const MisWeighting mis = parseMisWeighting(GetParam());
+    BDPTIntegrator bdpt(*scene, scene->settings().maxDepth, mis);
     const Subpaths& paths = bdpt.subpaths();
     auto sampler = createSampler("independent", 5, 1);
     ScratchBuffer scratch;
     PathStats stats;
-    int checked = 0, withDelta = 0, deltaLight = 0, skipped = 0;
+    int checked = 0, withDelta = 0, deltaLight = 0, skipped = 0, stepped = 0;
     for (int i = 0; i < 4000 && checked < 600; ++i) {
         auto [camera, light, nc, nl] = tracePair(*scene, paths, *sampler, scratch, stats, i);
         // The weights as the renderer computes them: from the running sums along each subpath.
@@ -162,7 +170,9 @@ TEST_P(BdptMis, WeightsOfAllStrategiesSumToOne) {
                 for (int sp = 0; sp <= int(fp.y.size()) - 1; ++sp)
                     if (possible(fp, sp)) sum += weightOf(bdpt, fp, sp);
                 EXPECT_NEAR(sum, 1.0, 2e-3) << "s " << s << " t " << t;
-                EXPECT_NEAR(c.weight, weightOf(bdpt, fp, s), 2e-3 * std::max(1.0f, c.weight)) << "s " << s << " t " << t;
+                const float fresh = weightOf(bdpt, fp, s);
+                if (stepwise(mis) && std::abs(c.weight - fresh) > 2e-3f * std::max(1.0f, c.weight)) ++stepped;
+                else EXPECT_NEAR(c.weight, fresh, 2e-3 * std::max(1.0f, c.weight)) << "s " << s << " t " << t;
                 ++checked;
                 for (const PathVertex& v : fp.y) withDelta += v.delta;
                 deltaLight += fp.y[0].isDeltaLight();
@@ -173,17 +183,60 @@ TEST_P(BdptMis, WeightsOfAllStrategiesSumToOne) {
                 "closer than 0.05 skipped\n",
                 checked, withDelta, deltaLight, skipped);
     EXPECT_GE(checked, 200);
+    EXPECT_LE(stepped, checked / 100) << "stored and fresh weights on either side of a step";
     EXPECT_GT(withDelta, 0);
     EXPECT_GT(deltaLight, 0);
 }
 
+// Power 2, balance and uniform take the prefix sums; the others the walk over every ratio.
 INSTANTIATE_TEST_SUITE_P(Heuristics, BdptMis,
-                         ::testing::Values(MisHeuristic::Power, MisHeuristic::Balance, MisHeuristic::Uniform),
-                         [](const ::testing::TestParamInfo<MisHeuristic>& i) {
-                             return i.param == MisHeuristic::Power ? std::string("power")
-                                    : i.param == MisHeuristic::Balance ? std::string("balance")
-                                                                       : std::string("uniform");
+                         ::testing::Values("power", "balance", "none", "power:3", "power:0.5", "cutoff:0.1",
+                                           "cutoff:0.5", "maximum"),
+                         [](const ::testing::TestParamInfo<const char*>& i) {
+                             std::string name = i.param;
+                             for (char& c : name)
+                                 if (c == ':' || c == '.') c = '_';
+                             return name == "none" ? std::string("uniform") : name;
                          });
+
+// The walk over every strategy's ratio (weightFromEveryRatio, for the heuristics that are
+// not sums of factoring terms) enumerates the strategies the prefix sums add up: with power
+// 1 and cutoff 0, which are the balance heuristic computed by the walk, every strategy's
+// weight of every connected path equals the balance heuristic's from the prefix sums.
+TEST(BdptMis, EveryRatioWalkMatchesThePrefixSums) {
+    setWarningsQuiet(true);
+    SceneDescription desc = parseSceneString(kScene, ".", "<test>");
+    auto scene = buildScene(desc);
+    const int maxDepth = scene->settings().maxDepth;
+    BDPTIntegrator balance(*scene, maxDepth, MisHeuristic::Balance);
+    BDPTIntegrator powerOne(*scene, maxDepth, parseMisWeighting("power:1"));
+    BDPTIntegrator cutoffZero(*scene, maxDepth, parseMisWeighting("cutoff:0"));
+    const Subpaths& paths = balance.subpaths();
+    auto sampler = createSampler("independent", 13, 1);
+    ScratchBuffer scratch;
+    PathStats stats;
+    int compared = 0;
+    for (int i = 0; i < 1500; ++i) {
+        auto [camera, light, nc, nl] = tracePair(*scene, paths, *sampler, scratch, stats, i);
+        for (int t = 2; t <= nc; ++t)
+            for (int s = 2; s <= nl; ++s) {
+                if (s + t - 2 > paths.maxDepth()) continue;
+                auto c = balance.connect(light, camera, s, t, *sampler, stats, false);
+                if (c.L.isBlack()) continue;
+                FullPath fp = rebuild(paths, light, s, camera, t);
+                for (int sp = 0; sp <= int(fp.y.size()) - 1; ++sp) {
+                    if (!possible(fp, sp)) continue;
+                    const float b = weightOf(balance, fp, sp);
+                    EXPECT_NEAR(weightOf(powerOne, fp, sp), b, 1e-5f) << "s' " << sp << " of s " << s << " t " << t;
+                    EXPECT_NEAR(weightOf(cutoffZero, fp, sp), b, 1e-5f) << "s' " << sp << " of s " << s << " t " << t;
+                    ++compared;
+                }
+            }
+        scratch.reset();
+    }
+    std::printf("  %d strategy weights compared\n", compared);
+    EXPECT_GE(compared, 1000);
+}
 
 // Every strategy, including next-event (s = 1) and lens (t = 1) connections: the weight a
 // connection computes from the densities its own BSDF and emission queries produced (and the

@@ -28,8 +28,8 @@
 namespace ps {
 
 MetropolisIntegrator::MetropolisIntegrator(const Scene& scene, int maxDepth, const MetropolisParams& params,
-                                           MisHeuristic heuristic)
-    : scene_(scene), bdpt_(scene, maxDepth, heuristic), params_(params) {
+                                           MisWeighting mis)
+    : scene_(scene), bdpt_(scene, maxDepth, mis), params_(params) {
     const Camera::Params& c = scene.camera().params();
     margin_ = scene.filter().radius();
     filmSize_ = Vec2(float(c.xRes) + 2 * margin_.x, float(c.yRes) + 2 * margin_.y);

@@ -94,7 +94,7 @@ struct ChainEvaluator {
 
 class MetropolisIntegrator : public Integrator {
 public:
-    MetropolisIntegrator(const Scene& scene, int maxDepth, const MetropolisParams& params, MisHeuristic heuristic);
+    MetropolisIntegrator(const Scene& scene, int maxDepth, const MetropolisParams& params, MisWeighting mis);
     // Not a per-ray estimator: render() runs renderMetropolis instead.
     Spectrum Li(const Ray& ray, SampleContext& ctx) const final;
     bool splats() const final { return true; }

@@ -11,8 +11,8 @@ int strategiesOfDepth(int depth) { return depth == 0 ? 1 : depth + 2; }
 }  // namespace
 
 MMLTIntegrator::MMLTIntegrator(const Scene& scene, int maxDepth, const MetropolisParams& params,
-                               MisHeuristic heuristic)
-    : MetropolisIntegrator(scene, maxDepth, params, heuristic) {
+                               MisWeighting mis)
+    : MetropolisIntegrator(scene, maxDepth, params, mis) {
     // The chain chooses each subpath's length: roulette would only add zeros to the target.
     bdpt_.setRoulette(false);
     for (int d = 0; d <= this->maxDepth(); ++d) {

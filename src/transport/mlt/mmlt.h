@@ -28,7 +28,7 @@ namespace ps {
 class MMLTIntegrator final : public MetropolisIntegrator {
 public:
     MMLTIntegrator(const Scene& scene, int maxDepth, const MetropolisParams& params = {},
-                   MisHeuristic heuristic = MisHeuristic::Power);
+                   MisWeighting mis = {});
     const char* name() const override { return "mmlt"; }
     void evaluate(PrimarySampleSampler& sampler, const StrategyChoice& choice, ChainEvaluator& ev,
                   ChainState& out) const override;

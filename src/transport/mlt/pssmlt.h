@@ -10,8 +10,8 @@ namespace ps {
 class PSSMLTIntegrator final : public MetropolisIntegrator {
 public:
     PSSMLTIntegrator(const Scene& scene, int maxDepth, const MetropolisParams& params = {},
-                     MisHeuristic heuristic = MisHeuristic::Power)
-        : MetropolisIntegrator(scene, maxDepth, params, heuristic) {}
+                     MisWeighting mis = {})
+        : MetropolisIntegrator(scene, maxDepth, params, mis) {}
     const char* name() const override { return "pssmlt"; }
     void evaluate(PrimarySampleSampler& sampler, const StrategyChoice& choice, ChainEvaluator& ev,
                   ChainState& out) const override;
