@@ -36,7 +36,7 @@ struct MisWeighting {
     bool isDefault() const { return heuristic == MisHeuristic::Power && beta == 2; }
     // The weight of the technique with density `p`, among techniques whose densities at
     // the same point are `others[0..n-1]` (0: cannot produce it). Ties of the maximum
-    // heuristic (densities within a relative 1e-4 of the largest, beyond rounding) share
+    // heuristic (densities within a relative 1% of the largest, beyond rounding) share
     // the weight equally, so the weights still sum to one.
     double weight(double p, const double* others, int n) const;
     // Two techniques (the path tracer's light and BSDF sampling, the mc study).
