@@ -150,15 +150,7 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
         if (!scene_.intersect(ray, si)) {
             // A camera ray leaving the scene ends on the infinite lights (the s = 0 strategy).
             if (mode == TransportMode::Radiance && !scene_.infiniteLights().empty()) {
-                resetVertex(v);
-                v.kind = VertexKind::Light;
-                v.mode = mode;
-                v.infinite = true;
-                v.time = ray.time;
-                v.p = ray.o + ray.d;
-                v.wo = -ray.d;
-                v.beta = beta;
-                v.pdfFwd = pdfFwd;
+                initEscapeVertex(v, ray, beta, pdfFwd);
                 ++bounces;
             }
             break;
@@ -184,33 +176,15 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
         if (woLocal.z == 0) break;
         sampler.seekDimension(block + 2);
         float uc = bxdf->usesLobeSample() ? sampler.get1D() : 0.5f;
-        auto bs = bxdf->sample(woLocal, uc, u, mode);
         haveU = false;
-        if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) break;
-        Vec3 wi = v.frame.toWorld(bs->wi);
-        Spectrum weight = bs->f * (absCosTheta(bs->wi) / bs->pdf);
-        if (mode == TransportMode::Importance && !v.flatShading)
-            weight *= adjointShadingFactor(si.wo, wi, si.ns, si.ng);
-        if (!weight.isFinite()) {
-            ++stats.guarded;
-            break;
-        }
-        beta *= weight;
-        scatter *= weight;
-        // Layered BxDFs only know their pdf up to a factor; MIS needs the true density.
-        pdfFwd = bs->pdfIsProportional ? bxdf->pdf(woLocal, bs->wi, mode) : bs->pdf;
-        float pdfRev = bxdf->pdf(bs->wi, woLocal, adjoint(mode));
-        if (bs->isSpecular()) {
-            // Delta lobes: no strategy connects to this vertex, and in the MIS ratios (thesis
-            // §10.3.5) the delta density of a scattering direction and that of its reverse
-            // cancel. They stand in as a unit density per solid angle, so the neighbours'
-            // area densities keep their geometric factors cos / d^2: dropping those (a zero
-            // density remapped to 1, as pbrt-v4 does) misweights strategies through specular
-            // chains, e.g. 4.9x the variance of the weights kept here for a light inside glass.
-            v.delta = true;
-            pdfFwd = pdfRev = 1;
-        }
-        if (mode == TransportMode::Radiance && bs->isTransmission()) etaScale *= sqr(bs->eta);
+        SurfaceScatter sc;
+        if (!scatterAtSurface(v, uc, u, mode, stats, sc)) break;
+        beta *= sc.weight;
+        scatter *= sc.weight;
+        pdfFwd = sc.pdfFwd;
+        etaScale *= sc.etaSq;
+        const float pdfRev = sc.pdfRev;
+        const Vec3 wi = sc.wi;
         prev.pdfRev = pdfRev * v.toPrevArea;
         ray = spawnRay(si.p, si.ng, wi, ray.time);
         if (beta.isBlack()) break;

@@ -88,16 +88,8 @@ int Subpaths::randomWalkInMedia(Ray ray, const Medium* medium, Spectrum beta0, f
             if (!hit) {
                 // A camera ray leaving the scene ends on the infinite lights (the s = 0 strategy).
                 if (mode == TransportMode::Radiance && !scene_.infiniteLights().empty()) {
-                    resetVertex(v);
-                    v.kind = VertexKind::Light;
-                    v.mode = mode;
-                    v.infinite = true;
-                    v.time = ray.time;
-                    v.p = ray.o + normalize(ray.d);
-                    v.wo = -normalize(ray.d);
-                    v.beta = beta0 * scatter;
+                    initEscapeVertex(v, ray, beta0 * scatter, pdfFwd);
                     v.rU = rU;
-                    v.pdfFwd = pdfFwd;
                     ++bounces;
                 }
                 break;
@@ -127,24 +119,13 @@ int Subpaths::randomWalkInMedia(Ray ray, const Medium* medium, Spectrum beta0, f
             sampler.seekDimension(block);
             const Vec2 u = sampler.get2D();
             const float uc = bxdf->usesLobeSample() ? sampler.get1D() : 0.5f;
-            const auto bs = bxdf->sample(woLocal, uc, u, mode);
-            if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) break;
-            const Vec3 wi = v.frame.toWorld(bs->wi);
-            Spectrum weight = bs->f * (absCosTheta(bs->wi) / bs->pdf);
-            if (mode == TransportMode::Importance && !v.flatShading)
-                weight *= adjointShadingFactor(si.wo, wi, si.ns, si.ng);
-            if (!weight.isFinite()) {
-                ++stats.guarded;
-                break;
-            }
-            scatter *= weight;
-            pdfFwd = bs->pdfIsProportional ? bxdf->pdf(woLocal, bs->wi, mode) : bs->pdf;
-            float pdfRev = bxdf->pdf(bs->wi, woLocal, adjoint(mode));
-            if (bs->isSpecular()) {
-                v.delta = true;  // as in randomWalk
-                pdfFwd = pdfRev = 1;
-            }
-            if (mode == TransportMode::Radiance && bs->isTransmission()) etaScale *= sqr(bs->eta);
+            SurfaceScatter sc;
+            if (!scatterAtSurface(v, uc, u, mode, stats, sc)) break;
+            scatter *= sc.weight;
+            pdfFwd = sc.pdfFwd;
+            etaScale *= sc.etaSq;
+            const float pdfRev = sc.pdfRev;
+            const Vec3 wi = sc.wi;
             prev.pdfRev = pdfRev * v.toPrevArea;
             medium = si.mediumToward(wi, medium);
             ray = spawnRay(si.p, si.ng, wi, ray.time);
