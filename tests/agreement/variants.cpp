@@ -453,6 +453,21 @@ AttributeBegin
 AttributeEnd)";
     });
 
+    // The same with a 2 x 2 x 2 density grid: null collisions in both walks' delta tracking and
+    // in every connection's ratio tracking, against one chromatic majorant.
+    box("medium/grid-fog", [](Box& b) {
+        b.maxDepth = 4;
+        b.light = "AttributeBegin\nMediumInterface \"fog\" \"fog\"\n" + b.light + "\nAttributeEnd";
+        b.extra = R"(MakeNamedMedium "fog" "string type" "uniformgrid" "integer nx" [ 2 ] "integer ny" [ 2 ] "integer nz" [ 2 ]
+  "float density" [ 0.2 1.5 0.6 1 1.2 0.3 0.8 0.5 ] "point3 p0" [ -0.5 0 -0.5 ] "point3 p1" [ 0.5 1 0.5 ]
+  "rgb sigma_a" [ 0.1 0.2 0.3 ] "rgb sigma_s" [ 0.8 0.5 0.3 ] "float g" [ -0.2 ]
+AttributeBegin
+  Material "interface"
+  MediumInterface "fog" ""
+  Shape "bilinearmesh" "point3 P" [ -0.5 0 0.5   0.5 0 0.5   -0.5 1 0.5   0.5 1 0.5 ]
+AttributeEnd)";
+    })->sppScale = 2;  // at 1, pssmlt resolved 2.0%
+
     // ---- path depth ----
     box("depth/0", [](Box& b) { b.maxDepth = 0; })->sppScale = 8;
     box("depth/1", [](Box& b) { b.maxDepth = 1; })->sppScale = 4;
