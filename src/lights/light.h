@@ -11,6 +11,8 @@
 
 namespace ps {
 
+class Medium;
+
 enum class LightType { DeltaPosition, DeltaDirection, Area, Infinite };
 
 // The receiving point.
@@ -88,6 +90,11 @@ public:
     virtual void preprocess(Vec3 sceneCenter, float sceneRadius) { (void)sceneCenter; (void)sceneRadius; }
 
     int index = -1;  // position in the scene's light list
+    // The media either side of the light (pbrt-v4 gives a light the MediumInterface current
+    // at its definition, an area light its shape's): where a light subpath starts.
+    const Medium* mediumInside = nullptr;
+    const Medium* mediumOutside = nullptr;
+    const Medium* mediumToward(Vec3 n, Vec3 w) const { return dot(n, w) < 0 ? mediumInside : mediumOutside; }
 
 private:
     LightType type_;

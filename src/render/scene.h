@@ -92,6 +92,11 @@ public:
     // the camera's medium (pbrt-v4's CameraMedium; null: vacuum).
     bool hasMedia() const { return hasMedia_; }
     const Medium* cameraMedium() const { return cameraMedium_; }
+    bool hasEmissiveMedia() const {
+        for (const auto& m : media_)
+            if (m->emissive()) return true;
+        return false;
+    }
     const Camera& camera() const { return *camera_; }
     Camera& camera() { return *camera_; }
     const Filter& filter() const { return *filter_; }

@@ -158,6 +158,9 @@ void SceneBuilder::addAreaLights(const ShapeEntity& e, Shape& shape) {
             s *= k > 0 ? power / k : 0.0f;
         }
         auto light = std::make_unique<DiffuseAreaLight>(&shape, i, L * s, twoSided, image);
+        // Without a transition the shape lies in the current outside medium (pbrt-v4).
+        light->mediumInside = shape.mediumTransition ? shape.mediumInside : mediumNamed(e.media.outside, e.media.loc);
+        light->mediumOutside = shape.mediumTransition ? shape.mediumOutside : light->mediumInside;
         shape.areaLights[i] = light.get();
         scene_.lights_.push_back(std::move(light));
     }
@@ -327,7 +330,10 @@ void SceneBuilder::addInstances() {
 
 void SceneBuilder::addLights() {
     for (const LightEntity& e : desc_.lights)
-        if (auto light = createLight(e, desc_.baseDirectory)) scene_.lights_.push_back(std::move(light));
+        if (auto light = createLight(e, desc_.baseDirectory)) {
+            light->mediumInside = light->mediumOutside = mediumNamed(e.media.outside, e.media.loc);
+            scene_.lights_.push_back(std::move(light));
+        }
 }
 
 void SceneBuilder::build() {

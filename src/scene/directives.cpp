@@ -360,6 +360,7 @@ void DescriptionBuilder::lightSource(const Token& d, const std::string& type, Pa
     e.loc = d.loc();
     if (!(gs_.ctm == gs_.ctmEnd)) warning(d.loc(), "LightSource: moving lights are not supported (as in pbrt-v4); the start transform is used");
     e.worldFromLight = gs_.ctm;  // from/to are in this space (§3)
+    e.media = gs_.media;
     desc_.lights.push_back(std::move(e));
 }
 

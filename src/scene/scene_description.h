@@ -50,6 +50,7 @@ struct TextureEntity : SceneEntity {
 
 struct LightEntity : SceneEntity {
     Transform worldFromLight;
+    MediumNames media;  // the MediumInterface current at LightSource (its outside is the light's)
 };
 
 // Which material a shape uses: an anonymous material by index, or a name resolved after

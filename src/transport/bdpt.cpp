@@ -26,21 +26,23 @@ template <typename S>
 BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex* camera, int s, int t, S& sampler,
                                                    PathStats& stats, bool weighted, const MisPrefixes* prefixes,
                                                    const SampleContext* splatTo,
-                                                   const SampledWavelengths* lambda) const {
+                                                   const SampledWavelengths* lambda,
+                                                   const MediaSample* media) const {
     Join j;  // filled in place: it holds a whole vertex
     Connection c;
     if (splatTo) lambda = splatTo->lambda;
+    const uint64_t stream = media ? MediaSample::kFirstConnection + uint64_t(connectionDimension(s, t)) : 0;
     if (s == 0) {
-        joinEmitter(camera, t, lambda, j);
+        joinEmitter(camera, t, lambda, media, j);
     } else if (t > 1 && camera[t - 1].isInfiniteLight()) {
         return c;  // an escaped camera ray is an endpoint only for s = 0
     } else if (t == 1) {
-        joinLens(light[s - 1], sampler, stats, splatTo, j);
+        joinLens(light[s - 1], sampler, stats, splatTo, media, stream, j);
         c.pRaster = j.pRaster;
     } else if (s == 1) {
-        joinLight(camera[t - 1], sampler, stats, lambda, j);
+        joinLight(camera[t - 1], sampler, stats, lambda, media, stream, j);
     } else {
-        joinInner(light[s - 1], camera[t - 1], stats, j);
+        joinInner(light[s - 1], camera[t - 1], stats, media, stream, j);
     }
     if (j.L.isBlack()) return c;
     if (!j.L.isFinite()) {
@@ -55,15 +57,17 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
 }
 
 // The camera subpath found an emitter on its own (s = 0).
-void BDPTIntegrator::joinEmitter(const PathVertex* camera, int t, const SampledWavelengths* lambda, Join& j) const {
+void BDPTIntegrator::joinEmitter(const PathVertex* camera, int t, const SampledWavelengths* lambda,
+                                 const MediaSample* media, Join& j) const {
     const PathVertex& pt = camera[t - 1];
     if (pt.isLight()) j.L = paths_.Le(pt, camera[t - 2], lambda) * pt.beta;
+    if (media) j.L /= channelMean(pt.rU, media->spectral);  // spectral MIS (subpaths_media.cpp)
 }
 
 // Connect light vertex qs to a sampled lens point, to be splatted (t = 1, thesis §10.2).
 template <typename S>
 void BDPTIntegrator::joinLens(const PathVertex& qs, S& sampler, PathStats& stats, const SampleContext* splatTo,
-                              Join& j) const {
+                              const MediaSample* media, uint64_t stream, Join& j) const {
     if (!qs.connectible()) return;
     auto cs = paths_.scene().camera().sampleWi(qs.p, qs.time, sampler.get2D());
     if (!cs) return;
@@ -90,14 +94,14 @@ void BDPTIntegrator::joinLens(const PathVertex& qs, S& sampler, PathStats& stats
     }
     if (!j.L.isBlack()) {
         if (splatTo) splatTo->film.prefetchSplat(j.pRaster, splatTo->sampleIndex);
-        if (!paths_.visible(qs, lens, stats)) j.L = Spectrum();
+        if (!paths_.connectThrough(qs, lens, qs.rU, stats, media, stream, j.L)) j.L = Spectrum();
     }
 }
 
 // Next-event estimation (s = 1): a light point sampled as seen from camera vertex pt.
 template <typename S>
 void BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stats, const SampledWavelengths* lambda,
-                               Join& j) const {
+                               const MediaSample* media, uint64_t stream, Join& j) const {
     if (!pt.connectible()) return;
     // The light is chosen for pt (the scene's light sampler); the weights know the choice
     // through Subpaths::lightChoiceRatio, since the vertex's origin density is the
@@ -143,13 +147,15 @@ void BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stat
         j.L = pt.beta * paths_.f(pt, lv, TransportMode::Radiance) * lv.beta;
         if (pt.onSurface()) j.L *= std::fabs(dot(ls->wi, pt.ns));
     }
-    if (!j.L.isBlack() && !paths_.visible(pt, lv, stats)) j.L = Spectrum();
+    if (!j.L.isBlack() && !paths_.connectThrough(pt, lv, pt.rU, stats, media, stream, j.L)) j.L = Spectrum();
 }
 
 // Both subpaths contribute a vertex (s, t > 1); join them deterministically. One direction
 // serves both BSDFs, the geometry term and the four densities the weight needs.
-void BDPTIntegrator::joinInner(const PathVertex& qs, const PathVertex& pt, PathStats& stats, Join& j) const {
+void BDPTIntegrator::joinInner(const PathVertex& qs, const PathVertex& pt, PathStats& stats, const MediaSample* media,
+                               uint64_t stream, Join& j) const {
     if (!qs.connectible() || !pt.connectible()) return;
+    if (media) return joinInnerInMedia(qs, pt, stats, *media, stream, j);
     Vec3 d = pt.p - qs.p;
     float d2 = lengthSquared(d);
     if (!(d2 > 0)) return;
@@ -170,6 +176,20 @@ void BDPTIntegrator::joinInner(const PathVertex& qs, const PathVertex& pt, PathS
     j.known.ptMinus = atPt.pdfRev * pt.toPrevArea;
     j.known.qsMinus = atQs.pdfRev * qs.toPrevArea;
     j.haveKnown = true;
+}
+
+void BDPTIntegrator::joinInnerInMedia(const PathVertex& qs, const PathVertex& pt, PathStats& stats,
+                                      const MediaSample& media, uint64_t stream, Join& j) const {
+    const Vec3 d = pt.p - qs.p;
+    const float d2 = lengthSquared(d);
+    if (!(d2 > 0)) return;
+    const Vec3 w = d / std::sqrt(d2);
+    // No cosine at a medium vertex: G = 1 / d^2 there (thesis eq. 8.4 in volume measure).
+    const float cosQs = qs.onSurface() ? std::fabs(dot(w, qs.ns)) : 1.0f;
+    const float cosPt = pt.onSurface() ? std::fabs(dot(w, pt.ns)) : 1.0f;
+    j.L = qs.beta * paths_.f(qs, pt, TransportMode::Importance) * paths_.f(pt, qs, TransportMode::Radiance) * pt.beta *
+          (cosQs * cosPt / d2);
+    if (j.L.isBlack() || !paths_.connectThrough(qs, pt, qs.rU * pt.rU, stats, &media, stream, j.L)) j.L = Spectrum();
 }
 
 namespace {
@@ -423,9 +443,12 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
     sampler.startStream(kLightStream);
     const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, ray.time, stats, light, lambda);
     sampler.startStream(kCameraStream);
-    int nCamera = paths_.cameraSubpath(ray, sampler, scratch, stats, camera, cameraVertices, lambda);
+    std::optional<MediaSample> media;
+    if (paths_.scene().hasMedia()) media = paths_.mediaSample(sampler, lambda);
+    const MediaSample* ms = media ? &*media : nullptr;
+    int nCamera = paths_.cameraSubpath(ray, sampler, scratch, stats, camera, cameraVertices, lambda, ms);
     sampler.startStream(kLightStream);
-    int nLight = paths_.continueLightSubpath(origin, sampler, scratch, stats, light, lightVertices, lambda);
+    int nLight = paths_.continueLightSubpath(origin, sampler, scratch, stats, light, lightVertices, lambda, ms);
     sampler.startStream(kConnectionStream);
     const MisPrefixes prefixes = misPrefixes(light, nLight, camera, nCamera, scratch);
 
@@ -443,7 +466,7 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
             // Most camera vertices emit nothing: skip the call for the s = 0 strategy.
             if (s == 0 && !camera[t - 1].isLight()) continue;
             sampler.seekDimension(connectionDimension(s, t));
-            Connection c = connect(light, camera, s, t, sampler, stats, true, &prefixes, splatTo, lambda);
+            Connection c = connect(light, camera, s, t, sampler, stats, true, &prefixes, splatTo, lambda, ms);
             if (c.L.isBlack()) continue;
             c.dispersive = lambda && usesDispersiveVertex(light, camera, s, t);
             deposit(s, t, c);
@@ -499,17 +522,23 @@ bool BDPTIntegrator::strategyContribution(const Ray& ray, Vec2 pFilm, int s, int
         return false;
     PathVertex* camera = allocPath(scratch, t);
     PathVertex* light = allocPath(scratch, std::max(s, 1));
+    std::optional<MediaSample> media;
+    if (paths_.scene().hasMedia()) {
+        sampler.startStream(kCameraStream);
+        media = paths_.mediaSample(sampler, lambda);
+    }
+    const MediaSample* ms = media ? &*media : nullptr;
     // s = 1 samples its light vertex in the connection (joinLight): no light subpath.
     if (s > 1) {
         sampler.startStream(kLightStream);
         const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, ray.time, stats, light, lambda);
-        if (paths_.continueLightSubpath(origin, sampler, scratch, stats, light, s, lambda) != s) return false;
+        if (paths_.continueLightSubpath(origin, sampler, scratch, stats, light, s, lambda, ms) != s) return false;
     }
     sampler.startStream(kCameraStream);
-    if (paths_.cameraSubpath(ray, sampler, scratch, stats, camera, t, lambda) != t) return false;
+    if (paths_.cameraSubpath(ray, sampler, scratch, stats, camera, t, lambda, ms) != t) return false;
     sampler.startStream(kConnectionStream);
     sampler.seekDimension(connectionDimension(s, t));
-    Connection c = connect(light, camera, s, t, sampler, stats, true, nullptr, nullptr, lambda);
+    Connection c = connect(light, camera, s, t, sampler, stats, true, nullptr, nullptr, lambda, ms);
     if (c.L.isBlack() || c.weight == 0) return false;
     out = {t == 1 ? c.pRaster : pFilm, c.L * c.weight, s, t, lambda && usesDispersiveVertex(light, camera, s, t)};
     return true;
@@ -517,7 +546,7 @@ bool BDPTIntegrator::strategyContribution(const Ray& ray, Vec2 pFilm, int s, int
 
 template BDPTIntegrator::Connection BDPTIntegrator::connect<Sampler>(PathVertex*, PathVertex*, int, int, Sampler&,
                                                                      PathStats&, bool, const MisPrefixes*,
-                                                                     const SampleContext*,
-                                                                     const SampledWavelengths*) const;
+                                                                     const SampleContext*, const SampledWavelengths*,
+                                                                     const MediaSample*) const;
 
 }  // namespace ps

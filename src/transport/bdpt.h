@@ -55,7 +55,8 @@ public:
     template <typename S>
     Connection connect(PathVertex* light, PathVertex* camera, int s, int t, S& sampler, PathStats& stats,
                        bool weighted = true, const MisPrefixes* prefixes = nullptr,
-                       const SampleContext* splatTo = nullptr, const SampledWavelengths* lambda = nullptr) const;
+                       const SampleContext* splatTo = nullptr, const SampledWavelengths* lambda = nullptr,
+                       const MediaSample* media = nullptr) const;
     // The reverse densities of the vertices at and next to a connection (area measure):
     // what the weight needs beyond the densities stored by the walks.
     struct EndpointDensities {
@@ -137,12 +138,22 @@ private:
         std::optional<PathVertex> sampled;
         Vec2 pRaster;
     };
-    void joinEmitter(const PathVertex* camera, int t, const SampledWavelengths* lambda, Join& j) const;
+    // `media` (scenes with media): transmittance replaces visibility (Subpaths::connectThrough);
+    // `stream`: the connection's Rng stream.
+    void joinEmitter(const PathVertex* camera, int t, const SampledWavelengths* lambda, const MediaSample* media,
+                     Join& j) const;
     template <typename S>
-    void joinLens(const PathVertex& qs, S& sampler, PathStats& stats, const SampleContext* splatTo, Join& j) const;
+    void joinLens(const PathVertex& qs, S& sampler, PathStats& stats, const SampleContext* splatTo,
+                  const MediaSample* media, uint64_t stream, Join& j) const;
     template <typename S>
-    void joinLight(const PathVertex& pt, S& sampler, PathStats& stats, const SampledWavelengths* lambda, Join& j) const;
-    void joinInner(const PathVertex& qs, const PathVertex& pt, PathStats& stats, Join& j) const;
+    void joinLight(const PathVertex& pt, S& sampler, PathStats& stats, const SampledWavelengths* lambda,
+                   const MediaSample* media, uint64_t stream, Join& j) const;
+    void joinInner(const PathVertex& qs, const PathVertex& pt, PathStats& stats, const MediaSample* media,
+                   uint64_t stream, Join& j) const;
+    // joinInner where either vertex is in a medium: BSDFs or phase functions evaluated alone,
+    // the weight's densities left to misWeight.
+    void joinInnerInMedia(const PathVertex& qs, const PathVertex& pt, PathStats& stats, const MediaSample& media,
+                          uint64_t stream, Join& j) const;
     // misWeight for the heuristics off the prefix-sum path (see general_).
     float weightFromEveryRatio(const PathVertex* light, const PathVertex* camera, const PathVertex* qs,
                                const PathVertex* pt, int s, int t, const EndpointDensities& rev, float choice) const;

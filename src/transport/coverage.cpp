@@ -78,6 +78,11 @@ std::string missingPaths(const Scene& scene, const std::string& integrator) {
                      "specular surface (their caustics are black); use bdpt"
                    : "";
     if (t.infinite) return "light tracing cannot show the environment seen directly; use path or bdpt";
+    // Unbiased, but a scattering point at distance d from the lens contributes 1/d^2, whose
+    // square a volume around the lens does not integrate: the render never converges.
+    if (scene.cameraMedium())
+        return "light tracing from scattering points around a camera in a medium has unbounded variance; use path or "
+               "bdpt";
     if (t.specular)
         return "light tracing cannot show what the camera sees in a specular surface (mirror, smooth glass or "
                "coating); use path or bdpt";
@@ -86,8 +91,14 @@ std::string missingPaths(const Scene& scene, const std::string& integrator) {
 
 std::string unsupportedMedia(const Scene& scene, const std::string& integrator) {
     if (!scene.hasMedia() || integrator == "path") return "";
-    return "integrator \"" + integrator + "\" does not support participating media yet; render this scene with \"path\" "
-           "(pbrt-v4's \"volpath\")";
+    if (integrator == "mlt")
+        return "integrator \"mlt\" (Veach's mutations) does not support participating media yet; render this scene with "
+               "\"path\" (pbrt-v4's \"volpath\"), \"bdpt\", \"light\", \"pssmlt\" or \"mmlt\"";
+    // Medium vertices carry no emission: sigma_a Le is only path tracing's.
+    if (scene.hasEmissiveMedia())
+        return "integrator \"" + integrator + "\" does not support emissive media yet; render this scene with \"path\" "
+               "(pbrt-v4's \"volpath\")";
+    return "";
 }
 
 }  // namespace ps

@@ -22,9 +22,10 @@ std::string missingPaths(const Scene& scene, const std::string& integrator);
 // pbrt-v4.
 std::string inconsistentSurfaces(const Scene& scene, const std::string& integrator);
 
-// Why `integrator` cannot render the scene's participating media, or "" when it can: only the
-// path tracer (pbrt-v4's volpath) has medium vertices yet (issue 36); the others refuse such
-// a scene (createIntegrator) rather than render it without its media.
+// Why `integrator` cannot render the scene's participating media, or "" when it can: the path
+// tracer (pbrt-v4's volpath) and the integrators over the shared subpaths (light, bdpt, pssmlt,
+// mmlt) have medium vertices; Veach's mlt, and emissive media outside path tracing, not yet
+// (issue 36): those refuse the scene (createIntegrator) rather than render it without.
 std::string unsupportedMedia(const Scene& scene, const std::string& integrator);
 
 // Why "light" or "mlt" cannot render through a camera without importance (orthographic,

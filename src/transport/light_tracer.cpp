@@ -1,10 +1,16 @@
 #include "transport/light_tracer.h"
 
 #include <new>
+#include <optional>
 
 namespace ps {
 
-void LightTracer::splatEmitter(const PathVertex& v, SampleContext& ctx) const {
+namespace {
+// The Rng stream of the emitter's own connection to the lens (past every BDPT connection's).
+constexpr uint64_t kEmitterStream = uint64_t(1) << 40;
+}  // namespace
+
+void LightTracer::splatEmitter(const PathVertex& v, SampleContext& ctx, const MediaSample* media) const {
     // Lights at infinity emit along one direction per disk point: the lens never sees them
     // here. Point and spot lights seen directly are not imaged either, as in path tracing
     // (and pbrt-v4): a camera ray cannot hit them.
@@ -19,7 +25,7 @@ void LightTracer::splatEmitter(const PathVertex& v, SampleContext& ctx) const {
     PathVertex lens;
     lens.p = cs->pLens;
     lens.time = v.time;
-    if (!bdpt_.subpaths().visible(v, lens, ctx.stats)) return;
+    if (!bdpt_.subpaths().connectThrough(v, lens, v.rU, ctx.stats, media, kEmitterStream, L)) return;
     ctx.film.addSplat(cs->pRaster, ctx.toFilm(L), ctx.sampleIndex);
 }
 
@@ -30,11 +36,14 @@ Spectrum LightTracer::Li(const Ray& cameraRay, SampleContext& ctx) const {
     int n = paths.maxLightVertices();
     auto* light = static_cast<PathVertex*>(ctx.scratch.allocBytes(sizeof(PathVertex) * size_t(n), alignof(PathVertex)));
     for (int i = 0; i < n; ++i) new (&light[i]) PathVertex();
-    int nLight = paths.lightSubpath(ctx.sampler, cameraRay.time, ctx.scratch, ctx.stats, light, ctx.lambda);
-    if (nLight > 0) splatEmitter(light[0], ctx);
+    std::optional<MediaSample> media;
+    if (paths.scene().hasMedia()) media = paths.mediaSample(ctx.sampler, ctx.lambda);
+    const MediaSample* ms = media ? &*media : nullptr;
+    int nLight = paths.lightSubpath(ctx.sampler, cameraRay.time, ctx.scratch, ctx.stats, light, ctx.lambda, ms);
+    if (nLight > 0) splatEmitter(light[0], ctx, ms);
     PathVertex camera[1];
     for (int s = 2; s <= nLight; ++s) {
-        auto c = bdpt_.connect(light, camera, s, 1, ctx.sampler, ctx.stats, false, nullptr, &ctx);
+        auto c = bdpt_.connect(light, camera, s, 1, ctx.sampler, ctx.stats, false, nullptr, &ctx, nullptr, ms);
         if (!c.L.isBlack()) ctx.film.addSplat(c.pRaster, ctx.toFilm(c.L), ctx.sampleIndex);
     }
     return {};

@@ -17,7 +17,7 @@ public:
 
 private:
     // The (s, t) = (1, 1) strategy: the light point itself seen through the lens.
-    void splatEmitter(const PathVertex& v, SampleContext& ctx) const;
+    void splatEmitter(const PathVertex& v, SampleContext& ctx, const MediaSample* media) const;
     BDPTIntegrator bdpt_;  // its connection code; light tracing uses no MIS
 };
 

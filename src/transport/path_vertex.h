@@ -6,15 +6,20 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <new>
 #include "geometry/interaction.h"
 #include "lights/light.h"
 #include "materials/bxdf.h"
 #include "math/frame.h"
 #include "math/spectrum.h"
+#include "media/medium.h"
 
 namespace ps {
 
-enum class VertexKind : uint8_t { Camera, Light, Surface };
+// Medium: a scattering point in a participating medium, whose "BSDF" is the phase function
+// and whose densities are per unit volume (no cosine: thesis ch. 8's area measure becomes
+// the volume measure there, as in pbrt-v4's BDPT).
+enum class VertexKind : uint8_t { Camera, Light, Surface, Medium };
 
 struct PathVertex {
     VertexKind kind = VertexKind::Surface;
@@ -39,22 +44,35 @@ struct PathVertex {
     float pdfRev = 0;       // density of this vertex from the opposite walk
     float toPrevArea = 0;   // areaFactor(*this, previous vertex of its subpath), surfaces
     float time = 0;         // the path's scene time (motion blur), for the rays it connects
+    // Scenes with media only (subpaths_media.cpp): the medium on the side of ng and the other
+    // (both the same for medium vertices and points without a surface), and the ratios of each
+    // channel's density of the walk's free flights up to here to the hero channel's (the
+    // spectral MIS of media/delta_tracking.h; 1 elsewhere and unread without media).
+    const Medium* mediumAbove = nullptr;
+    const Medium* mediumBelow = nullptr;
+    Spectrum rU{1.0f};
 
     bool onSurface() const { return ng.x != 0 || ng.y != 0 || ng.z != 0; }
     // An escaped camera ray, or an emitter found by the camera subpath, or a light vertex.
     bool isLight() const { return kind == VertexKind::Light || (kind == VertexKind::Surface && light); }
     bool isDeltaLight() const { return kind == VertexKind::Light && light && light->isDelta(); }
     bool isInfiniteLight() const { return kind == VertexKind::Light && infinite; }
+    const Medium* mediumToward(Vec3 w) const { return dot(w, ng) < 0 ? mediumBelow : mediumAbove; }
     // Whether a deterministic connection to another vertex can be made here.
     bool connectible() const {
         switch (kind) {
             case VertexKind::Camera: return true;
             case VertexKind::Light: return !light || light->type() != LightType::DeltaDirection;
             case VertexKind::Surface: return bxdf && nonSpecular;
+            case VertexKind::Medium: return true;
         }
         return false;
     }
 };
+
+// A fresh vertex in place. Assigning PathVertex{} builds a temporary and copies it with wide
+// stores that the field writes after it then stall on (store forwarding), a few percent of BDPT.
+inline PathVertex& resetVertex(PathVertex& v) { return *new (&v) PathVertex(); }
 
 // The cosine that turns a solid-angle density of a direction w arriving at v into an area
 // density there. A flat curve faces each ray, so the point a path meets has no normal of its

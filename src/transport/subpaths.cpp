@@ -5,6 +5,7 @@
 
 #include "lights/infinity_disk.h"
 #include "mc/primary_sample_sampler.h"
+#include "media/transmittance.h"
 
 namespace ps {
 
@@ -12,15 +13,12 @@ namespace {
 
 Vec3 directionTo(const PathVertex& from, const PathVertex& to) { return normalize(to.p - from.p); }
 
-// A fresh vertex in place. Assigning PathVertex{} builds a temporary and copies it with wide
-// stores that the field writes after it then stall on (store forwarding), a few percent of BDPT.
-PathVertex& resetVertex(PathVertex& v) { return *new (&v) PathVertex(); }
-
 }  // namespace
 
 template <typename S>
 int Subpaths::cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats,
-                            PathVertex* path, int maxVertices, SampledWavelengths* lambda) const {
+                            PathVertex* path, int maxVertices, SampledWavelengths* lambda,
+                            const MediaSample* media) const {
     PathVertex& cam = path[0];
     resetVertex(cam);
     cam.kind = VertexKind::Camera;
@@ -41,15 +39,20 @@ int Subpaths::cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, 
         cam.delta = true;
     }
     int n = maxVertices > 0 ? std::min(maxVertices, maxCameraVertices()) : maxCameraVertices();
+    if (media) {
+        cam.mediumAbove = cam.mediumBelow = scene_.cameraMedium();
+        return 1 + randomWalkInMedia(ray, scene_.cameraMedium(), cam.beta, pdfDir, sampler, stats, scratch, path + 1,
+                                     n - 1, TransportMode::Radiance, kCameraStartDimensions, lambda, *media);
+    }
     return 1 + randomWalk(ray, cam.beta, pdfDir, sampler, scratch, stats, path + 1, n - 1, TransportMode::Radiance,
                           kCameraStartDimensions, lambda);
 }
 
 template <typename S>
 int Subpaths::lightSubpath(S& sampler, float time, ScratchBuffer& scratch, PathStats& stats, PathVertex* path,
-                           SampledWavelengths* lambda) const {
+                           SampledWavelengths* lambda, const MediaSample* media) const {
     LightOrigin origin = lightOrigin(sampler, time, stats, path, lambda);
-    return continueLightSubpath(origin, sampler, scratch, stats, path, 0, lambda);
+    return continueLightSubpath(origin, sampler, scratch, stats, path, 0, lambda, media);
 }
 
 template <typename S>
@@ -89,17 +92,25 @@ Subpaths::LightOrigin Subpaths::lightOrigin(S& sampler, float time, PathStats& s
     o.pdfPos = les->pdfPos;
     o.pdfDir = les->pdfDir;
     o.valid = true;
+    if (scene_.hasMedia()) {
+        v.mediumAbove = light->mediumOutside;
+        v.mediumBelow = light->mediumInside;
+        o.medium = light->mediumToward(les->n, les->ray.d);
+    }
     return o;
 }
 
 template <typename S>
 int Subpaths::continueLightSubpath(const LightOrigin& o, S& sampler, ScratchBuffer& scratch, PathStats& stats,
-                                   PathVertex* path, int maxVertices, SampledWavelengths* lambda) const {
+                                   PathVertex* path, int maxVertices, SampledWavelengths* lambda,
+                                   const MediaSample* media) const {
     if (!o.valid) return 0;
     PathVertex& v = path[0];
     int limit = maxVertices > 0 ? std::min(maxVertices, maxLightVertices()) : maxLightVertices();
-    int n = randomWalk(o.ray, o.beta, o.pdfDir, sampler, scratch, stats, path + 1, limit - 1,
-                       TransportMode::Importance, kLightStartDimensions, lambda);
+    int n = media ? randomWalkInMedia(o.ray, o.medium, o.beta, o.pdfDir, sampler, stats, scratch, path + 1, limit - 1,
+                                      TransportMode::Importance, kLightStartDimensions, lambda, *media)
+                  : randomWalk(o.ray, o.beta, o.pdfDir, sampler, scratch, stats, path + 1, limit - 1,
+                               TransportMode::Importance, kLightStartDimensions, lambda);
     // From a disk at infinity the second vertex's density is the disk's area density
     // projected onto its surface, and the first is the directional density (thesis §10.2).
     if (v.infinite) {
@@ -139,15 +150,7 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
         if (!scene_.intersect(ray, si)) {
             // A camera ray leaving the scene ends on the infinite lights (the s = 0 strategy).
             if (mode == TransportMode::Radiance && !scene_.infiniteLights().empty()) {
-                resetVertex(v);
-                v.kind = VertexKind::Light;
-                v.mode = mode;
-                v.infinite = true;
-                v.time = ray.time;
-                v.p = ray.o + ray.d;
-                v.wo = -ray.d;
-                v.beta = beta;
-                v.pdfFwd = pdfFwd;
+                initEscapeVertex(v, ray, beta, pdfFwd);
                 ++bounces;
             }
             break;
@@ -161,61 +164,27 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
             continue;
         }
         resetVertex(v);
-        v.kind = VertexKind::Surface;
-        v.mode = mode;
-        v.p = si.p;
-        v.time = ray.time;
-        v.ng = si.ng;
-        v.ns = si.ns;
-        v.wo = si.wo;
-        v.uv = si.uv;
-        v.frame = si.shadingFrame();
-        v.bxdf = bxdf;
-        v.nonSpecular = (bxdf->flags() & (kDiffuse | kGlossy)) != 0;
-        v.facesRay = si.fibre == FibreKind::FacingRay;
-        // On a strip facing each ray (flat and cylinder curves) the factor's geometric cosines
-        // would be the strip's, which turns with the ray that met it: the hair BSDF's adjoint
-        // makes the same correction with the fibre's projected widths (hair_bxdf.cpp).
-        v.flatShading = si.ns == si.ng || v.facesRay;
+        initSurfaceVertex(v, si, bxdf, mode, ray.time);
         v.dispersive = lambda && lambda->terminationRequests != terminationRequests;
-        v.light = si.areaLight;
         v.beta = beta;
         float toThisArea;
         areaFactors(prev, v, &toThisArea, &v.toPrevArea);
         v.pdfFwd = pdfFwd * toThisArea;
-        Vec3 woLocal = v.woLocal = v.frame.toLocal(si.wo);
+        Vec3 woLocal = v.woLocal;
         if (++bounces >= maxVertices) break;
 
         if (woLocal.z == 0) break;
         sampler.seekDimension(block + 2);
         float uc = bxdf->usesLobeSample() ? sampler.get1D() : 0.5f;
-        auto bs = bxdf->sample(woLocal, uc, u, mode);
         haveU = false;
-        if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) break;
-        Vec3 wi = v.frame.toWorld(bs->wi);
-        Spectrum weight = bs->f * (absCosTheta(bs->wi) / bs->pdf);
-        if (mode == TransportMode::Importance && !v.flatShading)
-            weight *= adjointShadingFactor(si.wo, wi, si.ns, si.ng);
-        if (!weight.isFinite()) {
-            ++stats.guarded;
-            break;
-        }
-        beta *= weight;
-        scatter *= weight;
-        // Layered BxDFs only know their pdf up to a factor; MIS needs the true density.
-        pdfFwd = bs->pdfIsProportional ? bxdf->pdf(woLocal, bs->wi, mode) : bs->pdf;
-        float pdfRev = bxdf->pdf(bs->wi, woLocal, adjoint(mode));
-        if (bs->isSpecular()) {
-            // Delta lobes: no strategy connects to this vertex, and in the MIS ratios (thesis
-            // §10.3.5) the delta density of a scattering direction and that of its reverse
-            // cancel. They stand in as a unit density per solid angle, so the neighbours'
-            // area densities keep their geometric factors cos / d^2: dropping those (a zero
-            // density remapped to 1, as pbrt-v4 does) misweights strategies through specular
-            // chains, e.g. 4.9x the variance of the weights kept here for a light inside glass.
-            v.delta = true;
-            pdfFwd = pdfRev = 1;
-        }
-        if (mode == TransportMode::Radiance && bs->isTransmission()) etaScale *= sqr(bs->eta);
+        SurfaceScatter sc;
+        if (!scatterAtSurface(v, uc, u, mode, stats, sc)) break;
+        beta *= sc.weight;
+        scatter *= sc.weight;
+        pdfFwd = sc.pdfFwd;
+        etaScale *= sc.etaSq;
+        const float pdfRev = sc.pdfRev;
+        const Vec3 wi = sc.wi;
         prev.pdfRev = pdfRev * v.toPrevArea;
         ray = spawnRay(si.p, si.ng, wi, ray.time);
         if (beta.isBlack()) break;
@@ -234,15 +203,33 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
     return bounces;
 }
 
+template <typename S>
+MediaSample Subpaths::mediaSample(S& sampler, const SampledWavelengths* lambda) const {
+    MediaSample m;
+    m.spectral = lambda != nullptr;
+    m.lambda = lambda;
+    // Past the time and the Metropolis wavelengths' value (chains.cpp).
+    sampler.seekDimension(timeDimension() + 2);
+    const float uHero = sampler.get1D();
+    // The hero must be each channel with equal probability for the channel mean of the
+    // densities to make an unbiased estimator; spectral mode's lambda[0] already is.
+    if (!m.spectral) m.hero = std::min(2, int(uHero * 3));
+    const float u0 = sampler.get1D(), u1 = sampler.get1D();
+    m.seed = hashCombine(uint64_t(u0 * 16777216.0f), uint64_t(u1 * 16777216.0f));
+    return m;
+}
+
 #define PS_SUBPATH_WALKS(S)                                                                                  \
     template int Subpaths::cameraSubpath<S>(const Ray&, S&, ScratchBuffer&, PathStats&, PathVertex*, int,      \
-                                            SampledWavelengths*) const;                                        \
+                                            SampledWavelengths*, const MediaSample*) const;                    \
     template int Subpaths::lightSubpath<S>(S&, float, ScratchBuffer&, PathStats&, PathVertex*,                 \
-                                           SampledWavelengths*) const;                                         \
+                                           SampledWavelengths*, const MediaSample*) const;                     \
     template Subpaths::LightOrigin Subpaths::lightOrigin<S>(S&, float, PathStats&, PathVertex*,                 \
                                                             const SampledWavelengths*) const;                  \
     template int Subpaths::continueLightSubpath<S>(const LightOrigin&, S&, ScratchBuffer&, PathStats&,          \
-                                                   PathVertex*, int, SampledWavelengths*) const;
+                                                   PathVertex*, int, SampledWavelengths*, const MediaSample*)  \
+        const;                                                                                                 \
+    template MediaSample Subpaths::mediaSample<S>(S&, const SampledWavelengths*) const;
 PS_SUBPATH_WALKS(Sampler)
 PS_SUBPATH_WALKS(PaddedSobolSampler)
 PS_SUBPATH_WALKS(IndependentSampler)
@@ -250,8 +237,10 @@ PS_SUBPATH_WALKS(PrimarySampleSampler)
 #undef PS_SUBPATH_WALKS
 
 Spectrum Subpaths::f(const PathVertex& v, const PathVertex& next, TransportMode mode) const {
-    if (v.kind != VertexKind::Surface || !v.bxdf) return {};
     Vec3 wi = directionTo(v, next);
+    // The phase function is symmetric: no adjoint.
+    if (v.kind == VertexKind::Medium) return Spectrum(v.mediumAbove->phase().p(v.wo, wi));
+    if (v.kind != VertexKind::Surface || !v.bxdf) return {};
     Spectrum fv = v.bxdf->f(v.frame.toLocal(v.wo), v.frame.toLocal(wi), mode);
     if (mode == TransportMode::Importance && !v.flatShading) fv *= adjointShadingFactor(v.wo, wi, v.ns, v.ng);
     return fv;
@@ -268,6 +257,11 @@ float Subpaths::pdf(const PathVertex& v, const PathVertex* prev, const PathVerte
         Ray toNext{v.p, wn};
         toNext.time = v.time;  // a moving lens where it is at the path's time
         scene_.camera().pdfWe(toNext, &pdfPos, &pdfDir);
+    } else if (v.kind == VertexKind::Medium) {
+        // Densities exclude the free flights' (MIS weights over channel-independent densities:
+        // subpaths_media.cpp), so a medium vertex's is its phase function's alone.
+        if (!prev) return 0;
+        pdfDir = v.mediumAbove->phase().pdf(directionTo(v, *prev), wn);
     } else {
         if (!prev || !v.bxdf) return 0;
         Vec3 wp = directionTo(v, *prev);
@@ -324,6 +318,21 @@ Spectrum Subpaths::Le(const PathVertex& v, const PathVertex& to, const SampledWa
 bool Subpaths::visible(const PathVertex& a, const PathVertex& b, PathStats& stats) const {
     ++stats.shadowRays;
     return !scene_.occluded(spawnRayTo(a.p, a.ng, b.p, a.time));  // both ends share the path's time
+}
+
+bool Subpaths::connectThrough(const PathVertex& a, const PathVertex& b, const Spectrum& rU, PathStats& stats,
+                              const MediaSample* media, uint64_t stream, Spectrum& L) const {
+    if (!media) return visible(a, b, stats);
+    ++stats.shadowRays;
+    Rng rng(hashCombine(media->seed, stream));
+    const TransmittanceEstimate tr = transmittance(scene_, a.p, a.ng, a.mediumToward(b.p - a.p), b.p, a.time,
+                                                   media->lambda, media->hero, media->spectral, rng);
+    stats.rays += tr.rays > 0 ? uint64_t(tr.rays - 1) : 0;
+    if (tr.T.isBlack()) return false;
+    // Ratio tracking sampled its null collisions by the hero's majorant: tr.rL is each
+    // channel's density of them relative to the hero's, a factor of the path's densities.
+    L *= tr.T / channelMean(rU * tr.rL, media->spectral);
+    return true;
 }
 
 float Subpaths::lightChoiceRatio(const PathVertex& y0, const PathVertex& y1) const {

@@ -6,7 +6,7 @@
 // which also combines light and scattering sampling by the balance heuristic. In RGB mode the
 // three channels play the wavelengths' part and the hero is drawn per path.
 #include "mc/mis.h"
-#include "media/majorant_tracking.h"
+#include "media/delta_tracking.h"
 #include "media/transmittance.h"
 #include "transport/path_tracer.h"
 
@@ -80,73 +80,35 @@ Spectrum PathTracer::estimateInMedia(const Ray& cameraRay, Sampler& sampler, Scr
         ++stats.rays;
         const bool hit = scene_.intersect(ray, si);
         if (medium) {
-            bool scattered = false, terminated = false;
             const float tEnd = hit ? si.t : std::numeric_limits<float>::infinity();
-            Spectrum Tmaj = sampleMajorant(*medium, ray, tEnd, sampler.get1D(), rng, lambda, h,
-                                           [&](Vec3 p, const MediumProperties& mp, const Spectrum& sigmaMaj, const Spectrum& Tm) {
+            const Flight fl = deltaTrack(*medium, ray, tEnd, sampler.get1D(), rng, lambda, h, st.beta, st.rU, &st.rL,
+                                         [&](const MediumProperties& mp, const Spectrum& sigmaMaj, const Spectrum& Tm) {
                 // Emission along the flight (pbrt-v4 adds sigma_a Le at every tentative collision).
                 if (depth < maxDepth_ && !mp.Le.isBlack()) {
                     const float pdf = sigmaMaj[h] * Tm[h];
                     const Spectrum betaE = st.beta * Tm / pdf, rE = st.rU * sigmaMaj * Tm / pdf;
                     if (!rE.isBlack()) st.L += betaE * mp.sigmaA * mp.Le / st.mean(rE);
                 }
-                const float pAbsorb = mp.sigmaA[h] / sigmaMaj[h], pScatter = mp.sigmaS[h] / sigmaMaj[h];
-                const float uMode = rng.uniform();
-                if (uMode < pAbsorb) {
-                    terminated = true;
-                    return false;
-                }
-                if (uMode < pAbsorb + pScatter) {
-                    if (depth++ >= maxDepth_) {
-                        terminated = true;
-                        return false;
-                    }
-                    const float pdf = Tm[h] * mp.sigmaS[h];
-                    st.beta *= Tm * mp.sigmaS / pdf;
-                    st.rU *= Tm * mp.sigmaS / pdf;
-                    if (st.beta.isBlack() || st.rU.isBlack()) {
-                        terminated = true;
-                        return false;
-                    }
-                    VolVertex v;
-                    v.p = p;
-                    v.wo = -normalize(ray.d);
-                    v.medium = medium;
-                    v.time = ray.time;
-                    st.L += sampleDirectInMedia(v, st.beta, st.rU, h, sampler, rng, lambda, stats);
-                    float phasePdf = 0;
-                    const Vec3 wi = medium->phase().sample(v.wo, sampler.get2D(), &phasePdf);
-                    if (!(phasePdf > 0)) {
-                        terminated = true;
-                        return false;
-                    }
-                    // HG samples its own density: p / pdf = 1.
-                    st.rL = st.rU / phasePdf;
-                    prevCtx = LightSampleContext{p, Vec3(0, 0, 0)};
-                    scattered = true;
-                    ray = Ray{p, wi, std::numeric_limits<float>::infinity(), ray.time};
-                    specularBounce = false;
-                    return false;
-                }
-                // A null collision: the flight goes on.
-                const Spectrum sigmaN = clampZero(sigmaMaj - mp.sigmaA - mp.sigmaS);
-                const float pdf = Tm[h] * sigmaN[h];
-                if (!(pdf > 0)) {
-                    st.beta = Spectrum(0.0f);
-                    return false;
-                }
-                st.beta *= Tm * sigmaN / pdf;
-                st.rU *= Tm * sigmaN / pdf;
-                st.rL *= Tm * sigmaMaj / pdf;
-                return !st.beta.isBlack() && !st.rU.isBlack();
             });
-            if (terminated || st.beta.isBlack() || st.rU.isBlack() || !st.beta.isFinite()) return st.L;
-            if (scattered) continue;
-            const float th = Tmaj[h];
-            if (!(th > 0)) return st.L;
-            st.beta *= Tmaj / th;
-            st.rU *= Tmaj / th;
-            st.rL *= Tmaj / th;
+            if (fl.end == FlightEnd::Absorbed || !st.beta.isFinite()) return st.L;
+            if (fl.end == FlightEnd::Scattered) {
+                if (depth++ >= maxDepth_) return st.L;
+                VolVertex v;
+                v.p = fl.p;
+                v.wo = -normalize(ray.d);
+                v.medium = medium;
+                v.time = ray.time;
+                st.L += sampleDirectInMedia(v, st.beta, st.rU, h, sampler, rng, lambda, stats);
+                float phasePdf = 0;
+                const Vec3 wi = medium->phase().sample(v.wo, sampler.get2D(), &phasePdf);
+                if (!(phasePdf > 0)) return st.L;
+                // HG samples its own density: p / pdf = 1.
+                st.rL = st.rU / phasePdf;
+                prevCtx = LightSampleContext{fl.p, Vec3(0, 0, 0)};
+                ray = Ray{fl.p, wi, std::numeric_limits<float>::infinity(), ray.time};
+                specularBounce = false;
+                continue;
+            }
         }
 
         // Emission found by the walk, weighed against light sampling from the previous vertex

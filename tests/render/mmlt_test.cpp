@@ -105,8 +105,9 @@ std::string diffuseBox() {
 // shorter subpaths) to the same target value, and every strategy it does not report
 // evaluates to zero. This is what lets the chains start from the bootstrap's states in
 // proportion to their weights without start-up bias.
-TEST(MMLTBootstrap, EachStateIsItsStrategyAlone) {
-    auto scene = parse(kGlassBox);
+namespace {
+void expectEachStateIsItsStrategyAlone(const std::string& text) {
+    auto scene = parse(text);
     MMLTIntegrator mmlt(*scene, 4);
     const StrategyChoice choice = mmlt.defaultChoice().withWeights([&] {
         std::vector<float> w(size_t(mmlt.defaultChoice().size()));
@@ -154,6 +155,19 @@ TEST(MMLTBootstrap, EachStateIsItsStrategyAlone) {
     EXPECT_GT(states, 500);
     // s = 0, s = 1, t = 1 and inner connections at several depths.
     EXPECT_GE(kinds.size(), size_t(10));
+}
+}  // namespace
+
+TEST(MMLTBootstrap, EachStateIsItsStrategyAlone) { expectEachStateIsItsStrategyAlone(kGlassBox); }
+
+// The same with the camera and the lights in fog: medium vertices, their free flights and
+// every connection's transmittance draw their numbers per walk and per strategy
+// (MediaSample), so a strategy evaluated alone tracks what it did in the whole sample.
+TEST(MMLTBootstrap, EachStateIsItsStrategyAloneInFog) {
+    expectEachStateIsItsStrategyAlone(std::string(R"(MakeNamedMedium "fog" "string type" "homogeneous"
+        "rgb sigma_a" [ 0.2 0.1 0.3 ] "rgb sigma_s" [ 0.9 0.5 0.2 ] "float g" [ 0.4 ]
+    MediumInterface "" "fog"
+)") + kGlassBox);
 }
 
 // The pilot learns how often to choose each depth: close to each depth's share of the
