@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Set up, build and run the whole test suite; then the same suite under ASan+UBSan, and a short
-# seeded fuzz run of each fuzz target (about 50 minutes in all on 2 cores for a clean clone, 9
-# of them the agreement matrix; see docs/hardening.md). The long tier: scripts/test-long.sh.
+# seeded fuzz run of each fuzz target (about 45 minutes in all on 2 cores for a clean clone:
+# some 25 of them compiling the two builds, 9 the agreement matrix; see docs/hardening.md).
+# The long tier: scripts/test-long.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh

@@ -20,7 +20,7 @@ namespace {
 // 64 x 16 pixels, fov 90 (tan = 1) spanning the 16 rows: the plane z = 5 is seen over
 // x in [-20, 20], y in [-5, 5]; column i covers x in [-20 + 0.625 i, -20 + 0.625 (i + 1)].
 constexpr int kW = 64, kH = 16;
-constexpr double kPlaneZ = 5, kColumnWidth = 40.0 / kW;
+constexpr double kColumnWidth = 40.0 / kW;
 
 // A white two-sided emitter behind everything (light tracing cannot see an infinite light)
 // and a black quad [0, 5] x [-10, 10] in the plane z = 5, placed by `quadTransform`.
