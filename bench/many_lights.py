@@ -71,9 +71,9 @@ def with_lightsampler(scene, sampler, tmp):
     return path
 
 
-def ours(scene, out, seed, threads, spp=None, seconds=None, integrator="path", stats=None):
+def ours(scene, out, seed, threads, spp=None, seconds=None, integrator="path", stats=None, extra=()):
     cmd = [PATHSPACE, "render", scene, "--integrator", integrator, "--threads", str(threads), "--seed", str(seed),
-           "--quiet", "-o", out]
+           "--quiet", "-o", out, *extra]
     cmd += ["--spp", str(spp)] if spp else ["--spp", "100000000", "--time", str(seconds)]
     if stats:
         cmd += ["--stats", stats]

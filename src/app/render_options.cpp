@@ -108,6 +108,17 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
                 return std::string(e.what());
             }
         });
+    cmd->add_option("--light-paths", a.lightPaths,
+                    "With --integrator bdpt: light subpaths per camera sample, in (0, 1] (default 1). Below 1, "
+                    "a sample traces its light subpath with this probability and the strategies that use it "
+                    "count as fewer samples in the MIS weights (docs/integrators.md): cheaper samples where "
+                    "light subpaths add little, as in directly lit scenes")
+        ->check([](const std::string& v) {
+            char* end = nullptr;
+            const float f = std::strtof(v.c_str(), &end);
+            return !v.empty() && *end == '\0' && f > 0 && f <= 1 ? std::string()
+                                                                 : "expected a share in (0, 1], got \"" + v + "\"";
+        });
     cmd->add_option("--sampler", a.sampler,
                      "Sample placement per pixel: sobol (default; Owen-scrambled Sobol, padded), zsobol (Sobol in "
                      "Morton order over the image: blue-noise error), halton (Owen-scrambled Halton), orthogonal "
@@ -214,7 +225,7 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
     cmd->add_flag("--quiet", a.quiet, "No progress bar or statistics on the terminal");
 
     const std::pair<const char*, std::vector<const char*>> groups[] = {
-        {"Rendering", {"--spp", "--time", "--threads", "--seed", "--maxdepth", "--integrator", "--mis", "--sampler",
+        {"Rendering", {"--spp", "--time", "--threads", "--seed", "--maxdepth", "--integrator", "--mis", "--light-paths", "--sampler",
                        "--adaptive", "--color", "--max-memory"}},
         {"Output", {"--output", "--aov", "--crop", "--pixelbounds", "--stats", "--bdpt-strategies", "--quiet"}},
         {"Checkpoints", {"--checkpoint", "--checkpoint-every", "--resume"}},
@@ -305,6 +316,11 @@ void configureRender(Scene& scene, const RenderArgs& a, RenderSetup& setup) {
     // pbrt-v4 warns too: a scene without emitters renders black.
     if (scene.lights().empty()) warning("the scene has no light source or emitting shape: the image will be black");
     std::unique_ptr<Integrator>& integrator = setup.integrator;
+    if (a.lightPaths > 0) {
+        if (settings.integrator != "bdpt")
+            throw InputError("--light-paths needs --integrator bdpt (the render uses \"" + settings.integrator + "\")");
+        settings.bdptLightPaths = a.lightPaths;
+    }
     integrator = createIntegrator(settings.integrator, scene, a.mis);
     // Not silent: their weights jump where densities cross, and rounding there biases a little.
     if (!a.mis.empty()) {
@@ -422,6 +438,7 @@ nlohmann::json renderStatistics(const Scene& scene, const RenderArgs& a, const R
         {"warnings", warningCount()},
         {"memory_limit_bytes", memoryLimit()},
     };
+    if (settings.integrator == "bdpt") stats["light_paths_per_sample"] = settings.bdptLightPaths;
     const MetropolisStats& ms = r.metropolis;
     // Veach's mlt has no large and small steps in primary sample space: those fields are
     // pssmlt's and mmlt's alone.

@@ -25,6 +25,7 @@ struct RenderArgs {
     int maxDepth = -1;
     std::string integrator;
     std::string mis;  // empty: the default (power, beta 2)
+    float lightPaths = 0;  // --light-paths (bdpt): 0 = not given (one light subpath per sample)
     std::string strategiesDir;
     bool keepStrategies = false;  // strategy images kept in memory (the Python module), not written
     std::string sampler;

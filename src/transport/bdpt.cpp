@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <new>
 #include <optional>
+#include <stdexcept>
 #include <type_traits>
 #include <vector>
 
@@ -232,11 +233,23 @@ double choiceTerm(float k) {
     if constexpr (H == MisHeuristic::Power) return double(k) * k;
     return k;
 }
-// At m = 1 the strategy counted is s = 1, whose term carries its light choice (choice).
+// A sample count's term: strategies that use the light subpath (s >= 2) take `share`
+// samples per camera sample, the others one (BDPTIntegrator::setLightPathShare); a density
+// ratio between the two kinds carries the ratio of their counts (thesis §9.2, n_i p_i).
 template <MisHeuristic H>
-double lightPrefixStep(const PathVertex* light, int m, double before, float choice) {
+double countTerm(float ratio) {
+    if constexpr (H == MisHeuristic::Uniform) return 1.0;
+    if constexpr (H == MisHeuristic::Power) return double(ratio) * ratio;
+    return ratio;
+}
+// At m = 1 the strategy counted is s = 1, whose term carries its light choice (choice). The
+// sums are used from strategies s >= 3, so the terms of s' = 0 and 1 carry their count
+// relative to a light subpath's (fewer: 1 / share).
+template <MisHeuristic H>
+double lightPrefixStep(const PathVertex* light, int m, double before, float choice, double fewer) {
     bool valid = !light[m].delta && !(m > 0 ? light[m - 1].delta : light[0].isDeltaLight());
-    return misTerm<H>(light[m].pdfRev, light[m].pdfFwd) * ((valid ? (m == 1 ? choiceTerm<H>(choice) : 1) : 0) + before);
+    const double own = m == 1 ? choiceTerm<H>(choice) * fewer : m == 0 ? fewer : 1.0;
+    return misTerm<H>(light[m].pdfRev, light[m].pdfFwd) * ((valid ? own : 0) + before);
 }
 
 // Calls f with the heuristic as a compile-time constant.
@@ -272,7 +285,9 @@ BDPTIntegrator::MisPrefixes BDPTIntegrator::misPrefixes(const PathVertex* light,
         constexpr MisHeuristic H = decltype(h)::value;
         cam[0] = 0;
         for (int m = 1; m <= nCamera - 2; ++m) cam[m] = cameraPrefixStep<H>(camera, m, cam[m - 1]);
-        for (int m = 0; m <= nLight - 2; ++m) lig[m] = lightPrefixStep<H>(light, m, m > 0 ? lig[m - 1] : 0.0, choice);
+        const double fewer = countTerm<H>(1 / lightPathShare_);
+        for (int m = 0; m <= nLight - 2; ++m)
+            lig[m] = lightPrefixStep<H>(light, m, m > 0 ? lig[m - 1] : 0.0, choice, fewer);
     });
     return {cam, lig, choice};
 }
@@ -318,6 +333,9 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
     if (general_) return weightFromEveryRatio(light, camera, qs, pt, s, t, rev, choice);
     double sum = withHeuristic(heuristic_, [&](auto h) {
         constexpr MisHeuristic H = decltype(h)::value;
+        // Sample counts (setLightPathShare): from s <= 1, the strategies s' >= 2 count
+        // `more`; from s >= 2, s' <= 1 count `fewer`.
+        const double more = countTerm<H>(lightPathShare_), fewer = countTerm<H>(1 / lightPathShare_);
         // Beyond the two vertices at each side of the join, each side contributes its
         // running sum: from the prefixes, or walked here.
         double cameraTail = 0, lightTail = 0;
@@ -326,7 +344,7 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
             for (int m = 1; m <= t - 3; ++m) cameraTail = cameraPrefixStep<H>(camera, m, cameraTail);
         if (s >= 3 && prefixes) lightTail = prefixes->light[s - 3];
         if (s >= 3 && !prefixes)
-            for (int m = 0; m <= s - 3; ++m) lightTail = lightPrefixStep<H>(light, m, lightTail, choice);
+            for (int m = 0; m <= s - 3; ++m) lightTail = lightPrefixStep<H>(light, m, lightTail, choice, fewer);
         // The join's own vertices take this connection's densities, and were reached by a
         // deterministic connection, not a specular bounce. Where a term counts the s = 1
         // strategy (s' = 1 from s = 0, 2 or 3), it carries that strategy's light choice.
@@ -337,18 +355,20 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
                 bool valid = !camera[t - 2].delta && !camera[t - 3].delta;
                 inner = misTerm<H>(rev.ptMinus, camera[t - 2].pdfFwd) * ((valid ? 1 : 0) + cameraTail);
             }
+            if (s == 0) inner *= more;  // s' >= 2
             const double sOne = s == 0 ? choiceTerm<H>(choice) : 1.0;
-            total += misTerm<H>(rev.pt, pt->pdfFwd) * ((camera[t - 2].delta ? 0 : sOne) + inner);
+            const double side = misTerm<H>(rev.pt, pt->pdfFwd) * ((camera[t - 2].delta ? 0 : sOne) + inner);
+            total += s == 1 ? side * more : side;
         }
         if (s >= 1) {
             double inner = 0;
             if (s >= 2) {
                 bool valid = !light[s - 2].delta && !(s >= 3 ? light[s - 3].delta : light[0].isDeltaLight());
-                const double sOne = s == 3 ? choiceTerm<H>(choice) : 1.0;
+                const double sOne = s == 3 ? choiceTerm<H>(choice) * fewer : s == 2 ? fewer : 1.0;
                 inner = misTerm<H>(rev.qsMinus, light[s - 2].pdfFwd) * ((valid ? sOne : 0) + lightTail);
             }
             bool valid = s >= 2 ? !light[s - 2].delta : !qs->isDeltaLight();
-            const double sOne = s == 2 ? choiceTerm<H>(choice) : 1.0;
+            const double sOne = s == 2 ? choiceTerm<H>(choice) * fewer : 1.0;
             total += misTerm<H>(rev.qs, qs->pdfFwd) * ((valid ? sOne : 0) + inner);
         }
         // From s = 1 itself, every other strategy's ratio divides by its light choice.
@@ -377,31 +397,36 @@ float BDPTIntegrator::weightFromEveryRatio(const PathVertex* light, const PathVe
         r = heap.data();
     }
     int n = 0;
+    // Each ratio carries the sample counts' ratio (setLightPathShare): strategy s' takes
+    // `share` samples if it uses the light subpath (s' >= 2), else one.
+    const auto count = [&](int sPrime) { return sPrime >= 2 ? double(lightPathShare_) : 1.0; };
+    const double own = count(s);
+    const auto keep = [&](double R, int sPrime) { r[n++] = R * (count(sPrime) / own); };
     // Towards the camera: strategies (s + 1, t - 1), (s + 2, t - 2), ..., t' = 1.
     if (t >= 2) {
         double R = term(rev.pt, pt->pdfFwd);
-        if (!camera[t - 2].delta) r[n++] = R * (s == 0 ? choice : 1.0);  // s' = 1 carries its light choice
+        if (!camera[t - 2].delta) keep(R * (s == 0 ? choice : 1.0), s + 1);  // s' = 1 carries its light choice
         if (t >= 3) {
             R *= term(rev.ptMinus, camera[t - 2].pdfFwd);
-            if (!camera[t - 2].delta && !camera[t - 3].delta) r[n++] = R;
+            if (!camera[t - 2].delta && !camera[t - 3].delta) keep(R, s + 2);
             for (int m = t - 3; m >= 1; --m) {
                 R *= term(camera[m].pdfRev, camera[m].pdfFwd);
-                if (!camera[m].delta && !camera[m - 1].delta) r[n++] = R;
+                if (!camera[m].delta && !camera[m - 1].delta) keep(R, s + t - m);
             }
         }
     }
     // Towards the light: strategies (s - 1, t + 1), ..., s' = 0.
     if (s >= 1) {
         double R = term(rev.qs, qs->pdfFwd);
-        if (s >= 2 ? !light[s - 2].delta : !qs->isDeltaLight()) r[n++] = R * (s == 2 ? choice : 1.0);
+        if (s >= 2 ? !light[s - 2].delta : !qs->isDeltaLight()) keep(R * (s == 2 ? choice : 1.0), s - 1);
         if (s >= 2) {
             R *= term(rev.qsMinus, light[s - 2].pdfFwd);
             if (!light[s - 2].delta && !(s >= 3 ? light[s - 3].delta : light[0].isDeltaLight()))
-                r[n++] = R * (s == 3 ? choice : 1.0);
+                keep(R * (s == 3 ? choice : 1.0), s - 2);
             for (int m = s - 3; m >= 0; --m) {
                 R *= term(light[m].pdfRev, light[m].pdfFwd);
                 if (!light[m].delta && !(m > 0 ? light[m - 1].delta : light[0].isDeltaLight()))
-                    r[n++] = R * (m == 1 ? choice : 1.0);
+                    keep(R * (m == 1 ? choice : 1.0), m);
             }
         }
     }
@@ -411,6 +436,11 @@ float BDPTIntegrator::weightFromEveryRatio(const PathVertex* light, const PathVe
         for (int i = 0; i < n; ++i) r[i] /= choice;
     }
     return float(mis_.weightFromRatios(r, n));
+}
+
+void BDPTIntegrator::setLightPathShare(float share) {
+    if (!(share > 0 && share <= 1)) throw std::invalid_argument("the light path share must be in (0, 1]");
+    lightPathShare_ = share;
 }
 
 void BDPTIntegrator::recordStrategies(int maxDepth) {
@@ -441,18 +471,24 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
     // The light subpath's origin first: its sampling then overlaps the camera walk.
     if (splatTo) lambda = splatTo->lambda;
     sampler.startStream(kLightStream);
-    const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, ray.time, stats, light, lambda);
+    // With a light path share below 1, this sample traces its light subpath with that
+    // probability (setLightPathShare); the decision takes the light stream's first dimension.
+    const bool traceLight = lightPathShare_ >= 1 || sampler.get1D() < lightPathShare_;
+    Subpaths::LightOrigin origin;
+    if (traceLight) origin = paths_.lightOrigin(sampler, ray.time, stats, light, lambda);
     sampler.startStream(kCameraStream);
     std::optional<MediaSample> media;
     if (paths_.scene().hasMedia()) media = paths_.mediaSample(sampler, lambda);
     const MediaSample* ms = media ? &*media : nullptr;
     int nCamera = paths_.cameraSubpath(ray, sampler, scratch, stats, camera, cameraVertices, lambda, ms);
     sampler.startStream(kLightStream);
-    int nLight = paths_.continueLightSubpath(origin, sampler, scratch, stats, light, lightVertices, lambda, ms);
+    const int nLight =
+        traceLight ? paths_.continueLightSubpath(origin, sampler, scratch, stats, light, lightVertices, lambda, ms) : 0;
     sampler.startStream(kConnectionStream);
     const MisPrefixes prefixes = misPrefixes(light, nLight, camera, nCamera, scratch);
 
     const int maxDepth = paths_.maxDepth();
+    const float invShare = 1 / lightPathShare_;
     // s = 1 samples its own light vertex (joinLight), so it runs even when the light subpath
     // is empty: its origin can fail where light sampling succeeds (a cut-out point of an
     // emitter with alpha), and skipping s = 1 then would bias it by the chance of that failure.
@@ -468,6 +504,7 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
             sampler.seekDimension(connectionDimension(s, t));
             Connection c = connect(light, camera, s, t, sampler, stats, true, &prefixes, splatTo, lambda, ms);
             if (c.L.isBlack()) continue;
+            if (s >= 2) c.L *= invShare;  // traced with probability share: unbiased in expectation
             c.dispersive = lambda && usesDispersiveVertex(light, camera, s, t);
             deposit(s, t, c);
         }

@@ -111,6 +111,15 @@ public:
                               ScratchBuffer& scratch, PathStats& stats, PathContribution& out,
                               SampledWavelengths* lambda = nullptr) const;
     void setRoulette(bool on) { paths_.setRoulette(on); }
+    // The expected number of light subpaths per camera subpath, in (0, 1] (1: one each, the
+    // classic pairing). Below 1 each camera sample traces its light subpath with this
+    // probability: the strategies that use it (s >= 2) become techniques with sample count
+    // `share` in the multi-sample model (thesis §9.2, n_i), their weights and contributions
+    // scaled to match, while s = 0 and s = 1 keep one sample each. Where light subpaths add
+    // little (mostly direct light), this buys camera samples with their time. Rendering only:
+    // Metropolis keeps the pairing.
+    void setLightPathShare(float share);
+    float lightPathShare() const { return lightPathShare_; }
     // For tests: connect() also computes each weight from densities evaluated afresh at the
     // join, not those its BSDF evaluations produced, into Connection::recomputedWeight.
     void recomputeWeights(bool on) { recomputeWeights_ = on; }
@@ -167,6 +176,7 @@ private:
     bool general_ = false;
     std::unique_ptr<StrategyImages> strategies_;
     bool recomputeWeights_ = false;
+    float lightPathShare_ = 1;
 };
 
 }  // namespace ps

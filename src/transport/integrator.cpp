@@ -55,7 +55,9 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
             if (name == "mmlt") return std::make_unique<MMLTIntegrator>(scene, maxDepth, mp, heuristic);
             return std::make_unique<PSSMLTIntegrator>(scene, maxDepth, mp, heuristic);
         }
-        return std::make_unique<BDPTIntegrator>(scene, maxDepth, heuristic);
+        auto bdpt = std::make_unique<BDPTIntegrator>(scene, maxDepth, heuristic);
+        bdpt->setLightPathShare(scene.settings().bdptLightPaths);
+        return bdpt;
     }
     throw InputError("unknown integrator \"" + name + "\" (available: path, light, bdpt, pssmlt, mmlt, mlt)");
 }
@@ -76,6 +78,7 @@ std::string applyIntegratorVariant(const std::string& spec, RenderSettings& st) 
     st.mltMutations = defaults.mltMutations;
     st.mltTwoStage = defaults.mltTwoStage;
     st.mltTwoStageBlackLevel = defaults.mltTwoStageBlackLevel;
+    st.bdptLightPaths = defaults.bdptLightPaths;
     if (colon == std::string::npos) return name;
     std::string rest;
     std::stringstream in(spec.substr(colon + 1));
@@ -86,7 +89,8 @@ std::string applyIntegratorVariant(const std::string& spec, RenderSettings& st) 
         const char* what;
     };
     const Key keys[] = {{"two-stage", &st.mltTwoStage, "a fraction"},
-                        {"black-level", &st.mltTwoStageBlackLevel, "a luminance"}};
+                        {"black-level", &st.mltTwoStageBlackLevel, "a luminance"},
+                        {"light-paths", &st.bdptLightPaths, "a share"}};
     for (std::string item; std::getline(in, item, ',');) {
         const Key* key = nullptr;
         for (const Key& k : keys)
@@ -101,6 +105,8 @@ std::string applyIntegratorVariant(const std::string& spec, RenderSettings& st) 
         if (value.empty() || *end != '\0' || !(*key->value >= 0))
             throw InputError("\"" + spec + "\": " + key->name + " needs " + key->what + " >= 0");
     }
+    if (!(st.bdptLightPaths > 0 && st.bdptLightPaths <= 1) || (st.bdptLightPaths != 1 && name != "bdpt"))
+        throw InputError("\"" + spec + "\": light-paths is BDPT's, a share in (0, 1]");
     if (!rest.empty() && name != "mlt")
         throw InputError("\"" + spec + "\": only mlt takes mutation weights (" + rest + ")");
     st.mltMutations = rest;

@@ -335,6 +335,33 @@ TEST_F(Cli, MisOption) {
     EXPECT_EQ(run("render --quiet --integrator bdpt --mis nope " + scene + " -o " + out).status, 2);
 }
 
+// --light-paths F: BDPT traces a light subpath for a share F of its camera samples. Exact on
+// the sky scene at 0.25 (its unbiasedness against path tracing: render/estimator_agreement_test),
+// a different image from the default, the share in --stats; outside (0, 1] or with another
+// integrator it exits with 2 and says why.
+TEST_F(Cli, LightPathsOption) {
+    const std::string scene = write("sky.pbrt", ps::test::kSkyScene);
+    const std::string out = (dir / "x.pfm").string(), stats = (dir / "s.json").string();
+    const std::string base = "render --quiet --seed 1 " + scene + " -o " + out;
+    Result r = run(base + " --integrator bdpt --spp 1024 --light-paths 0.25 --stats " + stats);
+    ASSERT_EQ(r.status, 0) << r.out;
+    const ps::Image fewer = ps::readImage(out);
+    ps::test::expectExactSkyImage(fewer, "--light-paths 0.25");
+    std::ifstream in(stats);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_FLOAT_EQ(j.at("light_paths_per_sample").get<float>(), 0.25f);
+    ASSERT_EQ(run(base + " --integrator bdpt --spp 1024").status, 0);
+    EXPECT_NE(ps::readImage(out).rgb, fewer.rgb);
+    for (const std::string bad : {"0", "-0.5", "1.5", "x"}) {
+        Result b = run(base + " --integrator bdpt --spp 1 --light-paths " + bad);
+        EXPECT_EQ(b.status, 2) << bad;
+        EXPECT_NE(b.out.find("--light-paths"), std::string::npos) << b.out;
+    }
+    Result path = run(base + " --integrator path --spp 1 --light-paths 0.5");
+    EXPECT_EQ(path.status, 2);
+    EXPECT_NE(path.out.find("needs --integrator bdpt"), std::string::npos) << path.out;
+}
+
 // Every heuristic of thesis ch. 9 through the real binary (their unbiasedness is the
 // furnace's, render/mis_heuristics_test.cpp): accepted by path, bdpt, pssmlt and mmlt, each
 // changing the image; a bad parameter, or --mis where nothing is weighted (light, mlt) or

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <new>
+#include <string>
+#include <vector>
 
 #include "mc/sampler.h"
 #include "render_helpers.h"
@@ -136,12 +138,16 @@ bool stepwise(const MisWeighting& w) {
 
 }  // namespace
 
+// "HEURISTIC@SHARE": the heuristic with BDPT's light path share (setLightPathShare).
 TEST_P(BdptMis, WeightsOfAllStrategiesSumToOne) {
     setWarningsQuiet(true);
     SceneDescription desc = parseSceneString(kScene, ".", "<test>");
     auto scene = buildScene(desc);
-    const MisWeighting mis = parseMisWeighting(GetParam());
+    const std::string param = GetParam();
+    const size_t at = param.find('@');
+    const MisWeighting mis = parseMisWeighting(param.substr(0, at));
     BDPTIntegrator bdpt(*scene, scene->settings().maxDepth, mis);
+    if (at != std::string::npos) bdpt.setLightPathShare(std::stof(param.substr(at + 1)));
     const Subpaths& paths = bdpt.subpaths();
     auto sampler = createSampler("independent", 5, 1);
     ScratchBuffer scratch;
@@ -191,11 +197,12 @@ TEST_P(BdptMis, WeightsOfAllStrategiesSumToOne) {
 // Power 2, balance and uniform take the prefix sums; the others the walk over every ratio.
 INSTANTIATE_TEST_SUITE_P(Heuristics, BdptMis,
                          ::testing::Values("power", "balance", "none", "power:3", "power:0.5", "cutoff:0.1",
-                                           "cutoff:0.5", "maximum"),
+                                           "cutoff:0.5", "maximum", "power@0.3", "balance@0.3", "power:3@0.3",
+                                           "maximum@0.3"),
                          [](const ::testing::TestParamInfo<const char*>& i) {
                              std::string name = i.param;
                              for (char& c : name)
-                                 if (c == ':' || c == '.') c = '_';
+                                 if (c == ':' || c == '.' || c == '@') c = '_';
                              return name == "none" ? std::string("uniform") : name;
                          });
 
@@ -236,6 +243,57 @@ TEST(BdptMis, EveryRatioWalkMatchesThePrefixSums) {
     }
     std::printf("  %d strategy weights compared\n", compared);
     EXPECT_GE(compared, 1000);
+}
+
+// With a light path share below 1 the strategies that use the light subpath (s >= 2) take
+// `share` samples per camera sample, the others one: the balance heuristic's weights are then
+// proportional to n_i p_i (thesis §9.2), so any two strategies' weights are in the ratio of
+// their weights at share 1 times the ratio of their counts. Checked for the prefix sums
+// (balance) and for the walk over every ratio (power 1, which is balance by that walk).
+TEST(BdptMis, LightPathShareEntersTheWeightsAsASampleCount) {
+    setWarningsQuiet(true);
+    SceneDescription desc = parseSceneString(kScene, ".", "<test>");
+    auto scene = buildScene(desc);
+    const int maxDepth = scene->settings().maxDepth;
+    constexpr float kShare = 0.25f;
+    BDPTIntegrator one(*scene, maxDepth, MisHeuristic::Balance);
+    BDPTIntegrator fewer(*scene, maxDepth, MisHeuristic::Balance);
+    BDPTIntegrator walked(*scene, maxDepth, parseMisWeighting("power:1"));
+    fewer.setLightPathShare(kShare);
+    walked.setLightPathShare(kShare);
+    const Subpaths& paths = one.subpaths();
+    auto sampler = createSampler("independent", 17, 1);
+    ScratchBuffer scratch;
+    PathStats stats;
+    int compared = 0;
+    const auto count = [](int s) { return s >= 2 ? double(kShare) : 1.0; };
+    for (int i = 0; i < 1500; ++i) {
+        auto [camera, light, nc, nl] = tracePair(*scene, paths, *sampler, scratch, stats, i);
+        for (int t = 2; t <= nc; ++t)
+            for (int s = 2; s <= nl; ++s) {
+                if (s + t - 2 > paths.maxDepth()) continue;
+                auto c = one.connect(light, camera, s, t, *sampler, stats, false);
+                if (c.L.isBlack()) continue;
+                FullPath fp = rebuild(paths, light, s, camera, t);
+                std::vector<int> ways;
+                for (int sp = 0; sp <= int(fp.y.size()) - 1; ++sp)
+                    if (possible(fp, sp)) ways.push_back(sp);
+                for (size_t a = 0; a + 1 < ways.size(); ++a) {
+                    const int sa = ways[a], sb = ways[a + 1];
+                    const double w1a = weightOf(one, fp, sa), w1b = weightOf(one, fp, sb);
+                    if (!(w1a > 1e-3 && w1b > 1e-3)) continue;
+                    const double expected = (count(sa) * w1a) / (count(sb) * w1b);
+                    const double got = weightOf(fewer, fp, sa) / weightOf(fewer, fp, sb);
+                    const double gotWalked = weightOf(walked, fp, sa) / weightOf(walked, fp, sb);
+                    EXPECT_NEAR(got / expected, 1.0, 1e-4) << "s' " << sa << ", " << sb << " of length " << fp.y.size();
+                    EXPECT_NEAR(gotWalked / expected, 1.0, 1e-4) << "s' " << sa << ", " << sb;
+                    compared += sa <= 1 && sb >= 2;  // across the two kinds
+                }
+            }
+        scratch.reset();
+    }
+    std::printf("  %d weight ratios across the two kinds compared\n", compared);
+    EXPECT_GE(compared, 300);
 }
 
 // Every strategy, including next-event (s = 1) and lens (t = 1) connections: the weight a

@@ -92,6 +92,19 @@ TEST(EstimatorAgreement, GlassSphereCaustic) {
     expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", "light", "path"}, 384, 16, {{"light", 768}, {"path", 832}}});
 }
 
+// BDPT tracing a light subpath for a quarter of its camera samples (--light-paths 0.25): the
+// strategies that use one count as a quarter sample each in the weights and their
+// contributions are scaled by 4. Unbiased both where light subpaths add little (the box)
+// and where they carry the image (the caustic, which path tracing samples poorly).
+TEST(EstimatorAgreement, BdptWithFewerLightPaths) {
+    expectAgreement(AgreementCase{"fewer light paths, box", box(R"(
+        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ]
+        Shape "sphere" "float radius" [ 0.2 ]
+    )"), {"path", "bdpt:light-paths=0.25"}, 16});
+    expectAgreement(AgreementCase{"fewer light paths, caustic", glassSphereCaustic(R"("float eta" [ 1.5 ])"),
+                                  {"bdpt", "bdpt:light-paths=0.25"}, 384, 16, {{"bdpt:light-paths=0.25", 768}}});
+}
+
 TEST(EstimatorAgreement, GlossyConductor) {
     expectAgreementInBothModes(AgreementCase{"rough conductor", box(R"(
         Material "conductor" "spectrum eta" "metal-Cu-eta" "spectrum k" "metal-Cu-k" "float roughness" [ 0.25 ]
