@@ -144,6 +144,8 @@ void RenderCommand::load(Job& job) {
         {"resolution", {scene->camera().params().xRes, scene->camera().params().yRes}},
         {"pixels", {bounds.x0, bounds.x1, bounds.y0, bounds.y1}}};
     if (settings.spectral) checkpointSettings["color"] = "spectral";  // absent: RGB, as before the option existed
+    // Absent: one light subpath per sample, as before the option existed.
+    if (settings.integrator == "bdpt" && settings.bdptLightPaths != 1) checkpointSettings["light_paths"] = settings.bdptLightPaths;
     // A Markov chain's course depends on every parameter of the chains and the bootstrap.
     if (settings.integrator == "pssmlt" || settings.integrator == "mmlt" || settings.integrator == "mlt") {
         checkpointSettings["chains"] = settings.mltChains;

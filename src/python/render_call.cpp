@@ -38,6 +38,7 @@ const std::map<std::string, std::string>& optionNames() {
         {"maxdepth", "--maxdepth"},
         {"integrator", "--integrator"},
         {"mis", "--mis"},
+        {"light_paths", "--light-paths"},
         {"sampler", "--sampler"},
         {"adaptive", "--adaptive"},
         {"color", "--color"},
