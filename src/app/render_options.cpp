@@ -95,7 +95,7 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
         ->check(CLI::IsMember({"path", "volpath", "light", "lightpath", "bdpt", "pssmlt", "mmlt", "mlt"}));
     cmd->add_option("--bdpt-strategies", a.strategiesDir,
                      "With --integrator bdpt: also write, into this directory, one EXR per strategy (s light "
-                     "vertices, t camera vertices) up to path depth 5, MIS-weighted (s<S>_t<T>.exr) and "
+                     "vertices, t camera vertices) up to the path depth --maxdepth, MIS-weighted (s<S>_t<T>.exr) and "
                      "unweighted (s<S>_t<T>_unweighted.exr); the weighted ones sum to the image");
     cmd->add_option("--mis", a.mis,
                     "MIS heuristic of path, bdpt, pssmlt and mmlt (thesis ch. 9): power[:BETA] (default power:2), "
@@ -343,7 +343,9 @@ void configureRender(Scene& scene, const RenderArgs& a, RenderSetup& setup) {
         bdpt = dynamic_cast<BDPTIntegrator*>(integrator.get());
         if (!bdpt) throw InputError("--bdpt-strategies needs --integrator bdpt (the scene asks for \"" +
                                     settings.integrator + "\")");
-        bdpt->recordStrategies(std::min(settings.maxDepth, 5));  // checks their memory (use --crop if too much)
+        // Every depth the render makes, so that the weighted images sum to it; their memory grows
+        // with the square of maxdepth and is checked (use --crop or a smaller --maxdepth if too much).
+        bdpt->recordStrategies(settings.maxDepth);
     }
     RenderOptions& opts = setup.opts;
     opts.spp = settings.spp;

@@ -170,6 +170,14 @@ TEST_F(Cli, BdptStrategyImagesAndIntegratorChecks) {
     }
     ps::Image s = ps::readImage((strategies / "s1_t2.exr").string());
     EXPECT_EQ(s.width, 32);
+    // Every depth up to maxdepth, beyond the 5 of earlier versions: depth 6 has (0,8) .. (7,1).
+    const fs::path deep = dir / "deep";
+    ASSERT_EQ(run("render --quiet --integrator bdpt --spp 1 --maxdepth 6 --bdpt-strategies " + deep.string() + " " +
+                  scene + " -o " + (dir / "d.exr").string())
+                  .status,
+              0);
+    for (const char* name : {"s0_t8", "s3_t5", "s7_t1"}) EXPECT_TRUE(fs::exists(deep / (std::string(name) + ".exr"))) << name;
+    EXPECT_FALSE(fs::exists(deep / "s0_t9.exr"));
     // Strategy images only come from BDPT; light tracing needs a perspective camera.
     Result wrong = run("render --quiet --integrator path --bdpt-strategies " + strategies.string() + " " + scene);
     EXPECT_EQ(wrong.status, 2);
