@@ -110,7 +110,7 @@ TEST(GridMedium, MajorantGridBoundsTheDensityInCellsAndAlongRays) {
         }
     }
     EXPECT_EQ(bad, 0);
-    EXPECT_GT(segments, 20000) << "the rays should cross many cells";
+    EXPECT_GT(segments, 10000) << "the rays should cross many cells";
 }
 
 // An rgbgrid's cells bound sigma_a + sigma_s per channel in RGB mode and the lifted spectra's
@@ -142,7 +142,7 @@ TEST(GridMedium, RgbGridMajorantsBoundBothColourModes) {
 // midpoint rule of sigma_t along the segment with 20000 steps (its error is far below the
 // estimate's sigma): chromatic sigma_s, rays across, diagonally through and from inside the box.
 TEST(CloudMedium, RatioTrackedTransmittanceIsExpMinusOpticalDepth) {
-    auto scene = sceneInMedium(R"("string type" "cloud" "rgb sigma_a" [ 0.5 0.5 0.5 ] "rgb sigma_s" [ 1 1.5 2.5 ]
+    auto scene = sceneInMedium(R"("string type" "cloud" "rgb sigma_a" [ 1.5 1.5 1.5 ] "rgb sigma_s" [ 3 4.5 7.5 ]
                                   "float density" [ 1.2 ] "point3 p0" [ -0.5 0 0 ] "point3 p1" [ 1 1.3 1 ])");
     const Medium& medium = *scene->cameraMedium();
     struct Segment {
@@ -150,15 +150,10 @@ TEST(CloudMedium, RatioTrackedTransmittanceIsExpMinusOpticalDepth) {
     };
     for (const Segment& s : {Segment{{-1, 0.7f, 0.5f}, {1.5f, 0.7f, 0.5f}}, Segment{{-0.4f, 0.45f, 0.1f}, {0.9f, 1.2f, 0.9f}},
                              Segment{{0.2f, 0.55f, 0.5f}, {0.3f, 0.6f, 3}}}) {
-        std::array<double, 3> exact;
-        const int steps = 20000;
-        const Vec3 d = s.b - s.a;
-        double tau[3] = {0, 0, 0};
-        for (int i = 0; i < steps; ++i) {
-            const MediumProperties mp = medium.at(s.a + d * ((i + 0.5f) / steps), nullptr);
-            for (int c = 0; c < 3; ++c) tau[c] += (mp.sigmaA[c] + mp.sigmaS[c]) * length(d) / steps;
-        }
-        for (int c = 0; c < 3; ++c) exact[c] = std::exp(-tau[c]);
+        // Only inside the box: the density formula goes on outside it, tracking does not.
+        auto inBox = [](Vec3 p) { return p.x >= -0.5f && p.x <= 1 && p.y >= 0 && p.y <= 1.3f && p.z >= 0 && p.z <= 1; };
+        const std::array<double, 3> tau = opticalDepth(medium, s.a, s.b, 20000, inBox);
+        const std::array<double, 3> exact{std::exp(-tau[0]), std::exp(-tau[1]), std::exp(-tau[2])};
         std::printf("  tau %.4f %.4f %.4f\n", tau[0], tau[1], tau[2]);
         expectTransmittance(ratioTracked(*scene, s.a, s.b, 40000), exact, "cloud");
     }

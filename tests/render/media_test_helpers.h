@@ -112,4 +112,19 @@ inline int countCellViolations(const MajorantGrid& grid, int perCell, Density&& 
     return bad;
 }
 
+// tau along a to b by a midpoint rule of `steps`, counting only points inside the medium's
+// box (tracking never leaves it; trilinear lookups just outside it are not zero).
+template <typename Inside>
+inline std::array<double, 3> opticalDepth(const Medium& medium, Vec3 a, Vec3 b, int steps, Inside&& inside) {
+    std::array<double, 3> tau{0, 0, 0};
+    const Vec3 d = b - a;
+    for (int i = 0; i < steps; ++i) {
+        const Vec3 p = a + d * ((i + 0.5f) / steps);
+        if (!inside(p)) continue;
+        const MediumProperties mp = medium.at(p, nullptr);
+        for (int c = 0; c < 3; ++c) tau[c] += (mp.sigmaA[c] + mp.sigmaS[c]) * length(d) / steps;
+    }
+    return tau;
+}
+
 }  // namespace ps::test
