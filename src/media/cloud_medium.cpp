@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include "media/perlin_noise.h"
+#include "materials/noise.h"
 
 namespace ps {
 
@@ -15,7 +15,7 @@ constexpr float kOctaveWeightSum = 0.5f + 0.25f + 0.125f + 0.0625f + 0.03125f;
 }  // namespace
 
 CloudMedium::CloudMedium(const MediumBox& box, MediumSpectrum sigmaA, MediumSpectrum sigmaS, float g, Shape shape)
-    : Medium(g), box_(box), sigmaA_(std::move(sigmaA)), sigmaS_(std::move(sigmaS)), shape_(shape) {
+    : DensityMedium(box, std::move(sigmaA), std::move(sigmaS), g, 16), shape_(shape) {
     majorants_.fill([&](Vec3 lo, Vec3 hi) { return Spectrum(cellBound(lo, hi)); });
 }
 
@@ -28,7 +28,7 @@ float CloudMedium::density(Vec3 p) const {
         for (int i = 0; i < 2; ++i) {
             q = q + perlinNoiseDifference(q * scale) * amplitude;
             amplitude *= 0.5f;
-            scale *= 1.99f;
+            scale *= kOctaveLacunarity;
         }
     }
     // Fractal sum: weights halve and frequencies grow by 1.99 (not 2, so that the octaves'
@@ -37,7 +37,7 @@ float CloudMedium::density(Vec3 p) const {
     for (int i = 0; i < kOctaves; ++i) {
         sum += weight * perlinNoise(q * scale);
         weight *= 0.5f;
-        scale *= 1.99f;
+        scale *= kOctaveLacunarity;
     }
     // Thinning with height, then a solid base: 1 at y <= 0, fading in below y = 1/2.
     float d = std::clamp((1 - p.y) * 4.5f * shape_.density * sum, 0.0f, 1.0f);
@@ -57,15 +57,6 @@ float CloudMedium::cellBound(Vec3 lo, Vec3 hi) const {
     const float noiseTerm = std::min(1.0f, maxDistFrom1 * 4.5f * std::abs(shape_.density) * kPerlinNoiseBound * kOctaveWeightSum);
     const float base = 2 * std::max(0.0f, 0.5f - y0);
     return std::min(1.0f, noiseTerm + base);
-}
-
-MediumProperties CloudMedium::at(Vec3 p, const SampledWavelengths* lambda) const {
-    const float d = density(box_.toMedium(p));
-    return {sigmaA_(lambda) * d, sigmaS_(lambda) * d, Spectrum(0.0f)};
-}
-
-MajorantIterator CloudMedium::majorants(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda) const {
-    return box_.iterate(o, d, tMax, majorants_, sigmaA_(lambda) + sigmaS_(lambda));
 }
 
 }  // namespace ps

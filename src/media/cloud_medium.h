@@ -6,32 +6,24 @@
 // pbrt-v4 bounds the whole box by sigma_a + sigma_s; we walk a 16^3 majorant grid whose cells
 // bound the density from its height profile (see cellBound).
 #pragma once
-#include "media/majorant_grid.h"
+#include "media/density_medium.h"
 
 namespace ps {
 
-class CloudMedium final : public Medium {
+class CloudMedium final : public DensityMedium {
 public:
     struct Shape {
         float density = 1, wispiness = 1, frequency = 5;
     };
     CloudMedium(const MediumBox& box, MediumSpectrum sigmaA, MediumSpectrum sigmaS, float g, Shape shape);
 
-    // The density at a point of the medium's space (pbrt-v4's CloudMedium::Density).
-    float density(Vec3 pMedium) const;
+    // pbrt-v4's CloudMedium::Density.
+    float density(Vec3 pMedium) const override;
     // A bound on density over the cell [lo, hi] of the box's unit coordinates.
     float cellBound(Vec3 lo, Vec3 hi) const;
 
-    MediumProperties at(Vec3 p, const SampledWavelengths* lambda) const override;
-    MajorantIterator majorants(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda) const override;
-    const MajorantGrid& majorantGrid() const { return majorants_; }
-    const MediumBox& box() const { return box_; }
-
 private:
-    MediumBox box_;
-    MediumSpectrum sigmaA_, sigmaS_;
     Shape shape_;
-    MajorantGrid majorants_{16, 16, 16};
 };
 
 }  // namespace ps

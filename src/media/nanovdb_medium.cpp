@@ -9,9 +9,10 @@ namespace ps {
 
 NanoVDBMedium::NanoVDBMedium(const Transform& worldFromMedium, NanoVDBGrid density, MediumSpectrum sigmaA,
                              MediumSpectrum sigmaS, float g)
-    : Medium(g), grid_(std::move(density)), sigmaA_(std::move(sigmaA)), sigmaS_(std::move(sigmaS)) {
-    // The medium's box is the grid's world box, as pbrt-v4's.
-    box_ = MediumBox{worldFromMedium.inverse(), grid_.worldMin(), grid_.worldMax()};
+    // The medium's box is the grid's world box, as pbrt-v4's; 64^3 majorant cells, as pbrt-v4's.
+    : DensityMedium(MediumBox{worldFromMedium.inverse(), density.worldMin(), density.worldMax()}, std::move(sigmaA),
+                    std::move(sigmaS), g, 64),
+      grid_(std::move(density)) {
     const Vec3 e = box_.p1 - box_.p0;
     if (!(e.x > 0 && e.y > 0 && e.z > 0))
         throw std::runtime_error(grid_.name() + ": the grid's world bounding box is empty");
@@ -52,14 +53,5 @@ NanoVDBMedium::NanoVDBMedium(const Transform& worldFromMedium, NanoVDBGrid densi
 }
 
 float NanoVDBMedium::density(Vec3 pMedium) const { return grid_.sample(grid_.worldToIndex(pMedium)); }
-
-MediumProperties NanoVDBMedium::at(Vec3 p, const SampledWavelengths* lambda) const {
-    const float d = density(box_.toMedium(p));
-    return {sigmaA_(lambda) * d, sigmaS_(lambda) * d, Spectrum(0.0f)};
-}
-
-MajorantIterator NanoVDBMedium::majorants(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda) const {
-    return box_.iterate(o, d, tMax, majorants_, sigmaA_(lambda) + sigmaS_(lambda));
-}
 
 }  // namespace ps

@@ -4,27 +4,20 @@
 // sigma_a and sigma_s (times "scale") are multiplied by it; tracking walks a 64^3 majorant grid
 // over the grid's world box, pbrt-v4's resolution for this medium.
 #pragma once
-#include "media/majorant_grid.h"
+#include "media/density_medium.h"
 #include "media/nanovdb_file.h"
 #include "math/transform.h"
 
 namespace ps {
 
-class NanoVDBMedium final : public Medium {
+class NanoVDBMedium final : public DensityMedium {
 public:
     NanoVDBMedium(const Transform& worldFromMedium, NanoVDBGrid density, MediumSpectrum sigmaA, MediumSpectrum sigmaS, float g);
 
-    float density(Vec3 pMedium) const;
-    MediumProperties at(Vec3 p, const SampledWavelengths* lambda) const override;
-    MajorantIterator majorants(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda) const override;
-    const MajorantGrid& majorantGrid() const { return majorants_; }
-    const MediumBox& box() const { return box_; }
+    float density(Vec3 pMedium) const override;
 
 private:
     NanoVDBGrid grid_;
-    MediumBox box_;
-    MediumSpectrum sigmaA_, sigmaS_;
-    MajorantGrid majorants_{64, 64, 64};
 };
 
 }  // namespace ps

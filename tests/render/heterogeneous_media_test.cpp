@@ -8,7 +8,7 @@
 
 #include "media/cloud_medium.h"
 #include "media/grid_medium.h"
-#include "media/perlin_noise.h"
+#include "materials/noise.h"
 #include "media_test_helpers.h"
 #include "scene/color_space.h"
 
