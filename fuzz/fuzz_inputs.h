@@ -10,10 +10,13 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
+#include <climits>
 #include <string>
 #include <string_view>
 
 #include "image/image.h"
+#include "media/nanovdb_file.h"
 #include "render/scene_builder.h"
 #include "scene/parser.h"
 #include "scene/ply.h"
@@ -107,6 +110,28 @@ inline void runImageInput(const uint8_t* data, size_t size) {
     } catch (const InputError&) {
     }
     removeScratchFile(name);
+}
+
+// The bytes are a NanoVDB file, read from memory; its "density" grid, if any, is then looked
+// up at voxels around its index box and sampled between them. The reader's failure for bad
+// input is a runtime_error naming the file (media/nanovdb_file.h).
+inline void runNanoVDBInput(const uint8_t* data, size_t size) {
+    try {
+        std::optional<NanoVDBGrid> g = parseNanoVDBGrid(data, size, "density", "fuzz.nvdb");
+        if (!g) return;
+        float sum = 0;
+        for (int64_t a = -1; a <= 1; ++a)
+            for (int c = 0; c < 8; ++c) {
+                auto at = [&](int axis, bool high) {  // a voxel just inside or outside the index box
+                    const int64_t v = high ? int64_t(g->indexMax()[axis]) + a : int64_t(g->indexMin()[axis]) - a;
+                    return int(std::clamp<int64_t>(v, INT32_MIN, INT32_MAX));
+                };
+                const int i = at(0, c & 1), j = at(1, c & 2), k = at(2, c & 4);
+                sum += g->value(i, j, k) + g->sample(Vec3(float(i) + 0.5f, float(j) + 0.25f, float(k) + 0.75f));
+            }
+        (void)sum;
+    } catch (const std::runtime_error&) {
+    }
 }
 
 }  // namespace ps::fuzz

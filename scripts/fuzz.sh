@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs one libFuzzer campaign: scripts/fuzz.sh TARGET SECONDS [libFuzzer options...]
-#   TARGET: scene_fuzzer | ply_fuzzer | image_fuzzer (or "all": each for SECONDS).
+#   TARGET: scene_fuzzer | ply_fuzzer | image_fuzzer | nvdb_fuzzer (or "all": each for SECONDS).
 # Builds the clang fuzz build in build-fuzz/, grows build-fuzz/corpus/TARGET from the seeds
 # in fuzz/corpus/TARGET, and writes crashing inputs to build-fuzz/artifacts/TARGET/. A crash
 # ends the campaign with a non-zero status; minimise it, fix it, and copy the input to
@@ -8,13 +8,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ $# -lt 2 ]; then
-  echo "usage: $0 scene_fuzzer|ply_fuzzer|image_fuzzer|all SECONDS [libFuzzer options...]" >&2
+  echo "usage: $0 scene_fuzzer|ply_fuzzer|image_fuzzer|nvdb_fuzzer|all SECONDS [libFuzzer options...]" >&2
   exit 2
 fi
 target=$1 seconds=$2
 shift 2
 targets=("$target")
-[ "$target" = all ] && targets=(scene_fuzzer ply_fuzzer image_fuzzer)
+[ "$target" = all ] && targets=(scene_fuzzer ply_fuzzer image_fuzzer nvdb_fuzzer)
 cxx=${CXX:-$(command -v clang++-14 || command -v clang++)}
 # On the shared development machine builds take /tmp/ps-build.lock (unless the caller holds it).
 lock=()

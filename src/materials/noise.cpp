@@ -65,6 +65,13 @@ float perlinNoise(float x, float y, float z) {
     return lerp(wz, y0, y1);
 }
 
+Vec3 perlinNoiseDifference(Vec3 p) {
+    const float h = 0.01f, n = perlinNoise(p);
+    // Divided, not multiplied by 1/h, for pbrt-v4's rounding.
+    return Vec3((perlinNoise(p + Vec3(h, 0, 0)) - n) / h, (perlinNoise(p + Vec3(0, h, 0)) - n) / h,
+                (perlinNoise(p + Vec3(0, 0, h)) - n) / h);
+}
+
 float fbm(Vec3 p, float omega, int octaves) {
     float sum = 0, frequency = 1, amplitude = 1;
     for (int i = 0; i < octaves; ++i) {

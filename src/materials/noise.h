@@ -16,6 +16,15 @@ constexpr float kOctaveLacunarity = 1.99f;
 float perlinNoise(float x, float y = 0.5f, float z = 0.5f);
 inline float perlinNoise(Vec3 p) { return perlinNoise(p.x, p.y, p.z); }
 
+// A bound on |perlinNoise| everywhere, provable rather than measured: each corner's term is
+// +-a +-b with |a|, |b| <= 1 and the faded trilinear blend is a convex combination of the eight
+// (the cloud medium's majorant grid relies on it).
+constexpr float kPerlinNoiseBound = 2.0f;
+
+// pbrt-v4's DNoise: forward differences of the noise with step 0.01 along each axis (not the
+// analytic gradient); the cloud medium displaces its lookups by it.
+Vec3 perlinNoiseDifference(Vec3 p);
+
 // Fractional Brownian motion: sum over i < octaves of omega^i noise(1.99^i p). pbrt-v4's FBm
 // with a zero filter footprint (all octaves, none faded out).
 float fbm(Vec3 p, float omega, int octaves);

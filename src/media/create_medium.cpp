@@ -1,8 +1,11 @@
 #include "media/create_medium.h"
 
+#include "media/cloud_medium.h"
 #include "media/grid_medium.h"
+#include "media/nanovdb_medium.h"
 #include "media/homogeneous_medium.h"
 #include "util/error.h"
+#include "util/path.h"
 
 #include <cmath>
 
@@ -46,8 +49,8 @@ VoxelGrid<T> gridOf(const MediumEntity& e, std::vector<T> values, const char* wh
     return g;
 }
 
-GridMedium::Box boxOf(const MediumEntity& e) {
-    GridMedium::Box box{e.worldFromMedium, e.params.getPoint3("p0", {0, 0, 0}), e.params.getPoint3("p1", {1, 1, 1})};
+MediumBox boxOf(const MediumEntity& e) {
+    MediumBox box{e.worldFromMedium.inverse(), e.params.getPoint3("p0", {0, 0, 0}), e.params.getPoint3("p1", {1, 1, 1})};
     if (!(box.p1.x > box.p0.x && box.p1.y > box.p0.y && box.p1.z > box.p0.z))
         fail(e, "\"p1\" must exceed \"p0\" in every coordinate");
     return box;
@@ -67,14 +70,71 @@ std::vector<Spectrum> rgbValues(const MediumEntity& e, const std::string& name, 
     return v;
 }
 
+// pbrt-v4's "scale" of sigma_a and sigma_s (not read by "cloud", which has none).
+float scaleParam(const MediumEntity& e) {
+    const float scale = e.params.getFloat("scale", 1);
+    // A negative coefficient has no meaning and would make the majorant's flights run backwards.
+    if (!(scale >= 0) || !std::isfinite(scale)) fail(e, "\"scale\" must be a finite number at least 0");
+    return scale;
+}
+
+// pbrt-v4's CloudMedium::Create: density 1, wispiness 1, frequency 5, sigma_a = sigma_s = 1,
+// the box p0..p1 (0,0,0)..(1,1,1). It has no "scale" and no emission.
+std::unique_ptr<Medium> createCloud(const MediumEntity& e, float g) {
+    const ParamSet& ps = e.params;
+    CloudMedium::Shape shape;
+    shape.density = ps.getFloat("density", 1);
+    shape.wispiness = ps.getFloat("wispiness", 1);
+    shape.frequency = ps.getFloat("frequency", 5);
+    if (!std::isfinite(shape.density) || !std::isfinite(shape.wispiness) || !std::isfinite(shape.frequency))
+        fail(e, "\"density\", \"wispiness\" and \"frequency\" must be finite numbers");
+    auto medium = std::make_unique<CloudMedium>(boxOf(e), spectrumParam(ps, "sigma_a", SpectrumKind::Unbounded, 1, 1),
+                                                spectrumParam(ps, "sigma_s", SpectrumKind::Unbounded, 1, 1), g, shape);
+    ps.reportUnused("medium " + quoteForMessage(e.name));
+    return medium;
+}
+
+// pbrt-v4's NanoVDBMedium::Create: "filename" (required), the float grid "gridname"
+// ("density"), sigma_a, sigma_s (1) times "scale" (1), g. A "temperaturename" grid
+// ("temperature") makes pbrt-v4's medium emit blackbody light when "Lescale" > 0: refused
+// here until emission from it is implemented, rather than rendered dark.
+std::unique_ptr<Medium> createNanoVDB(const MediumEntity& e, float g) {
+    const ParamSet& ps = e.params;
+    const std::string file = ps.getString("filename", "");
+    if (file.empty()) fail(e, "a \"nanovdb\" medium needs a \"filename\"");
+    const std::string path = resolvePath(ps.baseDirectory, file);
+    const std::string gridName = ps.getString("gridname", "density");
+    const std::string temperatureName = ps.getString("temperaturename", "temperature");
+    const float LeScale = ps.getFloat("Lescale", 1);
+    ps.getFloat("temperatureoffset", ps.getFloat("temperaturecutoff", 0));
+    ps.getFloat("temperaturescale", 1);
+    const float scale = scaleParam(e);
+    std::optional<NanoVDBGrid> density;
+    try {
+        density = readNanoVDBGrid(path, gridName);
+        if (!density) fail(e, path + ": the file has no grid named " + quoteForMessage(gridName));
+        if (LeScale > 0 && readNanoVDBGrid(path, temperatureName))
+            fail(e, path + ": emission from its " + quoteForMessage(temperatureName) +
+                        " grid is not supported yet (give \"float Lescale\" 0 to render the medium without it)");
+    } catch (const std::runtime_error& err) {
+        if (dynamic_cast<const InputError*>(&err)) throw;
+        fail(e, err.what());
+    }
+    auto medium = std::make_unique<NanoVDBMedium>(e.worldFromMedium, std::move(*density),
+                                                  spectrumParam(ps, "sigma_a", SpectrumKind::Unbounded, 1, scale),
+                                                  spectrumParam(ps, "sigma_s", SpectrumKind::Unbounded, 1, scale), g);
+    ps.reportUnused("medium " + quoteForMessage(e.name));
+    return medium;
+}
+
 }  // namespace
 
 std::unique_ptr<Medium> createMedium(const MediumEntity& e) {
     const ParamSet& ps = e.params;
     const float g = ps.getFloat("g", 0);
-    const float scale = ps.getFloat("scale", 1);
-    // A negative coefficient has no meaning and would make the majorant's flights run backwards.
-    if (!(scale >= 0) || !std::isfinite(scale)) fail(e, "\"scale\" must be a finite number at least 0");
+    if (e.type == "cloud") return createCloud(e, g);
+    if (e.type == "nanovdb") return createNanoVDB(e, g);
+    const float scale = scaleParam(e);
     if (e.type == "homogeneous") {
         if (ps.has("preset"))
             fail(e, "named \"preset\" media (" + quoteForMessage(ps.getString("preset", "")) +
@@ -113,9 +173,6 @@ std::unique_ptr<Medium> createMedium(const MediumEntity& e) {
         ps.reportUnused("medium " + quoteForMessage(e.name));
         return medium;
     }
-    if (e.type == "cloud" || e.type == "nanovdb")
-        fail(e, "medium type " + quoteForMessage(e.type) +
-                    " is not supported yet (homogeneous, uniformgrid and rgbgrid are); rendering without it would remove the scene's subject");
     fail(e, "unknown medium type " + quoteForMessage(e.type) + " (expected homogeneous, uniformgrid, rgbgrid, cloud or nanovdb)");
 }
 

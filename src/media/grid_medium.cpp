@@ -24,11 +24,32 @@ auto VoxelGrid<T>::lookup(Vec3 p, F&& convert) const -> decltype(convert(values[
     return lerpR(fz, lerpR(fy, c00, c10), lerpR(fy, c01, c11));
 }
 
+template <typename T>
+template <typename R, typename F>
+R VoxelGrid<T>::maxOver(Vec3 lo, Vec3 hi, F&& bound) const {
+    // lookup blends the voxels floor(p n - 1/2) and the next along each axis; one voxel of
+    // slack each way (pbrt-v4's "filter slop") covers points that rounding puts in a
+    // neighbouring cell. Voxels outside the grid blend in as zero, below any bound.
+    const int n[3] = {nx, ny, nz};
+    int i0[3], i1[3];
+    for (int a = 0; a < 3; ++a) {
+        i0[a] = std::max(0, int(std::floor(lo[a] * n[a] - 0.5f)) - 1);
+        i1[a] = std::min(n[a] - 1, int(std::floor(hi[a] * n[a] - 0.5f)) + 2);
+    }
+    R m{};
+    for (int z = i0[2]; z <= i1[2]; ++z)
+        for (int y = i0[1]; y <= i1[1]; ++y)
+            for (int x = i0[0]; x <= i1[0]; ++x) m = bound(m, values[(size_t(z) * ny + y) * nx + x]);
+    return m;
+}
+
 GridMedium::GridMedium(const Box& box, VoxelGrid<float> density, MediumSpectrum sigmaA, MediumSpectrum sigmaS,
                        MediumSpectrum Le, VoxelGrid<float> LeScale, float g)
-    : Medium(g), box_(box), mediumFromWorld_(box.worldFromMedium.inverse()), density_(std::move(density)),
-      LeScale_(std::move(LeScale)), sigmaA_(std::move(sigmaA)), sigmaS_(std::move(sigmaS)), Le_(std::move(Le)) {
-    for (float v : density_.values) maxDensity_ = std::max(maxDensity_, v);
+    : Medium(g), box_(box), density_(std::move(density)), LeScale_(std::move(LeScale)), sigmaA_(std::move(sigmaA)),
+      sigmaS_(std::move(sigmaS)), Le_(std::move(Le)) {
+    majorants_.fill([&](Vec3 lo, Vec3 hi) {
+        return Spectrum(density_.maxOver<float>(lo, hi, [](float m, float v) { return std::max(m, v); }));
+    });
     float maxLe = 0;
     for (float v : LeScale_.values) maxLe = std::max(maxLe, v);
     emissive_ = Le_.maxValue() > 0 && maxLe > 0;
@@ -36,38 +57,26 @@ GridMedium::GridMedium(const Box& box, VoxelGrid<float> density, MediumSpectrum 
 
 GridMedium::GridMedium(const Box& box, VoxelGrid<Spectrum> sigmaA, VoxelGrid<Spectrum> sigmaS, const RGBColorSpace* space,
                        float g)
-    : Medium(g), box_(box), mediumFromWorld_(box.worldFromMedium.inverse()), rgb_(true), rgbA_(std::move(sigmaA)),
-      rgbS_(std::move(sigmaS)), space_(space ? space : &srgbColorSpace()) {
-    // An unbounded lift scale * sigmoid(...) never exceeds its scale, 2 max(rgb).
-    auto bounds = [](const VoxelGrid<Spectrum>& grid, Spectrum* perChannel, float* lifted) {
-        if (grid.values.empty()) {
-            *perChannel = Spectrum(1.0f);
-            *lifted = 1;
-            return;
-        }
-        for (const Spectrum& v : grid.values) {
-            perChannel->r = std::max(perChannel->r, v.r);
-            perChannel->g = std::max(perChannel->g, v.g);
-            perChannel->b = std::max(perChannel->b, v.b);
-            *lifted = std::max(*lifted, 2 * v.maxComponent());
-        }
-        perChannel->c3 = perChannel->g;
+    : Medium(g), box_(box), rgb_(true), rgbA_(std::move(sigmaA)), rgbS_(std::move(sigmaS)),
+      space_(space ? space : &srgbColorSpace()), liftedMajorants_(16, 16, 16) {
+    // Per channel in RGB mode; in spectral mode an unbounded lift scale * sigmoid(...) never
+    // exceeds its scale, 2 max(rgb). A missing grid is 1 everywhere (pbrt-v4's default).
+    auto perChannel = [](const Spectrum& m, const Spectrum& v) {
+        return Spectrum(std::max(m.r, v.r), std::max(m.g, v.g), std::max(m.b, v.b));
     };
-    Spectrum a, s;
-    float la = 0, ls = 0;
-    bounds(rgbA_, &a, &la);
-    bounds(rgbS_, &s, &ls);
-    rgbMajorant_ = a + s;
-    spectralMajorant_ = la + ls;
-}
-
-Vec3 GridMedium::toUnit(Vec3 pWorld) const {
-    const Vec3 pm = mediumFromWorld_.point(pWorld), e = box_.p1 - box_.p0;
-    return {(pm.x - box_.p0.x) / e.x, (pm.y - box_.p0.y) / e.y, (pm.z - box_.p0.z) / e.z};
+    auto lifted = [](const Spectrum& m, const Spectrum& v) { return Spectrum(std::max(m.r, 2 * v.maxComponent())); };
+    auto cell = [&](Vec3 lo, Vec3 hi, auto&& bound) {
+        auto of = [&](const VoxelGrid<Spectrum>& grid) {
+            return grid.values.empty() ? Spectrum(1.0f) : grid.maxOver<Spectrum>(lo, hi, bound);
+        };
+        return of(rgbA_) + of(rgbS_);
+    };
+    majorants_.fill([&](Vec3 lo, Vec3 hi) { return cell(lo, hi, perChannel); });
+    liftedMajorants_.fill([&](Vec3 lo, Vec3 hi) { return cell(lo, hi, lifted); });
 }
 
 MediumProperties GridMedium::at(Vec3 p, const SampledWavelengths* lambda) const {
-    const Vec3 u = toUnit(p);
+    const Vec3 u = box_.toUnit(p);
     if (!rgb_) {
         auto same = [](float v) { return v; };
         const float d = density_.lookup(u, same);
@@ -80,28 +89,9 @@ MediumProperties GridMedium::at(Vec3 p, const SampledWavelengths* lambda) const 
     return {grid(rgbA_), grid(rgbS_), Spectrum(0.0f)};
 }
 
-// The ray against the box p0..p1 in the medium's space (slabs); the parameter is the same in
-// both spaces, so the segment is in the world ray's distances.
-bool GridMedium::segment(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda, MajorantSegment* seg) const {
-    const Vec3 om = mediumFromWorld_.point(o), dm = mediumFromWorld_.vector(d);
-    float t0 = 0, t1 = tMax;
-    for (int a = 0; a < 3; ++a) {
-        const float inv = 1 / dm[a];
-        float tn = (box_.p0[a] - om[a]) * inv, tf = (box_.p1[a] - om[a]) * inv;
-        if (tn > tf) std::swap(tn, tf);
-        if (std::isnan(tn) || std::isnan(tf)) {  // parallel to the slab and on its plane
-            if (om[a] < box_.p0[a] || om[a] > box_.p1[a]) return false;
-            continue;
-        }
-        t0 = std::max(t0, tn);
-        t1 = std::min(t1, tf);
-        if (t0 > t1) return false;
-    }
-    seg->t0 = t0;
-    seg->t1 = t1;
-    if (!rgb_) seg->sigmaMaj = (sigmaA_(lambda) + sigmaS_(lambda)) * maxDensity_;
-    else seg->sigmaMaj = lambda ? Spectrum(spectralMajorant_) : rgbMajorant_;
-    return true;
+MajorantIterator GridMedium::majorants(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda) const {
+    if (!rgb_) return box_.iterate(o, d, tMax, majorants_, sigmaA_(lambda) + sigmaS_(lambda));
+    return box_.iterate(o, d, tMax, majorantGrid(lambda != nullptr), Spectrum(1.0f));
 }
 
 }  // namespace ps

@@ -2,12 +2,11 @@
 // "uniformgrid" (a density grid scaling constant sigma_a and sigma_s, optional Le with a
 // "Lescale" grid) and "rgbgrid" (per-voxel RGB sigma_a and sigma_s). Voxel values sit at cell
 // centres and are interpolated trilinearly, zero beyond the grid, as pbrt-v4's SampledGrid.
-// One majorant bounds the whole box (pbrt-v4 keeps a 16^3 majorant grid; a single bound is
-// as unbiased and only costs more null collisions in sparse grids).
+// Tracking samples against a 16^3 majorant grid over the box, as pbrt-v4's GridMedium and
+// RGBGridMedium do.
 #pragma once
 #include <vector>
-#include "math/transform.h"
-#include "media/medium.h"
+#include "media/majorant_grid.h"
 
 namespace ps {
 
@@ -20,14 +19,15 @@ struct VoxelGrid {
     // p in [0,1]^3 over the box; convert maps a stored value to the interpolated type.
     template <typename F>
     auto lookup(Vec3 p, F&& convert) const -> decltype(convert(values[0]));
+    // The largest value that lookup can blend at any p in [lo, hi] (unit coordinates), with
+    // every value passed through `bound`: a convex blend never exceeds its largest input.
+    template <typename R, typename F>
+    R maxOver(Vec3 lo, Vec3 hi, F&& bound) const;
 };
 
 class GridMedium final : public Medium {
 public:
-    struct Box {
-        Transform worldFromMedium;
-        Vec3 p0, p1;
-    };
+    using Box = MediumBox;
     // uniformgrid
     GridMedium(const Box& box, VoxelGrid<float> density, MediumSpectrum sigmaA, MediumSpectrum sigmaS,
                MediumSpectrum Le, VoxelGrid<float> LeScale, float g);
@@ -36,21 +36,20 @@ public:
 
     bool emissive() const override { return emissive_; }
     MediumProperties at(Vec3 p, const SampledWavelengths* lambda) const override;
-    bool segment(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda, MajorantSegment* seg) const override;
+    MajorantIterator majorants(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda) const override;
+    // The cells' bounds: density (uniformgrid), per-channel RGB sigma_t or its spectral lift's bound (rgbgrid).
+    const MajorantGrid& majorantGrid(bool spectral) const { return spectral && rgb_ ? liftedMajorants_ : majorants_; }
 
 private:
-    Vec3 toUnit(Vec3 pWorld) const;
-
     Box box_;
-    Transform mediumFromWorld_;
     bool rgb_ = false, emissive_ = false;
     VoxelGrid<float> density_, LeScale_;
     MediumSpectrum sigmaA_, sigmaS_, Le_;
-    float maxDensity_ = 0;
     VoxelGrid<Spectrum> rgbA_, rgbS_;
     const RGBColorSpace* space_ = nullptr;
-    Spectrum rgbMajorant_;      // RGB mode: per channel
-    float spectralMajorant_ = 0;  // spectral mode: a bound on every lifted voxel's a + s
+    // uniformgrid: each cell's largest density. rgbgrid: each cell's largest sigma_a + sigma_s
+    // per channel (RGB mode), and a bound on the lifted spectra's (spectral mode).
+    MajorantGrid majorants_{16, 16, 16}, liftedMajorants_;
 };
 
 }  // namespace ps

@@ -1,7 +1,7 @@
 // pbrt-v4's "homogeneous" medium: constant sigma_a, sigma_s (times "scale") and Le (times
 // "Lescale", over the spectrum's photometric integral) everywhere along a ray in it.
 #pragma once
-#include "media/medium.h"
+#include "media/majorant_grid.h"
 
 namespace ps {
 
@@ -13,9 +13,8 @@ public:
     MediumProperties at(Vec3, const SampledWavelengths* lambda) const override {
         return {sigmaA_(lambda), sigmaS_(lambda), Le_(lambda)};
     }
-    bool segment(Vec3, Vec3, float tMax, const SampledWavelengths* lambda, MajorantSegment* seg) const override {
-        *seg = {0, tMax, sigmaA_(lambda) + sigmaS_(lambda)};
-        return true;
+    MajorantIterator majorants(Vec3, Vec3, float tMax, const SampledWavelengths* lambda) const override {
+        return MajorantIterator(0, tMax, sigmaA_(lambda) + sigmaS_(lambda));
     }
 
 private:

@@ -4,11 +4,12 @@
 // a null collision; ratio tracking: weigh by sigma_n / sigma_maj). Tmaj is the majorant's
 // transmittance since the previous event. Returns the majorant transmittance from the last
 // event to the end of the ray, or 1 when an event stopped the walk. The ray is a copy: an
-// event may move the caller's ray (a scattering).
+// event may move the caller's ray (a scattering). The majorant may change from segment to
+// segment (a MajorantGrid's cells); Tmaj then spans the segments since the last event.
 #pragma once
 #include "geometry/ray.h"
 #include "mc/rng.h"
-#include "media/medium.h"
+#include "media/majorant_grid.h"
 
 namespace ps {
 
@@ -18,20 +19,34 @@ Spectrum sampleMajorant(const Medium& medium, Ray ray, float tMax, float u, Rng&
     const float len = length(ray.d);
     if (!(len > 0)) return Spectrum(1.0f);
     const Vec3 d = ray.d / len;
-    MajorantSegment seg;
     // Distances, not ray parameters: shadow rays have unnormalised directions.
-    if (!medium.segment(ray.o, d, tMax * len, lambda, &seg)) return Spectrum(1.0f);
-    const float sm = seg.sigmaMaj[hero];
-    if (!(sm > 0)) return expNeg(seg.sigmaMaj * std::max(0.0f, seg.t1 - seg.t0));
-    float t = seg.t0;
-    while (true) {
-        const float dt = -std::log(1 - u) / sm;
-        u = rng.uniform();
-        if (!(t + dt < seg.t1)) return expNeg(seg.sigmaMaj * std::max(0.0f, seg.t1 - t));
-        t += dt;
-        const Vec3 p = ray.o + d * t;
-        if (!event(p, medium.at(p, lambda), seg.sigmaMaj, expNeg(seg.sigmaMaj * dt))) return Spectrum(1.0f);
+    MajorantIterator segments = medium.majorants(ray.o, d, tMax * len, lambda);
+    Spectrum Tmaj(1.0f);
+    MajorantSegment seg;
+    while (segments.next(&seg)) {
+        const float sm = seg.sigmaMaj[hero];
+        if (!(sm > 0)) {  // an empty cell (or a hero channel the medium leaves alone)
+            Tmaj *= expNeg(seg.sigmaMaj * std::max(0.0f, seg.t1 - seg.t0));
+            continue;
+        }
+        float t = seg.t0;
+        while (true) {
+            const float dt = -std::log(1 - u) / sm;
+            u = rng.uniform();
+            if (!(t + dt < seg.t1)) {
+                // Past the segment: the flight goes on in the next one with a fresh u, as
+                // pbrt-v4's SampleT_maj (memorylessness makes the restart exact).
+                Tmaj *= expNeg(seg.sigmaMaj * std::max(0.0f, seg.t1 - t));
+                break;
+            }
+            t += dt;
+            Tmaj *= expNeg(seg.sigmaMaj * dt);
+            const Vec3 p = ray.o + d * t;
+            if (!event(p, medium.at(p, lambda), seg.sigmaMaj, Tmaj)) return Spectrum(1.0f);
+            Tmaj = Spectrum(1.0f);
+        }
     }
+    return Tmaj;
 }
 
 }  // namespace ps

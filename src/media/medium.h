@@ -22,6 +22,8 @@ struct MajorantSegment {
     Spectrum sigmaMaj;
 };
 
+class MajorantIterator;
+
 // A scene spectrum in both colour modes: an RGB value, or a spectrum's values at a path's
 // wavelengths (spectral mode, lambda not null) times a scale.
 class MediumSpectrum {
@@ -47,9 +49,10 @@ public:
     virtual bool emissive() const { return false; }
     // The coefficients at a world-space point.
     virtual MediumProperties at(Vec3 p, const SampledWavelengths* lambda) const = 0;
-    // Where along o + t d (d unit, t in [0, tMax]) the medium can interact, and its majorant
-    // there; false when nowhere (a grid's box missed).
-    virtual bool segment(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda, MajorantSegment* seg) const = 0;
+    // The segments of o + t d (d unit, t in [0, tMax]) where the medium can interact, each
+    // with a majorant that bounds sigma_t over it (pbrt-v4's SampleRay); none where the ray
+    // misses a grid's box.
+    virtual MajorantIterator majorants(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda) const = 0;
 
 private:
     HGPhaseFunction phase_;

@@ -468,6 +468,22 @@ AttributeBegin
 AttributeEnd)";
     })->sppScale = 2;  // at 1, pssmlt resolved 2.0%
 
+    // The same with pbrt-v4's procedural cloud filling the box: Perlin-noise density over a
+    // solid base, tracked against its 16^3 majorant grid (DDA walks in every flight and
+    // connection).
+    box("medium/cloud", [](Box& b) {
+        b.maxDepth = 4;
+        b.light = "AttributeBegin\nMediumInterface \"fog\" \"fog\"\n" + b.light + "\nAttributeEnd";
+        b.extra = R"(MakeNamedMedium "fog" "string type" "cloud" "float density" [ 1 ] "float frequency" [ 3 ]
+  "point3 p0" [ -0.5 0 -0.5 ] "point3 p1" [ 0.5 1 0.5 ]
+  "rgb sigma_a" [ 0.1 0.2 0.3 ] "rgb sigma_s" [ 1.2 0.8 0.5 ] "float g" [ 0.3 ]
+AttributeBegin
+  Material "interface"
+  MediumInterface "fog" ""
+  Shape "bilinearmesh" "point3 P" [ -0.5 0 0.5   0.5 0 0.5   -0.5 1 0.5   0.5 1 0.5 ]
+AttributeEnd)";
+    })->sppScale = 2;
+
     // ---- path depth ----
     box("depth/0", [](Box& b) { b.maxDepth = 0; })->sppScale = 8;
     box("depth/1", [](Box& b) { b.maxDepth = 1; })->sppScale = 4;

@@ -48,3 +48,4 @@ void replay(const std::string& target, const std::string& corpus, Runner run) {
 TEST(FuzzRegressions, Scene) { replay("scene_fuzzer", "scene", ps::fuzz::runSceneInput); }
 TEST(FuzzRegressions, Ply) { replay("ply_fuzzer", "ply", ps::fuzz::runPlyInput); }
 TEST(FuzzRegressions, Image) { replay("image_fuzzer", "image", ps::fuzz::runImageInput); }
+TEST(FuzzRegressions, NanoVDB) { replay("nvdb_fuzzer", "nvdb", ps::fuzz::runNanoVDBInput); }

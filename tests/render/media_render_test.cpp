@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "media/transmittance.h"
+#include "media_test_helpers.h"
 #include "spectral_answer.h"
 #include "transport/integrator.h"
 
@@ -13,61 +13,6 @@ using namespace ps;
 using namespace ps::test;
 
 namespace {
-
-// Mean and standard error of n draws.
-struct Mean {
-    double mean = 0, se = 0;
-};
-template <class F>
-Mean meanOf(int n, F&& draw) {
-    double s = 0, s2 = 0;
-    for (int i = 0; i < n; ++i) {
-        const double x = draw();
-        s += x;
-        s2 += x * x;
-    }
-    Mean m;
-    m.mean = s / n;
-    m.se = std::sqrt(std::max(0.0, s2 / n - m.mean * m.mean) / (n - 1));
-    return m;
-}
-
-// A scene whose camera is in `medium` (pbrt-v4's CameraMedium), to reach the medium.
-std::unique_ptr<Scene> sceneInMedium(const std::string& medium) {
-    setWarningsQuiet(true);
-    const std::string text = "MakeNamedMedium \"m\" " + medium + R"(
-        MediumInterface "" "m"
-        Camera "perspective"
-        WorldBegin
-    )";
-    return buildScene(parseSceneString(text, ".", "<test>"), false);
-}
-
-// Ratio tracking from p0 to p1, per channel in RGB mode with the hero drawn uniformly as the
-// path tracer draws it: the estimate of each channel's transmittance is T / mean(rL), what a
-// shadow ray towards a delta light contributes (media/transmittance.h).
-std::array<Mean, 3> ratioTracked(const Scene& scene, Vec3 p0, Vec3 p1, int n) {
-    std::array<Mean, 3> out;
-    Rng rng(11);
-    for (int c = 0; c < 3; ++c) {
-        Rng local(17 + c);
-        out[c] = meanOf(n, [&] {
-            const int hero = std::min(2, int(local.uniform() * 3));
-            TransmittanceEstimate e = transmittance(scene, p0, Vec3(0, 0, 0), scene.cameraMedium(), p1, 0, nullptr, hero, false, rng);
-            return e.T.isBlack() ? 0.0 : double(e.T[c] / channelMean(e.rL, false));
-        });
-    }
-    return out;
-}
-
-void expectTransmittance(const std::array<Mean, 3>& got, const std::array<double, 3>& exact, const char* what) {
-    for (int c = 0; c < 3; ++c) {
-        std::printf("  %s channel %d: %.5f +- %.5f, exp(-tau) %.5f, %+.2f sigma\n", what, c, got[c].mean, got[c].se, exact[c],
-                    (got[c].mean - exact[c]) / got[c].se);
-        EXPECT_NEAR(got[c].mean, exact[c], 4 * got[c].se) << what << " channel " << c;
-        EXPECT_LT(4 * got[c].se, 0.02 * exact[c]) << what << ": cannot resolve a 2% error";
-    }
-}
 
 // Each channel of an image's mean within 4 sigma of `exact`, with sigma small enough to catch a
 // 2% error.
@@ -201,15 +146,6 @@ TEST(MediaRender, EmittingMediumFurnace) {
 // ---- bad input ----
 
 namespace {
-std::string buildError(const std::string& text) {
-    setWarningsQuiet(true);
-    try {
-        buildScene(parseSceneString(text, ".", "scene.pbrt"), false);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
 }  // namespace
 
 TEST(MediaErrors, UndefinedMediumIsALocatedError) {
@@ -235,11 +171,12 @@ TEST(MediaErrors, WrongSizedGridIsALocatedError) {
 }
 
 TEST(MediaErrors, UnsupportedMediaAreLocatedErrorsNotIgnored) {
-    for (const char* type : {"cloud", "nanovdb"}) {
-        const std::string e = buildError(std::string("WorldBegin\nMakeNamedMedium \"c\" \"string type\" \"") + type + "\"\n");
-        EXPECT_NE(e.find("scene.pbrt:2:1"), std::string::npos) << e;
-        EXPECT_NE(e.find("not supported yet"), std::string::npos) << e;
-    }
+    const std::string e = buildError("WorldBegin\nMakeNamedMedium \"c\" \"string type\" \"homogeneous\" \"string preset\" \"Wholemilk\"\n");
+    EXPECT_NE(e.find("scene.pbrt:2:1"), std::string::npos) << e;
+    EXPECT_NE(e.find("not supported yet"), std::string::npos) << e;
+    const std::string v = buildError("WorldBegin\nMakeNamedMedium \"c\" \"string type\" \"nanovdb\"\n");
+    EXPECT_NE(v.find("scene.pbrt:2:1"), std::string::npos) << v;
+    EXPECT_NE(v.find("needs a \"filename\""), std::string::npos) << v;
 }
 
 // Integrators without medium vertices refuse a scene with media rather than render it wrong.

@@ -1,0 +1,35 @@
+// A medium whose coefficients are constant spectra sigma_a and sigma_s times a scalar density
+// field inside a box (pbrt-v4's CloudMedium and NanoVDBMedium alike): the point's density in
+// the medium's space scales both, and tracking walks a majorant grid of the density's bounds
+// over the box times sigma_a + sigma_s. Subclasses give the density and fill the grid.
+#pragma once
+#include "media/majorant_grid.h"
+
+namespace ps {
+
+class DensityMedium : public Medium {
+public:
+    DensityMedium(const MediumBox& box, MediumSpectrum sigmaA, MediumSpectrum sigmaS, float g, int majorantRes)
+        : Medium(g), box_(box), sigmaA_(std::move(sigmaA)), sigmaS_(std::move(sigmaS)),
+          majorants_(majorantRes, majorantRes, majorantRes) {}
+
+    // The density at a point of the medium's space.
+    virtual float density(Vec3 pMedium) const = 0;
+
+    MediumProperties at(Vec3 p, const SampledWavelengths* lambda) const final {
+        const float d = density(box_.toMedium(p));
+        return {sigmaA_(lambda) * d, sigmaS_(lambda) * d, Spectrum(0.0f)};
+    }
+    MajorantIterator majorants(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda) const final {
+        return box_.iterate(o, d, tMax, majorants_, sigmaA_(lambda) + sigmaS_(lambda));
+    }
+    const MajorantGrid& majorantGrid() const { return majorants_; }
+    const MediumBox& box() const { return box_; }
+
+protected:
+    MediumBox box_;
+    MediumSpectrum sigmaA_, sigmaS_;
+    MajorantGrid majorants_;
+};
+
+}  // namespace ps

@@ -1,0 +1,57 @@
+#include "media/nanovdb_medium.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+
+namespace ps {
+
+NanoVDBMedium::NanoVDBMedium(const Transform& worldFromMedium, NanoVDBGrid density, MediumSpectrum sigmaA,
+                             MediumSpectrum sigmaS, float g)
+    // The medium's box is the grid's world box, as pbrt-v4's; 64^3 majorant cells, as pbrt-v4's.
+    : DensityMedium(MediumBox{worldFromMedium.inverse(), density.worldMin(), density.worldMax()}, std::move(sigmaA),
+                    std::move(sigmaS), g, 64),
+      grid_(std::move(density)) {
+    const Vec3 e = box_.p1 - box_.p0;
+    if (!(e.x > 0 && e.y > 0 && e.z > 0))
+        throw std::runtime_error(grid_.name() + ": the grid's world bounding box is empty");
+    const int* iMin = grid_.indexMin();
+    const int* iMax = grid_.indexMax();
+    majorants_.fill([&](Vec3 lo, Vec3 hi) {
+        // The index-space box of the cell's eight corners; a sample at index x blends voxels
+        // floor(x) and floor(x) + 1, and one voxel of slack each way covers rounding (pbrt-v4's
+        // "filter slop"). Beyond the grid's index box every voxel is the background.
+        float mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (int c = 0; c < 8; ++c) {
+            const Vec3 u((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+            const Vec3 pi = grid_.worldToIndex(box_.p0 + Vec3(u.x * e.x, u.y * e.y, u.z * e.z));
+            for (int a = 0; a < 3; ++a) {
+                mn[a] = std::min(mn[a], pi[a]);
+                mx[a] = std::max(mx[a], pi[a]);
+            }
+        }
+        float m = 0;
+        int64_t i0[3], i1[3];
+        for (int a = 0; a < 3; ++a) {
+            const float lo0 = std::floor(mn[a]) - 1, hi0 = std::floor(mx[a]) + 2;
+            if (std::isnan(lo0) || std::isnan(hi0)) return Spectrum(grid_.maxValue());  // a corrupt map
+            if (lo0 < float(iMin[a]) || hi0 > float(iMax[a])) m = std::max(m, grid_.background());
+            // In double and 64 bits: a corrupt map may put the corners far beyond int's range.
+            i0[a] = int64_t(std::clamp(double(lo0), double(iMin[a]), double(iMax[a]) + 1));
+            i1[a] = int64_t(std::clamp(double(hi0), double(iMin[a]) - 1, double(iMax[a])));
+        }
+        // A cell over very many voxels (a coarse grid of a huge volume, or a corrupt map):
+        // the largest value in the grid bounds it without scanning them.
+        const double voxels = double(i1[0] - i0[0] + 1) * double(i1[1] - i0[1] + 1) * double(i1[2] - i0[2] + 1);
+        if (voxels > double(1 << 18)) return Spectrum(std::max(m, grid_.maxValue()));
+        for (int64_t k = i0[2]; k <= i1[2]; ++k)
+            for (int64_t j = i0[1]; j <= i1[1]; ++j)
+                for (int64_t i = i0[0]; i <= i1[0]; ++i) m = std::max(m, grid_.value(int(i), int(j), int(k)));
+        return Spectrum(m);
+    });
+}
+
+float NanoVDBMedium::density(Vec3 pMedium) const { return grid_.sample(grid_.worldToIndex(pMedium)); }
+
+}  // namespace ps
