@@ -225,22 +225,16 @@ double cameraPrefixStep(const PathVertex* camera, int m, double before) {
     bool valid = !camera[m].delta && !camera[m - 1].delta;
     return misTerm<H>(camera[m].pdfRev, camera[m].pdfFwd) * ((valid ? 1 : 0) + before);
 }
-// The term of the s = 1 strategy's light choice (Subpaths::lightChoiceRatio k): its density
-// ratio to any other strategy carries k, as a factor of the ratio.
+// The term of a factor k of a density ratio: the s = 1 strategy's light choice
+// (Subpaths::lightChoiceRatio), which its density ratio to any other strategy carries, or a
+// ratio of sample counts: strategies that use the light subpath (s >= 2) take `share`
+// samples per camera sample, the others one (BDPTIntegrator::setLightPathShare), so a ratio
+// between the two kinds carries share or 1 / share (thesis §9.2, n_i p_i).
 template <MisHeuristic H>
 double choiceTerm(float k) {
     if constexpr (H == MisHeuristic::Uniform) return k > 0 ? 1.0 : 0.0;
     if constexpr (H == MisHeuristic::Power) return double(k) * k;
     return k;
-}
-// A sample count's term: strategies that use the light subpath (s >= 2) take `share`
-// samples per camera sample, the others one (BDPTIntegrator::setLightPathShare); a density
-// ratio between the two kinds carries the ratio of their counts (thesis §9.2, n_i p_i).
-template <MisHeuristic H>
-double countTerm(float ratio) {
-    if constexpr (H == MisHeuristic::Uniform) return 1.0;
-    if constexpr (H == MisHeuristic::Power) return double(ratio) * ratio;
-    return ratio;
 }
 // At m = 1 the strategy counted is s = 1, whose term carries its light choice (choice). The
 // sums are used from strategies s >= 3, so the terms of s' = 0 and 1 carry their count
@@ -285,7 +279,7 @@ BDPTIntegrator::MisPrefixes BDPTIntegrator::misPrefixes(const PathVertex* light,
         constexpr MisHeuristic H = decltype(h)::value;
         cam[0] = 0;
         for (int m = 1; m <= nCamera - 2; ++m) cam[m] = cameraPrefixStep<H>(camera, m, cam[m - 1]);
-        const double fewer = countTerm<H>(1 / lightPathShare_);
+        const double fewer = choiceTerm<H>(1 / lightPathShare_);
         for (int m = 0; m <= nLight - 2; ++m)
             lig[m] = lightPrefixStep<H>(light, m, m > 0 ? lig[m - 1] : 0.0, choice, fewer);
     });
@@ -335,7 +329,7 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
         constexpr MisHeuristic H = decltype(h)::value;
         // Sample counts (setLightPathShare): from s <= 1, the strategies s' >= 2 count
         // `more`; from s >= 2, s' <= 1 count `fewer`.
-        const double more = countTerm<H>(lightPathShare_), fewer = countTerm<H>(1 / lightPathShare_);
+        const double more = choiceTerm<H>(lightPathShare_), fewer = choiceTerm<H>(1 / lightPathShare_);
         // Beyond the two vertices at each side of the join, each side contributes its
         // running sum: from the prefixes, or walked here.
         double cameraTail = 0, lightTail = 0;

@@ -119,7 +119,6 @@ public:
     // little (mostly direct light), this buys camera samples with their time. Rendering only:
     // Metropolis keeps the pairing.
     void setLightPathShare(float share);
-    float lightPathShare() const { return lightPathShare_; }
     // For tests: connect() also computes each weight from densities evaluated afresh at the
     // join, not those its BSDF evaluations produced, into Connection::recomputedWeight.
     void recomputeWeights(bool on) { recomputeWeights_ = on; }
