@@ -146,6 +146,7 @@ void RenderCommand::load(Job& job) {
     if (settings.spectral) checkpointSettings["color"] = "spectral";  // absent: RGB, as before the option existed
     // Absent: one light subpath per sample, as before the option existed.
     if (settings.integrator == "bdpt" && settings.bdptLightPaths != 1) checkpointSettings["light_paths"] = settings.bdptLightPaths;
+    if (args_.shadowRoulette > 0) checkpointSettings["shadow_roulette"] = args_.shadowRoulette;
     // A Markov chain's course depends on every parameter of the chains and the bootstrap.
     if (settings.integrator == "pssmlt" || settings.integrator == "mmlt" || settings.integrator == "mlt") {
         checkpointSettings["chains"] = settings.mltChains;

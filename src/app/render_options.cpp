@@ -119,6 +119,16 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
             return !v.empty() && *end == '\0' && f > 0 && f <= 1 ? std::string()
                                                                  : "expected a share in (0, 1], got \"" + v + "\"";
         });
+    cmd->add_option("--shadow-roulette", a.shadowRoulette,
+                    "Russian roulette on shadow rays (thesis 10.3.4; path, light, bdpt): a connection whose "
+                    "unoccluded contribution C is below tau = this share of the image's mean so far traces its "
+                    "shadow ray with probability C / tau (docs/robustness.md). 0 (default): every shadow ray")
+        ->check([](const std::string& v) {
+            char* end = nullptr;
+            const float f = std::strtof(v.c_str(), &end);
+            return !v.empty() && *end == '\0' && f >= 0 && f <= 100 ? std::string()
+                                                                    : "expected a share in [0, 100], got \"" + v + "\"";
+        });
     cmd->add_option("--sampler", a.sampler,
                      "Sample placement per pixel: sobol (default; Owen-scrambled Sobol, padded), zsobol (Sobol in "
                      "Morton order over the image: blue-noise error), halton (Owen-scrambled Halton), orthogonal "
@@ -225,7 +235,7 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
     cmd->add_flag("--quiet", a.quiet, "No progress bar or statistics on the terminal");
 
     const std::pair<const char*, std::vector<const char*>> groups[] = {
-        {"Rendering", {"--spp", "--time", "--threads", "--seed", "--maxdepth", "--integrator", "--mis", "--light-paths", "--sampler",
+        {"Rendering", {"--spp", "--time", "--threads", "--seed", "--maxdepth", "--integrator", "--mis", "--light-paths", "--shadow-roulette", "--sampler",
                        "--adaptive", "--color", "--max-memory"}},
         {"Output", {"--output", "--aov", "--crop", "--pixelbounds", "--stats", "--bdpt-strategies", "--quiet"}},
         {"Checkpoints", {"--checkpoint", "--checkpoint-every", "--resume"}},
@@ -359,6 +369,19 @@ void configureRender(Scene& scene, const RenderArgs& a, RenderSetup& setup) {
     opts.sampler = settings.sampler;
     opts.progress = !a.quiet;
     opts.adaptive = adaptive;
+    if (a.shadowRoulette > 0) {
+        const std::string& n = settings.integrator;
+        if (n != "path" && n != "volpath" && n != "light" && n != "bdpt")
+            throw InputError("--shadow-roulette applies to path, light and bdpt (the render uses \"" + n +
+                             "\"): a Markov chain's target must not be a random estimate");
+        if (adaptive != AdaptiveMode::None)
+            throw InputError("--shadow-roulette needs uniform sampling: its threshold follows the image between "
+                             "passes of equal size (leave out --adaptive)");
+        if (scene.hasMedia())
+            warning("--shadow-roulette: in a scene with participating media, connections estimate transmittance "
+                    "and are all traced");
+        opts.shadowRoulette = a.shadowRoulette;
+    }
     // Only what will be shown or written: a quiet render without --stats or --aov variance
     // leaves the film's luminance moments out (bench/README.md, scene loading).
     opts.errorEstimate = !a.quiet || !a.statsFile.empty();
@@ -431,6 +454,7 @@ nlohmann::json renderStatistics(const Scene& scene, const RenderArgs& a, const R
         {"rays", rays},
         {"closest_hit_rays", r.stats.rays},
         {"shadow_rays", r.stats.shadowRays},
+        {"shadow_rays_skipped", r.stats.shadowRaysSkipped},
         {"rays_per_s", runRays / secs},
         {"mean_pixel_variance", known.noise ? nlohmann::json(r.error.meanVariance) : nlohmann::json()},
         {"mean_relative_variance", known.noise ? nlohmann::json(r.error.meanRelativeVariance) : nlohmann::json()},
@@ -441,6 +465,7 @@ nlohmann::json renderStatistics(const Scene& scene, const RenderArgs& a, const R
         {"memory_limit_bytes", memoryLimit()},
     };
     if (settings.integrator == "bdpt") stats["light_paths_per_sample"] = settings.bdptLightPaths;
+    stats["shadow_roulette"] = a.shadowRoulette;
     const MetropolisStats& ms = r.metropolis;
     // Veach's mlt has no large and small steps in primary sample space: those fields are
     // pssmlt's and mmlt's alone.

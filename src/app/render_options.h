@@ -26,6 +26,7 @@ struct RenderArgs {
     std::string integrator;
     std::string mis;  // empty: the default (power, beta 2)
     float lightPaths = 0;  // --light-paths (bdpt): 0 = not given (one light subpath per sample)
+    float shadowRoulette = 0;  // --shadow-roulette: 0 = off
     std::string strategiesDir;
     bool keepStrategies = false;  // strategy images kept in memory (the Python module), not written
     std::string sampler;

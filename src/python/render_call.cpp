@@ -39,6 +39,7 @@ const std::map<std::string, std::string>& optionNames() {
         {"integrator", "--integrator"},
         {"mis", "--mis"},
         {"light_paths", "--light-paths"},
+        {"shadow_roulette", "--shadow-roulette"},
         {"sampler", "--sampler"},
         {"adaptive", "--adaptive"},
         {"color", "--color"},

@@ -33,6 +33,8 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
     Connection c;
     if (splatTo) lambda = splatTo->lambda;
     const uint64_t stream = media ? MediaSample::kFirstConnection + uint64_t(connectionDimension(s, t)) : 0;
+    const ShadowRoulette* roulette = splatTo && splatTo->roulette.active() && !media ? &splatTo->roulette : nullptr;
+    j.deferVisibility = roulette != nullptr;
     if (s == 0) {
         joinEmitter(camera, t, lambda, media, j);
     } else if (t > 1 && camera[t - 1].isInfiniteLight()) {
@@ -54,6 +56,22 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
     const PathVertex* sampled = j.sampled ? &*j.sampled : nullptr;
     c.weight = weighted ? misWeight(light, camera, sampled, s, t, j.haveKnown ? &j.known : nullptr, prefixes) : 1.0f;
     if (recomputeWeights_) c.recomputedWeight = misWeight(light, camera, sampled, s, t, nullptr);
+    if (j.from) {
+        // Shadow-ray roulette on the contribution as the film will take it (produce divides
+        // strategies s >= 2 by the light path share).
+        float scale;
+        const float share = s >= 2 ? 1 / lightPathShare_ : 1.0f;
+        if (!roulette->trace(c.L * (c.weight * share), uint64_t(connectionDimension(s, t)), &scale)) {
+            ++stats.shadowRaysSkipped;
+            c.L = Spectrum();
+            return c;
+        }
+        if (!paths_.visible(*j.from, *j.to, stats)) {
+            c.L = Spectrum();
+            return c;
+        }
+        c.L *= scale;
+    }
     return c;
 }
 
@@ -95,7 +113,9 @@ void BDPTIntegrator::joinLens(const PathVertex& qs, S& sampler, PathStats& stats
     }
     if (!j.L.isBlack()) {
         if (splatTo) splatTo->film.prefetchSplat(j.pRaster, splatTo->sampleIndex);
-        if (!paths_.connectThrough(qs, lens, qs.rU, stats, media, stream, j.L)) j.L = Spectrum();
+        const bool through = media ? paths_.connectThrough(qs, lens, qs.rU, stats, media, stream, j.L)
+                                   : j.visibleNowOrLater(qs, lens, paths_, stats);
+        if (!through) j.L = Spectrum();
     }
 }
 
@@ -148,7 +168,10 @@ void BDPTIntegrator::joinLight(const PathVertex& pt, S& sampler, PathStats& stat
         j.L = pt.beta * paths_.f(pt, lv, TransportMode::Radiance) * lv.beta;
         if (pt.onSurface()) j.L *= std::fabs(dot(ls->wi, pt.ns));
     }
-    if (!j.L.isBlack() && !paths_.connectThrough(pt, lv, pt.rU, stats, media, stream, j.L)) j.L = Spectrum();
+    if (j.L.isBlack()) return;
+    const bool through = media ? paths_.connectThrough(pt, lv, pt.rU, stats, media, stream, j.L)
+                               : j.visibleNowOrLater(pt, lv, paths_, stats);
+    if (!through) j.L = Spectrum();
 }
 
 // Both subpaths contribute a vertex (s, t > 1); join them deterministically. One direction
@@ -168,7 +191,7 @@ void BDPTIntegrator::joinInner(const PathVertex& qs, const PathVertex& pt, PathS
     BxDFEval atPt = paths_.evaluate(pt, -w, &cosPt);
     float g = cosQs * cosPt * invDist2;
     j.L = qs.beta * atQs.f * atPt.f * pt.beta * g;
-    if (j.L.isBlack() || !paths_.visible(qs, pt, stats)) {
+    if (j.L.isBlack() || !j.visibleNowOrLater(qs, pt, paths_, stats)) {
         j.L = Spectrum();
         return;
     }

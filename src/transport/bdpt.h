@@ -145,6 +145,19 @@ private:
         bool haveKnown = false;
         std::optional<PathVertex> sampled;
         Vec2 pRaster;
+        // Shadow-ray roulette (no media): the joins leave the visibility test from `from` to
+        // `to` to connect(), which first knows the weighted contribution.
+        bool deferVisibility = false;
+        const PathVertex* from = nullptr;
+        const PathVertex* to = nullptr;
+        // Visibility of a and b now, or (deferVisibility) left to connect(): whether the
+        // connection may carry light.
+        bool visibleNowOrLater(const PathVertex& a, const PathVertex& b, const Subpaths& paths, PathStats& stats) {
+            if (!deferVisibility) return paths.visible(a, b, stats);
+            from = &a;
+            to = &b;
+            return true;
+        }
     };
     // `media` (scenes with media): transmittance replaces visibility (Subpaths::connectThrough);
     // `stream`: the connection's Rng stream.

@@ -46,7 +46,7 @@ uint64_t hashBytes(const char* data, size_t n, uint64_t h) {
 }
 
 nlohmann::json statsJson(const PathStats& s) {
-    return {s.cameraPaths, s.lightPaths, s.rays, s.shadowRays, s.guarded};
+    return {s.cameraPaths, s.lightPaths, s.rays, s.shadowRays, s.guarded, s.shadowRaysSkipped};
 }
 
 // For a setting that maps file names to hashes: each file that differs.
@@ -186,6 +186,8 @@ CheckpointState readCheckpoint(const std::string& path, const nlohmann::json& se
         const auto& st = m.at("stats");
         s.stats = {st.at(0).get<uint64_t>(), st.at(1).get<uint64_t>(), st.at(2).get<uint64_t>(), st.at(3).get<uint64_t>(),
                    st.at(4).get<uint64_t>()};
+        // Checkpoints written before shadow-ray roulette have five counts.
+        if (st.size() > 5) s.stats.shadowRaysSkipped = st.at(5).get<uint64_t>();
     } catch (const nlohmann::json::exception& e) {
         refuse(path, std::string("unreadable metadata (") + e.what() + ")");
     }

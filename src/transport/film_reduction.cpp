@@ -4,11 +4,12 @@ namespace ps {
 
 bool sumCountsToRoot(long long& samples, PathStats& stats, const CheckpointState* resume) {
     std::vector<int64_t> n{samples, int64_t(stats.cameraPaths), int64_t(stats.lightPaths), int64_t(stats.rays),
-                           int64_t(stats.shadowRays), int64_t(stats.guarded)};
+                           int64_t(stats.shadowRays), int64_t(stats.guarded),
+                           int64_t(stats.shadowRaysSkipped)};
     distributed::sumToRoot(n);
     if (!distributed::isRoot()) return false;
     samples = n[0] + (resume ? resume->samples : 0);
-    stats = {uint64_t(n[1]), uint64_t(n[2]), uint64_t(n[3]), uint64_t(n[4]), uint64_t(n[5])};
+    stats = {uint64_t(n[1]), uint64_t(n[2]), uint64_t(n[3]), uint64_t(n[4]), uint64_t(n[5]), uint64_t(n[6])};
     if (resume) stats += resume->stats;
     return true;
 }

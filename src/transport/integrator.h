@@ -10,6 +10,7 @@
 #include "math/spectrum.h"
 #include "mc/sampler.h"
 #include "render/scene.h"
+#include "transport/shadow_roulette.h"
 #include "util/scratch.h"
 
 namespace ps {
@@ -23,14 +24,16 @@ struct PathStats {
     uint64_t rays = 0;        // closest-hit rays, camera rays included
     uint64_t shadowRays = 0;  // visibility tests
     uint64_t guarded = 0;     // non-finite values caught at their source
+    uint64_t shadowRaysSkipped = 0;  // visibility tests left out by roulette (transport/shadow_roulette.h)
     PathStats& operator+=(const PathStats& o) {
         cameraPaths += o.cameraPaths; lightPaths += o.lightPaths; rays += o.rays; shadowRays += o.shadowRays; guarded += o.guarded;
+        shadowRaysSkipped += o.shadowRaysSkipped;
         return *this;
     }
     // What a run added to the counts `before` it (a resumed render's own work).
     PathStats since(const PathStats& before) const {
         return {cameraPaths - before.cameraPaths, lightPaths - before.lightPaths, rays - before.rays,
-                shadowRays - before.shadowRays, guarded - before.guarded};
+                shadowRays - before.shadowRays, guarded - before.guarded, shadowRaysSkipped - before.shadowRaysSkipped};
     }
 };
 
@@ -80,6 +83,8 @@ struct SampleContext {
     SampledWavelengths* lambda = nullptr;
     // Spectral mode: the film's sensor, through which splats go (toFilm) as Li's result does.
     const SpectralFilm* sensor = nullptr;
+    // Roulette on this sample's visibility tests (off unless --shadow-roulette).
+    ShadowRoulette roulette;
     // A splat's value as the film takes it: the rendering space's RGB. Splats are made after
     // both subpaths exist, so the wavelengths' termination is final by then.
     Spectrum toFilm(const Spectrum& L) const;

@@ -4,7 +4,8 @@ namespace ps {
 
 Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
                                   float uLight, Vec2 u, float time, const SampledWavelengths* lambda,
-                                  PathStats& stats) const {
+                                  PathStats& stats, const Spectrum& beta, const ShadowRoulette& roulette,
+                                  int slot) const {
     // The light is chosen for this point (the scene's "lightsampler"); the MIS weights of
     // emitters the next ray hits ask the same sampler at the same point (prevCtx).
     const LightSampleContext ctx{si.p, si.ng, lambda};
@@ -17,23 +18,41 @@ Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& fra
     Vec3 wiLocal = frame.toLocal(ls->wi);
     Spectrum f = bxdf.f(woLocal, wiLocal, TransportMode::Radiance) * absCosTheta(wiLocal);
     if (f.isBlack()) return {};
+    const float pLight = pmf * ls->pdf;
+    // The contribution if unoccluded; the MIS weight's BSDF density (costly for layered
+    // BxDFs) waits for the shadow ray unless the roulette needs it first.
+    const auto unoccluded = [&] {
+        if (light->isDelta()) return f * ls->L / pLight;
+        const float pBsdf = bxdf.pdf(woLocal, wiLocal, TransportMode::Radiance);
+        return f * ls->L * (misWeight(pLight, pBsdf) / pLight);
+    };
+    if (!roulette.active()) {
+        ++stats.shadowRays;
+        if (scene_.occluded(spawnRayTo(si.p, si.ng, ls->pLight, time))) return {};
+        return unoccluded();
+    }
+    const Spectrum C = unoccluded();
+    float scale;
+    if (!roulette.trace(beta * C, uint64_t(slot), &scale)) {
+        ++stats.shadowRaysSkipped;
+        return {};
+    }
     ++stats.shadowRays;
     if (scene_.occluded(spawnRayTo(si.p, si.ng, ls->pLight, time))) return {};
-    float pLight = pmf * ls->pdf;
-    if (light->isDelta()) return f * ls->L / pLight;
-    float pBsdf = bxdf.pdf(woLocal, wiLocal, TransportMode::Radiance);
-    return f * ls->L * (misWeight(pLight, pBsdf) / pLight);
+    return C * scale;
 }
 
 Spectrum PathTracer::Li(const Ray& ray, SampleContext& ctx) const {
     if (scene_.hasMedia()) return estimateInMedia(ray, ctx.sampler, ctx.scratch, ctx.stats, ctx.lambda);
     return withConcreteSampler(ctx.sampler,
-                               [&](auto& sampler) { return estimate(ray, sampler, ctx.scratch, ctx.stats, ctx.lambda); });
+                               [&](auto& sampler) {
+        return estimate(ray, sampler, ctx.scratch, ctx.stats, ctx.lambda, ctx.roulette);
+    });
 }
 
 template <typename S>
 Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& scratch, PathStats& stats,
-                              SampledWavelengths* lambda) const {
+                              SampledWavelengths* lambda, const ShadowRoulette& roulette) const {
     Spectrum L, beta(1.0f);
     Ray ray = cameraRay;
     int depth = 0;
@@ -102,7 +121,8 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
         haveSamples = false;
         uint8_t flags = bxdf->flags();
         if (flags & (kDiffuse | kGlossy))
-            L += beta * sampleDirect(si, frame, *bxdf, woLocal, uLight, uLightPoint, ray.time, lambda, stats);
+            L += beta * sampleDirect(si, frame, *bxdf, woLocal, uLight, uLightPoint, ray.time, lambda, stats, beta,
+                                     roulette, depth);
         if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) break;
         Vec3 wi = frame.toWorld(bs->wi);
         Spectrum weight = bs->f * (absCosTheta(bs->wi) / bs->pdf);

@@ -36,11 +36,14 @@ private:
                                  Rng& rng, const SampledWavelengths* lambda, PathStats& stats) const;
     // The estimator, instantiated per concrete sampler so its calls inline on the hot path.
     template <typename S>
-    Spectrum estimate(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats, SampledWavelengths* lambda) const;
+    Spectrum estimate(const Ray& ray, S& sampler, ScratchBuffer& scratch, PathStats& stats, SampledWavelengths* lambda,
+                      const ShadowRoulette& roulette) const;
     // Direct lighting at a surface by one light sample (uLight picks the light, u the point on
-    // it), MIS-weighted against BSDF sampling.
+    // it), MIS-weighted against BSDF sampling. beta: the path's throughput, which the caller
+    // multiplies in; with `roulette` its shadow ray (slot: the vertex) may be left out.
     Spectrum sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
-                          float uLight, Vec2 u, float time, const SampledWavelengths* lambda, PathStats& stats) const;
+                          float uLight, Vec2 u, float time, const SampledWavelengths* lambda, PathStats& stats,
+                          const Spectrum& beta, const ShadowRoulette& roulette, int slot) const;
 
     // The weight of a sample of density pf against the other technique's pg: the power
     // heuristic's inline code for the default, else mc/mis.h's general one.

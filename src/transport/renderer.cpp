@@ -63,6 +63,20 @@ bool renderUniform(SamplePasses& passes, Film& film, int spp, UniformProgress& a
     return true;
 }
 
+// The shadow-ray roulette's threshold from the film so far: `share` of its mean pixel value
+// (channel mean), in the units of a sample's radiance (before the imaging ratio).
+float shadowTau(const Film& film, const Scene& scene, float share) {
+    const float imagingRatio = scene.settings().imagingRatio;
+    const double lightPaths =
+        imagingRatio > 0 ? film.meanSamplesPerPixel() * double(film.bounds().area()) / imagingRatio : 0.0;
+    const Image image = film.image(lightPaths);
+    double sum = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) sum += image.get(x, y).average();
+    const double mean = sum / std::max(1.0, double(image.width) * image.height);
+    return imagingRatio > 0 && std::isfinite(mean) ? float(share * mean / imagingRatio) : 0.0f;
+}
+
 // Before the film is made: its bytes against the memory limit, named by the Film directive.
 void requireFilmMemory(const Scene& scene, const Integrator& integrator, const RenderOptions& options) {
     const PixelBounds& b = scene.pixelBounds();
@@ -151,6 +165,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     // films' sums, with the resumed ones, to rank 0, which writes them.
     auto lastCheckpoint = std::chrono::steady_clock::now();
     auto afterPass = [&](int s1, int nextPass) {
+        if (options.shadowRoulette > 0) passes.setShadowTau(shadowTau(film, scene, options.shadowRoulette));
         if (options.checkpointEvery < 0 || !options.checkpoint) return;
         distributed::Purpose purpose("checkpoint");
         const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - lastCheckpoint).count();

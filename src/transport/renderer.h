@@ -50,6 +50,9 @@ struct RenderOptions {
     // (16 of its 56 bytes a pixel; a splatting film's half-buffers too), unless adaptive
     // sampling needs them.
     bool errorEstimate = true, varianceImage = true, pixelSamples = true;
+    // Shadow-ray roulette (transport/shadow_roulette.h) in uniform renders: after each whole
+    // pass, tau = shadowRoulette x the image's mean so far; 0: off.
+    float shadowRoulette = 0;
     bool filmMoments() const { return errorEstimate || varianceImage || adaptive != AdaptiveMode::None; }
 };
 

@@ -21,7 +21,7 @@ SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, con
                            std::atomic<bool>& stop, std::atomic<long long>& samplesDone)
     : scene_(scene), integrator_(integrator), stop_(stop), samplesDone_(samplesDone),
       imagingRatio_(scene.settings().imagingRatio), hasLens_(scene.camera().usesLensSample()),
-      hasMotion_(scene.hasMotion()), share_{distributed::rank(), distributed::size()},
+      hasMotion_(scene.hasMotion()), rouletteSeed_(mix64(options.seed ^ 0x243f6a8885a308d3ULL)), share_{distributed::rank(), distributed::size()},
       states_([this] {
           ThreadState s;
           for (const std::unique_ptr<Sampler>& p : prototypes_) s.samplers.push_back(p->clone());
@@ -98,11 +98,14 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                         if (spectral_) lambda = SpectralFilm::sampleWavelengths(sampler.get1D());
                         float cameraWeight = 1;
                         Ray ray = scene_.camera().generateRay(cs, &cameraWeight);
-                        SampleContext ctx{sampler, st.scratch, st.stats, film, si, px, py, fs.weight};
+                        SampleContext ctx{sampler, st.scratch, st.stats, film, si, px, py, fs.weight, nullptr, nullptr, {}};
                         if (spectral_) {
                             ctx.lambda = &lambda;
                             ctx.sensor = &*spectral_;
                         }
+                        if (shadowTau_ > 0)
+                            ctx.roulette = {shadowTau_, hashCombine(hashCombine(rouletteSeed_, pixel), uint64_t(si)),
+                                            ctx.sensor, ctx.lambda};
                         // A ray the lens blocks is a black sample (still counted).
                         Spectrum L = cameraWeight > 0 ? integrator_.Li(ray, ctx) * cameraWeight : Spectrum(0.0f);
                         if (spectral_) L = spectral_->toRendering(L, lambda);

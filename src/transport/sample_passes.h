@@ -57,6 +57,8 @@ public:
         int index = 0, count = 1;
     };
     Share share() const { return share_; }
+    // The shadow-ray roulette's threshold for the passes that follow (0: off); between passes.
+    void setShadowTau(float tau) { shadowTau_ = tau; }
 
 private:
     struct Tile {
@@ -77,6 +79,8 @@ private:
     const float imagingRatio_;
     const bool hasLens_;
     const bool hasMotion_;  // the camera sample draws a time (only then: static scenes keep their streams)
+    float shadowTau_ = 0;         // setShadowTau
+    uint64_t rouletteSeed_ = 0;   // the roulette's numbers: a hash of it, the pixel and the sample index
     std::optional<SpectralFilm> spectral_;  // spectral mode's sensor (empty in RGB mode)
     Share share_;
     std::vector<int> setStarts_;  // 0, then RenderOptions::sampleSets

@@ -370,6 +370,37 @@ TEST_F(Cli, LightPathsOption) {
     EXPECT_NE(path.out.find("needs --integrator bdpt"), std::string::npos) << path.out;
 }
 
+// Shadow-ray roulette through the real binary: the exact sky image with most shadow rays
+// left out (counted in --stats), and refusals where it has no meaning.
+TEST_F(Cli, ShadowRouletteOption) {
+    const std::string scene = write("sky.pbrt", ps::test::kSkyScene);
+    const std::string out = (dir / "x.pfm").string(), stats = (dir / "s.json").string();
+    const std::string base = "render --quiet --seed 1 " + scene + " -o " + out;
+    for (const std::string integrator : {"path", "bdpt"}) {
+        SCOPED_TRACE(integrator);
+        Result r = run(base + " --integrator " + integrator + " --spp 1024 --shadow-roulette 3 --stats " + stats);
+        ASSERT_EQ(r.status, 0) << r.out;
+        const ps::Image image = ps::readImage(out);
+        ps::test::expectExactSkyImage(image, "--shadow-roulette 3");
+        std::ifstream in(stats);
+        const nlohmann::json j = nlohmann::json::parse(in);
+        EXPECT_FLOAT_EQ(j.at("shadow_roulette").get<float>(), 3.0f);
+        EXPECT_GT(j.at("shadow_rays_skipped").get<double>(), 0.2 * j.at("shadow_rays").get<double>());
+        ASSERT_EQ(run(base + " --integrator " + integrator + " --spp 1024").status, 0);
+        EXPECT_NE(ps::readImage(out).rgb, image.rgb);
+    }
+    for (const std::string bad : {"-1", "x", "1000"}) {
+        Result b = run(base + " --spp 1 --shadow-roulette " + bad);
+        EXPECT_EQ(b.status, 2) << bad;
+        EXPECT_NE(b.out.find("--shadow-roulette"), std::string::npos) << b.out;
+    }
+    for (const std::string refused : {"--integrator mlt", "--integrator pssmlt", "--adaptive sequential"}) {
+        Result b = run(base + " --spp 4 --shadow-roulette 0.5 " + refused);
+        EXPECT_EQ(b.status, 2) << refused;
+        EXPECT_NE(b.out.find("--shadow-roulette"), std::string::npos) << refused << ": " << b.out;
+    }
+}
+
 // Every heuristic of thesis ch. 9 through the real binary (their unbiasedness is the
 // furnace's, render/mis_heuristics_test.cpp): accepted by path, bdpt, pssmlt and mmlt, each
 // changing the image; a bad parameter, or --mis where nothing is weighted (light, mlt) or

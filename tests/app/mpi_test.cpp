@@ -495,7 +495,7 @@ TEST_F(Mpi, ReductionBytesCountEveryTransfer) {
         EXPECT_EQ(sum, j["reduction_bytes"].get<double>());
         return by;
     };
-    constexpr double kPixelBytes = 16 * ps::Film::kPixelSums + 8, kStatistics = 6 * 8 + 2 * 8;
+    constexpr double kPixelBytes = 16 * ps::Film::kPixelSums + 8, kStatistics = 7 * 8 + 2 * 8;
     render(2, "path", "--spp 8 --threads 1");  // passes of 1, 2, 4 and 1 samples
     const double pixels = 32 * 24;
     std::map<std::string, double> p = purposes("path.json");
