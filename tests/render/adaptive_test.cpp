@@ -44,18 +44,7 @@ std::string rareValueScene(bool leftHalfOnly = false) {
     return s.str();
 }
 
-const char* kFurnace = R"(
-    LookAt 0 0 0  0 0 1  0 1 0
-    Camera "perspective" "float fov" [ 60 ]
-    Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
-    PixelFilter "box"
-    Integrator "path" "integer maxdepth" [ 5 ]
-    WorldBegin
-    AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
-    Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]
-    ReverseOrientation
-    Shape "sphere" "float radius" [ 1 ]
-)";
+const std::string kFurnace = closedFurnaceScene(5, "1 1 1", "0.6 0.6 0.6");
 const double kFurnaceExact = (1 - std::pow(0.6, 6)) / 0.4;  // sum_{k=0..5} 0.6^k
 
 // Mean luminance of the image over `renders` independent renders, with its standard error

@@ -191,18 +191,7 @@ TEST_P(ClosedFurnace, EmittingSphereSeenFromInside) {
     const char* integrator = std::get<0>(GetParam());
     int maxDepth = std::get<1>(GetParam());
     const bool spectral = std::get<2>(GetParam());
-    std::string scene = R"(
-        LookAt 0 0 0  0 0 1  0 1 0
-        Camera "perspective" "float fov" [ 60 ]
-        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
-        PixelFilter "box"
-        Integrator "path" "integer maxdepth" [ )" + std::to_string(maxDepth) + R"( ]
-        WorldBegin
-        AreaLightSource "diffuse" "rgb L" [ 0.5 0.25 1.0 ]
-        Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]
-        ReverseOrientation
-        Shape "sphere" "float radius" [ 1 ]
-    )";
+    const std::string scene = closedFurnaceScene(maxDepth, "0.5 0.25 1.0", "0.6 0.6 0.6");
     // Light tracing finds the camera only through the lens connection: 8x the samples.
     const int spp = std::string(integrator) == "light" ? (spectral ? 3072 : 2048) : 256;
     RenderResult r = renderString(scene, spp, 7, 0, integrator, spectral);
@@ -340,18 +329,7 @@ TEST(ExactScenes, DirectlySeenLightHasItsRadiance) {
 
 // Every sampler gives an unbiased image: the closed furnace (maxdepth 3) with each.
 TEST(ExactScenes, ClosedFurnaceWithEverySampler) {
-    const char* scene = R"(
-        LookAt 0 0 0  0 0 1  0 1 0
-        Camera "perspective" "float fov" [ 60 ]
-        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
-        PixelFilter "box"
-        Integrator "path" "integer maxdepth" [ 3 ]
-        WorldBegin
-        AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
-        Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
-        ReverseOrientation
-        Shape "sphere" "float radius" [ 1 ]
-    )";
+    const std::string scene = closedFurnaceScene(3, "1 1 1", "0.5 0.5 0.5");
     const double exact[3] = {1.875, 1.875, 1.875};  // 1 + 1/2 + 1/4 + 1/8
     for (const std::string& sampler : samplerNames()) {
         SceneDescription desc = parseSceneString(scene);

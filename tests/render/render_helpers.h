@@ -55,6 +55,27 @@ inline RenderResult renderString(const std::string& text, int spp, uint64_t seed
     return renderWith(text, opts, integrator, spectral);
 }
 
+// The closed furnace: a camera at the centre of a unit sphere, seen from inside, that emits
+// "rgb L" `L` and reflects diffusely with albedo `albedo` (an RGB triple, "0.6 0.6 0.6");
+// 16 x 16 pixels, box filter. Its pixel is L sum_{k <= maxDepth} albedo^k.
+inline std::string closedFurnaceScene(int maxDepth, const std::string& L, const std::string& albedo) {
+    return R"(
+        LookAt 0 0 0  0 0 1  0 1 0
+        Camera "perspective" "float fov" [ 60 ]
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        PixelFilter "box"
+        Integrator "path" "integer maxdepth" [ )" +
+           std::to_string(maxDepth) + R"( ]
+        WorldBegin
+        AreaLightSource "diffuse" "rgb L" [ )" +
+           L + R"( ]
+        Material "diffuse" "rgb reflectance" [ )" +
+           albedo + R"( ]
+        ReverseOrientation
+        Shape "sphere" "float radius" [ 1 ]
+    )";
+}
+
 // Pixels of two images of one size that differ in any bit, and pixels of the first that are
 // not finite.
 struct PixelComparison {

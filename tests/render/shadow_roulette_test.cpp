@@ -37,18 +37,7 @@ class ShadowRouletteFurnace : public ::testing::TestWithParam<const char*> {};
 // rest count 1/q.
 TEST_P(ShadowRouletteFurnace, ExactWithMostShadowRaysLeftOut) {
     const std::string integrator = GetParam();
-    const std::string scene = R"(
-        LookAt 0 0 0  0 0 1  0 1 0
-        Camera "perspective" "float fov" [ 60 ]
-        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
-        PixelFilter "box"
-        Integrator "path" "integer maxdepth" [ 5 ]
-        WorldBegin
-        AreaLightSource "diffuse" "rgb L" [ 0.5 0.25 1.0 ]
-        Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.6 ]
-        ReverseOrientation
-        Shape "sphere" "float radius" [ 1 ]
-    )";
+    const std::string scene = closedFurnaceScene(5, "0.5 0.25 1.0", "0.6 0.6 0.6");
     const int spp = integrator == "light" ? 4096 : 256;
     RenderResult r = renderRoulette(scene, integrator, spp, 7, integrator == "light" ? 20.0f : 2.0f);
     const auto exact = exactPixel(
