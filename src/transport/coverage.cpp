@@ -91,10 +91,7 @@ std::string missingPaths(const Scene& scene, const std::string& integrator) {
 
 std::string unsupportedMedia(const Scene& scene, const std::string& integrator) {
     if (!scene.hasMedia() || integrator == "path") return "";
-    if (integrator == "mlt")
-        return "integrator \"mlt\" (Veach's mutations) does not support participating media yet; render this scene with "
-               "\"path\" (pbrt-v4's \"volpath\"), \"bdpt\", \"light\", \"pssmlt\" or \"mmlt\"";
-    // Medium vertices carry no emission: sigma_a Le is only path tracing's.
+    // Medium vertices carry no emission (Veach's mlt's included): sigma_a Le is only path tracing's.
     if (scene.hasEmissiveMedia())
         return "integrator \"" + integrator + "\" does not support emissive media yet; render this scene with \"path\" "
                "(pbrt-v4's \"volpath\")";

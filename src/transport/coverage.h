@@ -23,9 +23,10 @@ std::string missingPaths(const Scene& scene, const std::string& integrator);
 std::string inconsistentSurfaces(const Scene& scene, const std::string& integrator);
 
 // Why `integrator` cannot render the scene's participating media, or "" when it can: the path
-// tracer (pbrt-v4's volpath) and the integrators over the shared subpaths (light, bdpt, pssmlt,
-// mmlt) have medium vertices; Veach's mlt, and emissive media outside path tracing, not yet
-// (issue 36): those refuse the scene (createIntegrator) rather than render it without.
+// tracer (pbrt-v4's volpath), the integrators over the shared subpaths (light, bdpt, pssmlt,
+// mmlt) and Veach's mlt (mlt/veach/path_space_media.cpp) have medium vertices; emissive media
+// outside path tracing not yet (issue 36): those refuse the scene (createIntegrator) rather
+// than render it without.
 std::string unsupportedMedia(const Scene& scene, const std::string& integrator);
 
 // Why "light" or "mlt" cannot render through a camera without importance (orthographic,

@@ -427,15 +427,16 @@ Camera "realistic" "string lensfile" [ ")" + data + R"(/lenses/dgauss.50mm.dat" 
     // The same emitter filled with fog of albedo 1 (coloured, forward-scattering) around the
     // camera: scattering only redistributes the wall's radiance, so the image is still L. At
     // most 1.5 optical radii, paths past maxdepth 30 are negligible (each scattering keeps a
-    // path in the sphere with probability below 0.6). Every integrator with
-    // medium vertices runs it but light tracing, whose connections from scattering points
-    // around the lens have unbounded variance (coverage.h), and Veach's mlt, which refuses media.
+    // path in the sphere with probability below 0.6). Every integrator runs it but light
+    // tracing, whose connections from scattering points around the lens have unbounded
+    // variance (coverage.h); Veach's mlt's lens vertex is then in the fog.
     exactFurnace("medium/fog-furnace",
                  R"(MakeNamedMedium "fog" "string type" "homogeneous" "rgb sigma_a" [ 0 0 0 ]
   "rgb sigma_s" [ 0.15 0.3 0.5 ] "float g" [ 0.5 ]
 MediumInterface "" "fog"
 )" + inside + R"(Camera "perspective" "float fov" [ 60 ])",
                  0, 30, {"light"});
+    v.back().integratorScale = {{"mlt", 2}};  // at 1, mlt resolved 2.1%
     // Fog filling the base box (camera outside it, in vacuum: the box's open side is an
     // `interface` face): chromatic scattering and absorption, connections through the medium
     // and medium vertices in every strategy.

@@ -65,9 +65,11 @@ struct PathSetup {
         EXPECT_TRUE(space.walk(light, 1, TransportMode::Importance, 0.0f, {}, rng, arena, stats));
         MltVertex lens, wall, floor;
         Ray ray = space.cameraRay(Vec2(16.5f, 9.5f), Vec2(0.5f, 0.5f), 0.0f, {}, &lens);
-        EXPECT_TRUE(space.trace(ray, {}, arena, stats, wall));
+        // Through a medium (kFoggyScene) without flights: the vertices know their medium.
+        EXPECT_TRUE(space.trace(ray, {}, arena, stats, wall, false, space.mediumFrom(lens, ray.d)));
         EXPECT_NEAR(wall.p.z, 2.0f, 1e-3f) << "the pixel must see the wall";
-        EXPECT_TRUE(space.trace(spawnRay(wall.p, wall.ng, normalize(Vec3(0.2f, 0, 0.8f) - wall.p), 0), {}, arena, stats, floor));
+        const Ray toFloor = spawnRay(wall.p, wall.ng, normalize(Vec3(0.2f, 0, 0.8f) - wall.p), 0);
+        EXPECT_TRUE(space.trace(toFloor, {}, arena, stats, floor, false, space.mediumFrom(wall, toFloor.d)));
         EXPECT_NEAR(floor.p.y, 0.0f, 1e-3f);
         x = {light[0], floor, wall, lens};
         if (travel.x != 0 || travel.y != 0 || travel.z != 0) {
@@ -93,7 +95,8 @@ struct PathSetup {
         MltVertex hit;
         const Ray ray = s == Surface::Floor ? Ray{Vec3(u, 1, v), Vec3(0, -1, 0)} : Ray{Vec3(u, v, 1), Vec3(0, 0, 1)};
         MltPath y = x;
-        if (!integrator->space().trace(ray, {}, a, stats, hit)) return {};
+        if (!integrator->space().trace(ray, {}, a, stats, hit, false, integrator->space().mediumFrom(x[size_t(i + 1)], ray.d)))
+            return {};
         y[size_t(i)] = hit;
         // A proposal reaches the point only along unblocked edges (the ray that made it and
         // the join to the other side).
@@ -166,8 +169,8 @@ bool same(Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 // a walk cannot continue: the new vertex comes from the camera side, scattered at the wall)
 // or its wall vertex (half from a light walk scattered at the floor, half from a camera
 // ray, through deleting the wall vertex alone or the wall vertex and the lens).
-TEST(VeachTransition, BidirectionalMutationProposesWithItsDensity) {
-    PathSetup s;
+void expectBidirectionalDensity(const std::string& scene, const std::string& tag) {
+    PathSetup s(scene);
     const BidirectionalMutation& bd = s.integrator->bidirectional();
     const int n = 3000000;
     std::vector<double> floorObserved(kBins * kBins, 0), wallObserved(kBins * kBins, 0);
@@ -191,10 +194,25 @@ TEST(VeachTransition, BidirectionalMutationProposesWithItsDensity) {
     EXPECT_EQ(mismatched, 0);
     std::vector<double> e, v;
     expectedCounts(s, 1, Surface::Floor, n, [&](const MltPath& z) { return bd.transition(s.x, z, 1, 1, 1); }, e, v);
-    expectFit("bidirectional, floor vertex", floorObserved, e, v);
+    expectFit(("bidirectional, floor vertex" + tag).c_str(), floorObserved, e, v);
     expectedCounts(s, 2, Surface::Wall, n,
                    [&](const MltPath& z) { return bd.transition(s.x, z, 2, 1, 1) + bd.transition(s.x, z, 2, 2, 2); }, e, v);
-    expectFit("bidirectional, wall vertex", wallObserved, e, v);
+    expectFit(("bidirectional, wall vertex" + tag).c_str(), wallObserved, e, v);
+}
+
+TEST(VeachTransition, BidirectionalMutationProposesWithItsDensity) { expectBidirectionalDensity(kScene, ""); }
+
+// The same in fog around everything (Veach's mlt with media, path_space_media.cpp): a walk's
+// flight may stop in the fog (those proposals are not binned), and T of a surface vertex
+// includes the probability exp(-integral of the majorant) that its flight reached it.
+TEST(VeachTransition, BidirectionalMutationProposesWithItsDensityInFog) {
+    const std::string fog = R"(
+    MakeNamedMedium "fog" "string type" "homogeneous" "rgb sigma_a" [ 0.1 0.1 0.1 ] "rgb sigma_s" [ 0.15 0.25 0.2 ]
+    MediumInterface "" "fog"
+)";
+    std::string scene = fog + kScene;
+    scene.replace(scene.find("WorldBegin"), 10, "WorldBegin\n    MediumInterface \"fog\" \"fog\"");
+    expectBidirectionalDensity(scene, " in fog");
 }
 
 // The lens subpath mutation: a new camera ray through a uniform film point replaces the

@@ -38,7 +38,10 @@ bool LensSubpathMutation::propose(const MltPath& x, Rng& rng, ScratchBuffer& are
         if (m + int(camera.size()) >= space_.maxVertices()) return false;
         MltVertex v;
         // A subpath that ends at the light (m = 0) may end at infinity.
-        if (!space_.trace(ray, lambda, arena, stats, v, m == 0)) return false;
+        // Through media a flight may stop at a medium vertex, which ends no subpath here (the
+        // proposal fails); T's cameraDensity includes the flights' densities.
+        if (!space_.trace(ray, lambda, arena, stats, v, m == 0, space_.mediumFrom(camera.back(), ray.d), &rng))
+            return false;
         camera.push_back(v);
         if (m == 0 ? v.light != nullptr : !v.delta) break;  // the subpath's end
         if (!v.isSpecularSurface() || !space_.scatter(camera, TransportMode::Radiance, rng, ray)) return false;

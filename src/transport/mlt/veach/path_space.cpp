@@ -99,7 +99,7 @@ void PathSpace::bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, S
     }
 }
 
-Spectrum PathSpace::contribution(const MltPath& x, Vec2* pRaster) const {
+Spectrum PathSpace::contribution(const MltPath& x, Vec2* pRaster, Rng* rng) const {
     const int k = int(x.size()) - 1;
     if (k < 1 || !x[0].light || x[k].kind != MltVertex::Kind::Lens) return {};
     // A point light seen directly would be a point of finite energy on the film, which no
@@ -117,8 +117,14 @@ Spectrum PathSpace::contribution(const MltPath& x, Vec2* pRaster) const {
     Spectrum f = emitted(x[0], x[1]) * geometry(x[0], x[1]);
     for (int i = 1; i < k && !f.isBlack(); ++i) {
         const MltVertex& v = x[size_t(i)];
-        if (v.kind != MltVertex::Kind::Surface || !v.bxdf) return {};
         const Vec3 wi = unitTo(v, x[size_t(i - 1)]), wo = unitTo(v, x[size_t(i + 1)]);
+        if (v.isMedium()) {
+            // sigma_s times the phase function (symmetric: no adjoint), no cosine (volume measure).
+            const Spectrum sigmaS = v.mediumAbove->at(v.p, wavelengthsOf(v)).sigmaS;
+            f *= sigmaS * v.mediumAbove->phase().p(wi, wo) * geometry(v, x[size_t(i + 1)]);
+            continue;
+        }
+        if (v.kind != MltVertex::Kind::Surface || !v.bxdf) return {};
         Spectrum fs;
         bsdf(v, wo, wi, TransportMode::Radiance, &fs, nullptr);
         // The path tracer's shading cosine |wi.ns| in place of the geometric one in G.
@@ -126,6 +132,8 @@ Spectrum PathSpace::contribution(const MltPath& x, Vec2* pRaster) const {
         if (!(cosG > 0)) return {};
         f *= fs * (std::fabs(dot(wi, v.ns)) / cosG) * geometry(v, x[size_t(i + 1)]);
     }
+    if (scene_.hasMedia())
+        for (int i = 0; i < k && !f.isBlack(); ++i) f *= edgeTransmittance(x[size_t(i)], x[size_t(i + 1)], rng);
     if (f.isBlack()) return {};
     const float We = scene_.camera().We(fromLens(x[size_t(k)], x[size_t(k - 1)]), pRaster);
     f *= We;
@@ -160,12 +168,15 @@ double PathSpace::lightDensity(const MltPath& x, int i, Lobes lobes) const {
         u.light->pdfLe(u.p, u.ng, w, &pdfPos, &pdfDir);
         // From infinity: the disk's area density, projected onto v by toArea.
         if (atInfinity(u)) pdfDir = pdfPos;
+    } else if (u.isMedium()) {
+        pdfDir = u.mediumAbove->phase().pdf(unitTo(u, x[size_t(i - 2)]), w);
     } else {
         if (u.kind != MltVertex::Kind::Surface || !u.bxdf) return 0;
         bsdf(u, unitTo(u, x[size_t(i - 2)]), w, TransportMode::Importance, nullptr, &pdfDir);
         if (u.delta && lobes == Lobes::Forced && pdfDir > 0) pdfDir = 1;
     }
-    return toArea(pdfDir, u, v);
+    const double flight = scene_.hasMedia() && lobes == Lobes::Sampled ? flightDensity(u, v) : 1.0;
+    return toArea(pdfDir, u, v) * flight;
 }
 
 double PathSpace::cameraDensity(const MltPath& x, int i, Lobes lobes) const {
@@ -185,12 +196,15 @@ double PathSpace::cameraDensity(const MltPath& x, int i, Lobes lobes) const {
     if (i + 1 == k) {
         float pdfPos;
         scene_.camera().pdfWe(fromLens(u, v), &pdfPos, &pdfDir);
+    } else if (u.isMedium()) {
+        pdfDir = u.mediumAbove->phase().pdf(unitTo(u, x[size_t(i + 2)]), w);
     } else {
         if (u.kind != MltVertex::Kind::Surface || !u.bxdf) return 0;
         bsdf(u, unitTo(u, x[size_t(i + 2)]), w, TransportMode::Radiance, nullptr, &pdfDir);
         if (u.delta && lobes == Lobes::Forced && pdfDir > 0) pdfDir = 1;
     }
-    return toArea(pdfDir, u, v);
+    const double flight = scene_.hasMedia() && lobes == Lobes::Sampled ? flightDensity(u, v) : 1.0;
+    return toArea(pdfDir, u, v) * flight;
 }
 
 bool PathSpace::connectible(const MltPath& x, int i) const {
@@ -198,7 +212,7 @@ bool PathSpace::connectible(const MltPath& x, int i) const {
     // At infinity: the join is a shadow ray along the direction (a distant light's too).
     if (i == 0) return x[0].light != nullptr;
     if (i == k) return x[size_t(k)].kind == MltVertex::Kind::Lens;
-    return x[size_t(i)].isNonSpecularSurface();
+    return x[size_t(i)].isNonSpecularSurface() || x[size_t(i)].isMedium();
 }
 
 int PathSpace::specularChainEnd(const MltPath& x, int from) const {
@@ -216,6 +230,8 @@ bool PathSpace::canContinue(int size, TransportMode mode) const {
 
 bool PathSpace::visible(const MltVertex& a, const MltVertex& b, PathStats& stats) const {
     ++stats.shadowRays;
+    // Through media, `interface` shapes are crossed (the transmittance is f's).
+    if (scene_.hasMedia()) return visibleThroughMedia(a, b, stats);
     if (atInfinity(a) || atInfinity(b)) {
         const MltVertex& from = atInfinity(a) ? b : a;
         return !scene_.occluded(spawnRay(from.p, offsetNormal(from), directionTo(from, atInfinity(a) ? a : b), from.time));
@@ -264,11 +280,15 @@ void PathSpace::copyAt(const MltPath& x, const SampledWavelengths& lambda, Scrat
 }
 
 bool PathSpace::trace(Ray ray, const SampledWavelengths& lambda, ScratchBuffer& arena, PathStats& stats, MltVertex& out,
-                      bool escape) const {
+                      bool escape, const Medium* medium, Rng* flights) const {
     for (int passThroughs = 0; passThroughs <= 1024; ++passThroughs) {
         SurfaceInteraction si;
         ++stats.rays;
-        if (!scene_.intersect(ray, si)) {
+        const bool hit = scene_.intersect(ray, si);
+        if (medium && flights &&
+            traceInMedium(ray, hit ? si.t : std::numeric_limits<float>::infinity(), *medium, lambda, *flights, out))
+            return true;
+        if (!hit) {
             if (!escape || scene_.infiniteLights().empty()) return false;
             // The vertex at infinity of every infinite light (path_space.h): any of them names it.
             out = MltVertex();
@@ -284,10 +304,13 @@ bool PathSpace::trace(Ray ray, const SampledWavelengths& lambda, ScratchBuffer& 
         out.si = si;
         const BxDF* bxdf = bxdfAt(si, lambda, arena, &out.dispersive);
         if (!bxdf) {
-            // `interface`: not a vertex; the ray continues.
+            // `interface`: not a vertex; the ray continues (in the medium on its other side).
+            medium = si.mediumToward(ray.d, medium);
             ray = spawnRay(si.p, si.ng, ray.d, ray.time);
             continue;
         }
+        out.mediumAbove = si.mediumTransition ? si.mediumOutside : medium;
+        out.mediumBelow = si.mediumTransition ? si.mediumInside : medium;
         out.kind = MltVertex::Kind::Surface;
         out.p = si.p;
         out.ng = si.ng;
@@ -382,7 +405,9 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
     while (count > 0) {
         MltVertex next;
         // A camera walk may end at infinity (scatter cannot continue from there).
-        if (!trace(ray, lambda, arena, stats, next, mode == TransportMode::Radiance)) return false;
+        if (!trace(ray, lambda, arena, stats, next, mode == TransportMode::Radiance, mediumFrom(side.back(), ray.d),
+                   &rng))
+            return false;
         side.push_back(next);
         if (--count > 0 && !scatter(side, mode, rng, ray)) return false;
     }
@@ -405,6 +430,7 @@ Ray PathSpace::cameraRay(Vec2 pFilm, Vec2 uLens, float time, const SampledWavele
 
 bool PathSpace::scatter(std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const {
     MltVertex& v = side.back();
+    if (side.size() >= 2 && v.isMedium()) return scatterInMedium(side, rng, ray);
     if (side.size() < 2 || v.kind != MltVertex::Kind::Surface || !v.bxdf) return false;
     const Vec3 woL = v.frame.toLocal(unitTo(v, side[side.size() - 2]));
     const float uc = rng.uniform();

@@ -48,7 +48,9 @@
 namespace ps {
 
 struct MltVertex {
-    enum class Kind : uint8_t { Light, Surface, Lens };
+    // Medium: a scattering point in a participating medium (path_space_media.cpp), whose
+    // "BSDF" is the phase function times sigma_s, and whose measure is volume (no cosine).
+    enum class Kind : uint8_t { Light, Surface, Lens, Medium };
     Kind kind = Kind::Surface;
     // Surfaces: no diffuse or glossy lobe (specular ones only, or none: black), or a mixed
     // surface's mirror role; lights: a delta position or direction (isDeltaLight).
@@ -80,6 +82,12 @@ struct MltVertex {
     const Light* light = nullptr;  // the emitter at x0 (a light vertex or an emitting surface)
     const BxDF* bxdf = nullptr;    // surfaces, built in the owning path's arena
     SurfaceInteraction si;         // surfaces: the hit as traced, to rebuild bxdf in another arena
+    // Scenes with media: the medium on each side of the vertex (above: where ng points), that
+    // a ray leaving it enters; both the same off medium boundaries, and for a medium vertex.
+    const Medium* mediumAbove = nullptr;
+    const Medium* mediumBelow = nullptr;
+    const Medium* mediumToward(Vec3 w) const { return dot(w, ng) > 0 ? mediumAbove : mediumBelow; }
+    bool isMedium() const { return kind == Kind::Medium; }
 
     // A light vertex at a delta position or direction (a point, spot or distant light). Only a
     // light vertex's `delta` says so: an emitter that a camera walk hits is a surface vertex,
@@ -115,7 +123,11 @@ public:
     // established when they are made), with the film position it lands at; zero where any
     // factor is. In spectral mode, the sensor's RGB of its values at the path's wavelengths
     // (divided by their density: the state's measure, path_space.h MltVertex::lambda).
-    Spectrum contribution(const MltPath& x, Vec2* pRaster) const;
+    // In a scene with media, the transmittance of every edge enters f; where a medium is not
+    // homogeneous it is a ratio-tracking estimate drawn from *rng (unbiased and non-negative:
+    // the pseudo-marginal chain, path_space_media.cpp), so f is then random and callers keep
+    // the value they got with the state.
+    Spectrum contribution(const MltPath& x, Vec2* pRaster, Rng* rng = nullptr) const;
     bool spectral() const { return sensor_.has_value(); }
     // Area density (solid angle for a light vertex at infinity) of vertex i when
     // generated from the light side, given vertices i - 1 and i - 2, and from the camera side,
@@ -124,6 +136,8 @@ public:
     // `Density` says what a specular vertex's lobe counts for: its probability of being
     // chosen (Sampled: a walk chose it), or 1 (Forced: a perturbation keeps the path's own
     // lobes, and only the geometry of the retraced chain changes the density).
+    // With media, Sampled includes the free flight that reached vertex i (flightDensity); a
+    // Forced retrace passes through media without sampling them, so it has none.
     enum class Lobes { Sampled, Forced };
     double lightDensity(const MltPath& x, int i, Lobes lobes = Lobes::Sampled) const;
     double cameraDensity(const MltPath& x, int i, Lobes lobes = Lobes::Sampled) const;
@@ -193,8 +207,24 @@ public:
     // sawUnsupportedSurface() turns true: the renderer refuses the scene).
     // With `escape`, a ray that leaves the scene ends on the infinite lights, if the scene
     // has any: `out` is then a light vertex at infinity (a camera-side walk's end).
+    // In a scene with media, `medium` is the ray's (updated at each boundary it crosses) and,
+    // given `flights`, the ray may stop at a medium vertex, drawn from the majorants' Poisson
+    // process (flightDensity); without, it passes through the media (a perturbation's retrace).
     bool trace(Ray ray, const SampledWavelengths& lambda, ScratchBuffer& arena, PathStats& stats, MltVertex& out,
-               bool escape = false) const;
+               bool escape = false, const Medium* medium = nullptr, Rng* flights = nullptr) const;
+    // The medium a ray leaving v along w starts in (the camera's at the lens, a light's side).
+    const Medium* mediumFrom(const MltVertex& v, Vec3 w) const;
+
+    // Scenes with media (path_space_media.cpp). The density with which a free flight from a
+    // towards b ends at b: exp(-integral of the majorant) over the edge, times the majorant at
+    // b if b is a medium vertex (per unit length, which the volume measure's 1 / d^2 makes
+    // per unit volume). The majorant is the largest channel's of each medium's majorant
+    // segments: a deterministic function of the path (at its wavelengths), so that T is.
+    double flightDensity(const MltVertex& a, const MltVertex& b) const;
+    // The transmittance of the edge a-b through the media and `interface` shapes on it
+    // (zero if another surface blocks it): exact in homogeneous media, else ratio tracking
+    // against the same majorant (each factor 1 - sigma_t / majorant >= 0), drawn from rng.
+    Spectrum edgeTransmittance(const MltVertex& a, const MltVertex& b, Rng* rng, PathStats* stats = nullptr) const;
     // Continues a retraced specular chain at specular vertex v, reached along `ray`, by the
     // lobe that reflects or transmits as asked: the next ray, or false if v has no such lobe.
     bool followSpecular(const MltVertex& v, const Ray& ray, bool reflect, TransportMode mode, Ray& next) const;
@@ -212,6 +242,22 @@ private:
     // (unit, world), in `mode`, with the density of sampling wi from wo; specular lobes
     // matched to the direction pair.
     void bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, Spectrum* f, float* pdf) const;
+    // A free flight along ray (in `medium`, up to tEnd) by the majorant's Poisson process:
+    // the first tentative collision, if before tEnd (path_space_media.cpp).
+    static bool sampleFlight(const Medium& medium, const Ray& ray, float tEnd, const SampledWavelengths& lambda,
+                             Rng& rng, Vec3* p);
+    // The free flight of trace: a medium vertex in `out` if it stops before tEnd.
+    bool traceInMedium(const Ray& ray, float tEnd, const Medium& medium, const SampledWavelengths& lambda, Rng& rng,
+                       MltVertex& out) const;
+    // scatter at a medium vertex: the phase function's direction.
+    bool scatterInMedium(std::vector<MltVertex>& side, Rng& rng, Ray& ray) const;
+    bool visibleThroughMedia(const MltVertex& a, const MltVertex& b, PathStats& stats) const;
+    // Walks the edge a-b (from its finite end, the optical depth being the same either way)
+    // through `interface` shapes: calls part(medium, origin, unit direction, length) for each
+    // piece in a medium, which may end the walk (false); false if a surface that is not an
+    // interface blocks the edge.
+    template <typename Part>
+    bool alongEdge(const MltVertex& a, const MltVertex& b, PathStats* stats, Part&& part) const;
 
     const Scene& scene_;
     int maxDepth_;

@@ -82,7 +82,10 @@ bool Perturbations::lens(const MltPath& x, Vec2 rasterX, Rng& rng, ScratchBuffer
     PathSpace::copyAt(x, lambda, arena, y);
     for (int i = k - 1; i >= end; --i) {
         MltVertex v;
-        if (!space_.trace(ray, lambda, arena, stats, v, i == 0)) return false;  // x0 may lie at infinity
+        // x0 may lie at infinity. Through media the retrace samples no flights (media only
+        // attenuate: f's transmittance), so T has no flight densities (Lobes::Forced).
+        if (!space_.trace(ray, lambda, arena, stats, v, i == 0, space_.mediumFrom(y[size_t(i + 1)], ray.d)))
+            return false;
         const MltVertex& old = x[size_t(i)];
         if (i > 0 && old.isSpecularSurface() && !v.takeSpecularRole()) return false;
         y[size_t(i)] = v;
@@ -141,7 +144,7 @@ bool Perturbations::caustic(const MltPath& x, Rng& rng, ScratchBuffer& arena, Pa
     }
     for (int i = m + 1; i <= k - 1; ++i) {
         MltVertex v;
-        if (!space_.trace(ray, lambda, arena, stats, v)) return false;
+        if (!space_.trace(ray, lambda, arena, stats, v, false, space_.mediumFrom(y[size_t(i - 1)], ray.d))) return false;
         if (i < k - 1 && !v.takeSpecularRole()) return false;
         y[size_t(i)] = v;
         if (i < k - 1) {

@@ -61,13 +61,15 @@ struct PathState {
 // A path shorter than minVertices (rendered apart: direct lighting) has target 0; the
 // target is the luminance over the pilot's brightness where the path lands (two-stage MLT,
 // pilot_importance.h; 1 without a pilot).
-bool evaluate(const PathSpace& space, int minVertices, const PilotImportance& importance, PathState& s) {
+// `rng`: the transmittance estimates of a scene with media (path_space_media.cpp: the
+// estimate is drawn once, with the proposal, and kept with the state).
+bool evaluate(const PathSpace& space, int minVertices, const PilotImportance& importance, PathState& s, Rng& rng) {
     if (int(s.path.size()) < minVertices) {
         s.C = Spectrum();
         s.f = 0;
         return false;
     }
-    s.C = space.contribution(s.path, &s.pRaster);
+    s.C = space.contribution(s.path, &s.pRaster, &rng);
     const double f = s.C.luminance() / importance.at(s.pRaster);
     s.f = f > 0 && std::isfinite(f) ? f : 0.0;
     return s.f > 0;
@@ -118,7 +120,7 @@ double bootstrapSample(const VeachMLTIntegrator& integrator, const PilotImportan
                        : !(space.connectible(y, s - 1) && space.connectible(y, s) && space.visible(y[size_t(s - 1)], y[size_t(s)], stats)))
                 continue;
             Vec2 pRaster;
-            const Spectrum C = space.contribution(y, &pRaster);
+            const Spectrum C = space.contribution(y, &pRaster, &rng);
             const double f = C.luminance() / importance.at(pRaster);
             // The densities of the n splits, each chosen with probability 1 / n by insertedDensity.
             const double p = integrator.bidirectional().insertedDensity(y, 0, n) * n;
@@ -477,7 +479,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                         if (kind < int(Mutation::Count)) ++ch.counts.proposed[kind];
                         if (!made) {
                             if (kind < int(Mutation::Count)) ++ch.counts.failed[kind];
-                        } else if (!evaluate(space, integrator.minChainVertices(), importance, ch.y) || !(ratio > 0)) {
+                        } else if (!evaluate(space, integrator.minChainVertices(), importance, ch.y, ch.rng) || !(ratio > 0)) {
                             ++ch.counts.invalid;
                         } else {
                             const double r = ch.y.f / ch.x.f * ratio;
