@@ -121,9 +121,10 @@ std::optional<UnsampledPaths> deltaSpecularEye(const Scene& scene, const SceneTr
 }  // namespace
 
 bool samplesLensHits(const Scene& scene, const std::string& integrator) {
-    (void)scene;
-    (void)integrator;
-    return false;  // no integrator has the t = 0 strategy yet
+    // pssmlt mutates BDPT's samples, all strategies at once, t = 0 included (BDPTIntegrator::
+    // lensHits); mmlt samples one strategy with t >= 1 at a time, Veach's mlt its own paths.
+    return (integrator == "bdpt" || integrator == "light" || integrator == "pssmlt") &&
+           scene.camera().hasLensDisk() && !scene.hasMedia();
 }
 
 std::vector<UnsampledPaths> unsampledPaths(const Scene& scene, const std::string& integrator) {

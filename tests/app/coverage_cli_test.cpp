@@ -48,7 +48,8 @@ TEST(CoverageCli, LightTracingWarnsWhereItCannotSample) {
 
 // A point light seen in a mirror sphere: through a pinhole no integrator samples its highlight
 // (thesis §1.1), and the render says so once, naming the light's directive, the material's
-// and the camera, with Veach's remedies; --stats records the class.
+// and the camera, with Veach's remedies; --stats records the class. Through a thin lens BDPT's
+// t = 0 strategy samples it: no warning there, while path tracing still warns.
 TEST(CoverageCli, NamesPathsNoTechniqueSamples) {
     const auto scene = [](const char* lens) {
         return std::string("LookAt 0 1 4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 40 ] "
@@ -61,7 +62,7 @@ TEST(CoverageCli, NamesPathsNoTechniqueSamples) {
                "NamedMaterial \"chrome\"\nAttributeBegin\nTranslate 0 0.5 0\nShape \"sphere\" \"float radius\" [ 0.5 ]\n"
                "AttributeEnd\n";
     };
-    const SceneFile pinhole(scene("0"), "unsampled-pinhole");
+    const SceneFile pinhole(scene("0"), "unsampled-pinhole"), thinLens(scene("0.05"), "unsampled-lens");
     const std::string stats = (fs::temp_directory_path() / ("unsampled-" + std::to_string(getpid()) + ".json")).string();
     auto r = ps::test::runPathspace(render(pinhole, "--integrator bdpt --spp 1 --stats " + stats));
     EXPECT_EQ(r.status, 0) << r.out;
@@ -78,6 +79,13 @@ TEST(CoverageCli, NamesPathsNoTechniqueSamples) {
     EXPECT_EQ(j["unsampled_paths"][0]["class"], "delta-specular-eye");
     EXPECT_EQ(j["unsampled_paths"][0]["every_integrator"], true);
     fs::remove(stats);
+    r = ps::test::runPathspace(render(thinLens, "--integrator bdpt --spp 1"));
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(r.out.find("will render part"), std::string::npos) << r.out;
+    r = ps::test::runPathspace(render(thinLens, "--integrator path --spp 1"));
+    EXPECT_NE(r.out.find("no technique of \"path\" samples the light of LightSource \"point\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("bdpt and light sample them through this lens (t = 0)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("the thin-lens camera (lensradius 0.05)"), std::string::npos) << r.out;
 }
 
 // Flat and cylinder curves of a material other than hair: every integrator but the path tracer
