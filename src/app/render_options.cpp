@@ -339,9 +339,10 @@ void configureRender(Scene& scene, const RenderArgs& a, RenderSetup& setup) {
             warning("--mis " + a.mis + ": weights that jump where densities cross can lose up to a few tenths of "
                     "a percent where strategies sample alike (docs/mis.md); power and balance have no such bias");
     }
-    // A darker image with no word of why is a wrong answer (missingPaths says which light).
-    if (const std::string why = missingPaths(scene, settings.integrator); !why.empty())
-        warning("integrator \"" + settings.integrator + "\" will render part of this scene's light black: " + why);
+    // A darker image with no word of why is a wrong answer: each class of paths the integrator
+    // cannot sample is named once, with its lights, materials and camera (transport/coverage.h).
+    for (const UnsampledPaths& c : unsampledPaths(scene, settings.integrator))
+        warning("integrator \"" + settings.integrator + "\" will render part of this scene's light black: " + c.message);
     if (const std::string why = inconsistentSurfaces(scene, settings.integrator); !why.empty())
         warning("integrator \"" + settings.integrator + "\" may render some curves other than path tracing: " + why);
     const AdaptiveMode adaptive = parseAdaptiveMode(a.adaptive);
@@ -411,6 +412,18 @@ NoiseKnown noiseKnown(const RenderResult& r) {
     return k;
 }
 
+namespace {
+
+// The classes of paths the integrator cannot sample (transport/coverage.h), as the warnings said.
+nlohmann::json unsampledPathsJson(const Scene& scene) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const UnsampledPaths& c : unsampledPaths(scene, scene.settings().integrator))
+        out.push_back({{"class", c.id}, {"every_integrator", c.everyIntegrator}, {"message", c.message}});
+    return out;
+}
+
+}  // namespace
+
 nlohmann::json renderStatistics(const Scene& scene, const RenderArgs& a, const RenderSetup& setup,
                                 const RenderResult& r, const PathStats& run, const std::string& sceneFile,
                                 const std::vector<std::string>& outputs, bool interrupted) {
@@ -462,6 +475,7 @@ nlohmann::json renderStatistics(const Scene& scene, const RenderArgs& a, const R
         {"nonfinite_guarded", r.stats.guarded},
         {"nonfinite_samples_rejected", r.rejectedSamples},
         {"warnings", warningCount()},
+        {"unsampled_paths", unsampledPathsJson(scene)},
         {"memory_limit_bytes", memoryLimit()},
     };
     if (settings.integrator == "bdpt") stats["light_paths_per_sample"] = settings.bdptLightPaths;

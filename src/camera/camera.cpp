@@ -120,6 +120,27 @@ std::optional<CameraWiSample> Camera::sampleWi(Vec3 ref, float time, Vec2 u) con
     return s;
 }
 
+std::optional<LensCrossing> Camera::intersectLens(const Ray& r, float tMax) const {
+    if (!hasLensDisk()) return std::nullopt;
+    std::optional<Pose> scratch;
+    const Pose& pose = poseAt(r.time, scratch);
+    // The lens is the disk z = 0, radius lensRadius, in camera space; light reaches its front
+    // travelling towards -z (affine maps keep the ray's parameter).
+    const Vec3 o = pose.cameraFromWorld.point(r.o), d = pose.cameraFromWorld.vector(r.d);
+    if (!(d.z < 0) || !(o.z > 0)) return std::nullopt;
+    LensCrossing c;
+    c.t = -o.z / d.z;
+    if (!(c.t < tMax)) return std::nullopt;
+    const Vec3 lens(o.x + c.t * d.x, o.y + c.t * d.y, 0);
+    if (lens.x * lens.x + lens.y * lens.y > params_.lensRadius * params_.lensRadius) return std::nullopt;
+    c.p = r.o + r.d * c.t;
+    const Vec3 w = -normalize(r.d);
+    c.We = importance(pose, w, lens, &c.pRaster);
+    if (!(c.We > 0)) return std::nullopt;
+    c.cosLens = dot(w, pose.forward);
+    return c;
+}
+
 Ray Camera::generateRay(const CameraSample& s, float* weight) const {
     return generateRayAt(s, shutterTime(s.time), weight);
 }

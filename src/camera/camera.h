@@ -30,6 +30,15 @@ struct CameraWiSample {
     float pdfDir = 0; // the camera's own density (solid angle) of emitting along -wi
 };
 
+// Where a light subpath's ray crosses the lens (the t = 0 strategy, thesis §10.2).
+struct LensCrossing {
+    float t = 0;      // the ray's parameter at the lens
+    Vec3 p;           // world-space point on the lens
+    float We = 0;     // importance leaving p back along the ray (towards where it came from)
+    Vec2 pRaster;     // where the contribution lands on the film
+    float cosLens = 0;  // |cos| between the ray and the lens normal
+};
+
 class Camera {
 public:
     enum class Projection { Perspective, Orthographic, Spherical, Realistic };
@@ -83,6 +92,13 @@ public:
     float generatedRayPdfDir(const Ray& r) const;
     // Samples a lens point seen from ref at scene time `time` and the importance it sends there.
     std::optional<CameraWiSample> sampleWi(Vec3 ref, float time, Vec2 u) const;
+    // A thin lens (perspective with lensradius > 0): a disk that light subpaths can hit.
+    bool hasLensDisk() const { return hasImportance() && params_.lensRadius > 0; }
+    // Area density of generateRay's lens point (uniform over the disk; a pinhole has none).
+    float lensPdfArea() const { return 1 / lensArea(); }
+    // The crossing of ray r (from the scene towards the lens front, before tMax) with the lens
+    // disk at r.time, where the importance sent back along it is not zero; thin lens only.
+    std::optional<LensCrossing> intersectLens(const Ray& r, float tMax) const;
     // The viewing direction in world space (the lens normal) at scene time `time`.
     Vec3 forward(float time) const;
     // The pixel filter's radius: camera samples (and light paths splatted onto the film)

@@ -3,6 +3,7 @@
 #pragma once
 #include <cmath>
 #include <optional>
+#include <string>
 #include "geometry/interaction.h"
 #include "geometry/ray.h"
 #include "math/spectrum.h"
@@ -90,6 +91,9 @@ public:
     virtual void preprocess(Vec3 sceneCenter, float sceneRadius) { (void)sceneCenter; (void)sceneRadius; }
 
     int index = -1;  // position in the scene's light list
+    // Its scene directive for messages, e.g. `LightSource "point" at scene.pbrt:12:1` (empty
+    // for a light made in code: messages then name its index and type).
+    std::string label;
     // The media either side of the light (pbrt-v4 gives a light the MediumInterface current
     // at its definition, an area light its shape's): where a light subpath starts.
     const Medium* mediumInside = nullptr;

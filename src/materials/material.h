@@ -2,6 +2,7 @@
 // caller's ScratchBuffer (no heap traffic in the render loop).
 #pragma once
 #include <memory>
+#include <string>
 #include "geometry/fibre_kind.h"
 #include "materials/bxdf.h"
 #include "materials/texture.h"
@@ -41,6 +42,9 @@ public:
     // True when hits need the shading derivatives a map reads (SurfaceInteraction::dpdv ...):
     // this material, or for `mix` one of its members, has a map.
     bool needsShadingDerivatives() const { return needsDerivatives_; }
+    // Its scene directive for messages, e.g. `Material "conductor" at scene.pbrt:5:1` (empty
+    // for a material made in code).
+    std::string label;
 
 protected:
     std::unique_ptr<const BxDF> constant_;

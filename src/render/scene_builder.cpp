@@ -87,10 +87,12 @@ void SceneBuilder::createMaterials() {
             if (m->type == "mix")
                 for (const std::string& n : m->params.getStrings("materials"))
                     if (!named_.count(n)) ready = false;
-            if (ready)
-                named_[m->name] = createMaterial(m->type, m->params, textures_, named_, base, scene_.settings().spectral);
-            else
+            if (!ready) {
                 next.push_back(m);
+                continue;
+            }
+            named_[m->name] = createMaterial(m->type, m->params, textures_, named_, base, scene_.settings().spectral);
+            named_[m->name]->label = "MakeNamedMaterial \"" + m->name + "\" (" + m->type + ") at " + m->loc.str();
         }
         if (next.size() == pending.size()) {
             const MaterialEntity* m = next.front();
@@ -98,8 +100,10 @@ void SceneBuilder::createMaterials() {
         }
         pending = std::move(next);
     }
-    for (const MaterialEntity& m : desc_.materials)
+    for (const MaterialEntity& m : desc_.materials) {
         scene_.materials_.push_back(createMaterial(m.type, m.params, textures_, named_, base, scene_.settings().spectral));
+        scene_.materials_.back()->label = "Material \"" + m.type + "\" at " + m.loc.str();
+    }
     // The scene owns every material; shapes keep raw pointers.
     for (const auto& [name, m] : named_) scene_.materials_.push_back(m);
 }
@@ -332,6 +336,7 @@ void SceneBuilder::addLights() {
     for (const LightEntity& e : desc_.lights)
         if (auto light = createLight(e, desc_.baseDirectory)) {
             light->mediumInside = light->mediumOutside = mediumNamed(e.media.outside, e.media.loc);
+            light->label = "LightSource \"" + e.type + "\" at " + e.loc.str();
             scene_.lights_.push_back(std::move(light));
         }
 }

@@ -269,6 +269,13 @@ double lightPrefixStep(const PathVertex* light, int m, double before, float choi
     return misTerm<H>(light[m].pdfRev, light[m].pdfFwd) * ((valid ? own : 0) + before);
 }
 
+// The term of the t = 0 strategy's density ratio (BDPTIntegrator::lensRatio; 0: no such
+// strategy).
+template <MisHeuristic H>
+double lensTerm(float ratio) {
+    return ratio > 0 ? misTerm<H>(ratio, 1.0f) : 0.0;
+}
+
 // Calls f with the heuristic as a compile-time constant.
 template <typename F>
 auto withHeuristic(MisHeuristic h, F&& f) {
@@ -286,6 +293,9 @@ auto withHeuristic(MisHeuristic h, F&& f) {
 
 BDPTIntegrator::BDPTIntegrator(const Scene& scene, int maxDepth, MisWeighting mis)
     : paths_(scene, maxDepth), mis_(mis), heuristic_(mis.heuristic) {
+    // Light walks reach a thin lens (not through media: their walks do not look for it).
+    lensHits_ = scene.camera().hasLensDisk() && !scene.hasMedia();
+    paths_.setLensHits(lensHits_);
     // The default (power, beta 2), balance and uniform keep the prefix sums' O(1) weights.
     general_ = !(mis.isDefault() || mis.heuristic == MisHeuristic::Balance || mis.heuristic == MisHeuristic::Uniform);
     if (general_) heuristic_ = MisHeuristic::Balance;  // its prefixes are computed, unused
@@ -300,7 +310,8 @@ BDPTIntegrator::MisPrefixes BDPTIntegrator::misPrefixes(const PathVertex* light,
     const float choice = nLight >= 2 && !light[1].delta ? paths_.lightChoiceRatio(light[0], light[1]) : 1.0f;
     withHeuristic(heuristic_, [&](auto h) {
         constexpr MisHeuristic H = decltype(h)::value;
-        cam[0] = 0;
+        // The t = 0 strategy (the light subpath reaching the lens) ends every camera-side sum.
+        cam[0] = nCamera >= 2 ? lensTerm<H>(lensRatio(camera[0].pdfRev, camera[0], camera[1])) : 0.0;
         for (int m = 1; m <= nCamera - 2; ++m) cam[m] = cameraPrefixStep<H>(camera, m, cam[m - 1]);
         const double fewer = choiceTerm<H>(1 / lightPathShare_);
         for (int m = 0; m <= nLight - 2; ++m)
@@ -326,6 +337,11 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
     EndpointDensities rev;
     if (known) {
         rev = *known;
+    } else if (t == 0) {
+        // The light subpath reached the lens (qs): the camera samples that point with density
+        // 1 / lens area, and the direction to qsMinus as generateRay would.
+        rev.qs = paths_.scene().camera().lensPdfArea();
+        rev.qsMinus = paths_.pdf(*qs, nullptr, *qsMinus, true);
     } else if (s == 0) {
         // The camera path ends on an emitter (t >= 2 here): a light subpath would start there.
         paths_.emissionDensities(*pt, *ptMinus, &rev.pt, &rev.ptMinus);
@@ -356,6 +372,8 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
         // Beyond the two vertices at each side of the join, each side contributes its
         // running sum: from the prefixes, or walked here.
         double cameraTail = 0, lightTail = 0;
+        // The camera-side sums end with the t = 0 strategy's term (lensRatio, 0 without it).
+        if (t >= 3 && lensHits_) cameraTail = lensTerm<H>(lensRatio(camera[0].pdfRev, camera[0], camera[1]));
         if (t >= 4 && prefixes) cameraTail = prefixes->camera[t - 3];
         if (t >= 4 && !prefixes)
             for (int m = 1; m <= t - 3; ++m) cameraTail = cameraPrefixStep<H>(camera, m, cameraTail);
@@ -371,11 +389,15 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
             if (t >= 3) {
                 bool valid = !camera[t - 2].delta && !camera[t - 3].delta;
                 inner = misTerm<H>(rev.ptMinus, camera[t - 2].pdfFwd) * ((valid ? 1 : 0) + cameraTail);
+            } else if (lensHits_) {
+                inner = lensTerm<H>(lensRatio(rev.ptMinus, camera[0], *pt));  // (s + 2, 0)
             }
             if (s == 0) inner *= more;  // s' >= 2
             const double sOne = s == 0 ? choiceTerm<H>(choice) : 1.0;
             const double side = misTerm<H>(rev.pt, pt->pdfFwd) * ((camera[t - 2].delta ? 0 : sOne) + inner);
             total += s == 1 ? side * more : side;
+        } else if (t == 1 && lensHits_) {
+            total += lensTerm<H>(lensRatio(rev.pt, *pt, *qs));  // (s + 1, 0)
         }
         if (s >= 1) {
             double inner = 0;
@@ -431,6 +453,12 @@ float BDPTIntegrator::weightFromEveryRatio(const PathVertex* light, const PathVe
                 if (!camera[m].delta && !camera[m - 1].delta) keep(R, s + t - m);
             }
         }
+        // The t = 0 strategy: the light subpath reaches the lens camera[0] itself.
+        const float lens = lensRatio(t >= 3 ? camera[0].pdfRev : rev.ptMinus, camera[0], camera[1]);
+        if (lens > 0) keep(R * lens, s + t);
+    } else if (t == 1) {
+        const float lens = lensRatio(rev.pt, *pt, *qs);
+        if (lens > 0) keep(lens, s + 1);
     }
     // Towards the light: strategies (s - 1, t + 1), ..., s' = 0.
     if (s >= 1) {
@@ -482,7 +510,8 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
                              const SampleContext* splatTo, Deposit&& deposit, int onlyDepth,
                              SampledWavelengths* lambda) const {
     const int cameraVertices = onlyDepth >= 0 ? onlyDepth + 2 : paths_.maxCameraVertices();
-    const int lightVertices = onlyDepth >= 0 ? onlyDepth + 1 : paths_.maxLightVertices();
+    // With lens hits a light subpath takes one vertex more (Subpaths::maxLightVertices).
+    const int lightVertices = onlyDepth >= 0 ? onlyDepth + 1 + (lensHits_ ? 1 : 0) : paths_.maxLightVertices();
     PathVertex* camera = allocPath(scratch, cameraVertices);
     PathVertex* light = allocPath(scratch, lightVertices);
     // The light subpath's origin first: its sampling then overlaps the camera walk.
@@ -499,8 +528,14 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
     const MediaSample* ms = media ? &*media : nullptr;
     int nCamera = paths_.cameraSubpath(ray, sampler, scratch, stats, camera, cameraVertices, lambda, ms);
     sampler.startStream(kLightStream);
-    const int nLight =
-        traceLight ? paths_.continueLightSubpath(origin, sampler, scratch, stats, light, lightVertices, lambda, ms) : 0;
+    LensHits lensHits;
+    if (lensHits_ && traceLight) {
+        lensHits.capacity = lightVertices;
+        lensHits.hits = static_cast<LensHit*>(scratch.allocBytes(sizeof(LensHit) * size_t(lightVertices), alignof(LensHit)));
+    }
+    const int nLight = traceLight ? paths_.continueLightSubpath(origin, sampler, scratch, stats, light, lightVertices,
+                                                                lambda, ms, lensHits_ ? &lensHits : nullptr)
+                                  : 0;
     sampler.startStream(kConnectionStream);
     const MisPrefixes prefixes = misPrefixes(light, nLight, camera, nCamera, scratch);
 
@@ -525,6 +560,17 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
             c.dispersive = lambda && usesDispersiveVertex(light, camera, s, t);
             deposit(s, t, c);
         }
+    // t = 0: the light subpath's rays that crossed the lens (lens_hits.h).
+    for (int i = 0; i < lensHits.n; ++i) {
+        const LensHit& hit = lensHits.hits[i];
+        const int s = hit.index + 1, depth = s - 2;
+        if (depth > maxDepth || (onlyDepth >= 0 && depth != onlyDepth)) continue;
+        Connection c = connectLens(light, hit, scratch, &prefixes);
+        if (c.L.isBlack()) continue;
+        c.L *= invShare;
+        c.dispersive = lambda && usesDispersiveVertex(light, nullptr, hit.index, 0);
+        deposit(s, 0, c);
+    }
 }
 
 template <typename S>
@@ -539,7 +585,7 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
     }
     produce(ray, sampler, scratch, ctx.stats, &ctx, [&](int s, int t, const Connection& c) {
         Spectrum contribution = c.L * c.weight;
-        if (strategies_) {
+        if (strategies_ && t >= 1) {  // the strategy images hold t >= 1
             if (t == 1) {
                 strategies_->splat(s, c.pRaster, ctx.toFilm(contribution), ctx.toFilm(c.L), ctx.sampleIndex);
             } else if (int k = strategies_->slot(s, t); k >= 0) {
@@ -548,7 +594,7 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
             }
         }
         if (c.weight == 0) return;
-        if (t == 1) ctx.film.addSplat(c.pRaster, ctx.toFilm(contribution), ctx.sampleIndex);
+        if (t <= 1) ctx.film.addSplat(c.pRaster, ctx.toFilm(contribution), ctx.sampleIndex);
         else L += contribution;
     });
     if (strategies_) strategies_->addCameraSample(ctx.px, ctx.py, ctx.filterWeight, perStrategy);
@@ -564,7 +610,7 @@ void BDPTIntegrator::contributions(const Ray& ray, Vec2 pFilm, PrimarySampleSamp
         ray, sampler, scratch, stats, nullptr,
         [&](int s, int t, const Connection& c) {
             if (c.weight == 0) return;
-            out.push_back({t == 1 ? c.pRaster : pFilm, c.L * c.weight, s, t, c.dispersive});
+            out.push_back({t <= 1 ? c.pRaster : pFilm, c.L * c.weight, s, t, c.dispersive});
         },
         onlyDepth, lambda);
 }

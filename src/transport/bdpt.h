@@ -111,6 +111,16 @@ public:
                               ScratchBuffer& scratch, PathStats& stats, PathContribution& out,
                               SampledWavelengths* lambda = nullptr) const;
     void setRoulette(bool on) { paths_.setRoulette(on); }
+    // Whether the t = 0 strategy is used (thesis §10.2: light subpaths that reach the lens by
+    // themselves, lens_hits.h): on by default through a thin lens in a scene without media.
+    // Multiplexed Metropolis, which samples one strategy (s, t >= 1) at a time, turns it off.
+    bool lensHits() const { return lensHits_; }
+    void disableLensHits();
+    // The t = 0 strategy for one crossing of the lens by the light subpath: the path of
+    // light[0 .. hit.index - 1] and the lens vertex, its contribution (beta We, landing at
+    // pRaster) and MIS weight. Exposed for tests.
+    Connection connectLens(const PathVertex* light, const LensHit& hit, ScratchBuffer& scratch,
+                           const MisPrefixes* prefixes = nullptr) const;
     // The expected number of light subpaths per camera subpath, in (0, 1] (1: one each, the
     // classic pairing). Below 1 each camera sample traces its light subpath with this
     // probability: the strategies that use it (s >= 2) become techniques with sample count
@@ -175,6 +185,11 @@ private:
     // the weight's densities left to misWeight.
     void joinInnerInMedia(const PathVertex& qs, const PathVertex& pt, PathStats& stats, const MediaSample& media,
                           uint64_t stream, Join& j) const;
+    // The t = 0 strategy's density of lens vertex `lens` over the camera's (1 / lens area),
+    // from `rev`, the light walk's density there from its neighbour `next` per unit area
+    // across the segment (lens vertices carry no normal: the lens cosine is applied here);
+    // 0 without lens hits.
+    float lensRatio(float rev, const PathVertex& lens, const PathVertex& next) const;
     // misWeight for the heuristics off the prefix-sum path (see general_).
     float weightFromEveryRatio(const PathVertex* light, const PathVertex* camera, const PathVertex* qs,
                                const PathVertex* pt, int s, int t, const EndpointDensities& rev, float choice) const;
@@ -189,6 +204,7 @@ private:
     std::unique_ptr<StrategyImages> strategies_;
     bool recomputeWeights_ = false;
     float lightPathShare_ = 1;
+    bool lensHits_ = false;
 };
 
 }  // namespace ps

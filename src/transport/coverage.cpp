@@ -1,6 +1,9 @@
 #include "transport/coverage.h"
 
+#include <cstdio>
+#include <optional>
 #include <set>
+#include <vector>
 
 #include "geometry/curve.h"
 #include "materials/bxdf.h"
@@ -29,24 +32,130 @@ bool mayScatterSpecularly(const Material& m) {
     return (b->flags() & kSpecular) || b->coatingMirrorReflectance(Vec3(0, 0, 1)) > 0 || b->specularThroughCoating();
 }
 
+// The scene's lights and materials that make classes of paths unsampled: delta lights (point,
+// spot, goniometric, projection, distant), lights at infinity, and materials that may scatter
+// through a delta lobe; each once, in scene order.
 struct SceneTraits {
-    bool specular = false, deltaLight = false, infinite = false;
+    std::vector<const Light*> delta, infinite;
+    std::vector<const Material*> specular;
 };
 
 SceneTraits traitsOf(const Scene& scene) {
     SceneTraits t;
     std::set<const Material*> seen;
     for (const Shape* shape : scene.shapes())
-        if (shape->material && seen.insert(shape->material).second)
-            t.specular = t.specular || mayScatterSpecularly(*shape->material);
+        if (shape->material && seen.insert(shape->material).second && mayScatterSpecularly(*shape->material))
+            t.specular.push_back(shape->material);
     for (const auto& light : scene.lights()) {
-        t.deltaLight = t.deltaLight || light->type() == LightType::DeltaPosition || light->type() == LightType::DeltaDirection;
-        t.infinite = t.infinite || light->type() == LightType::Infinite;
+        if (light->isDelta()) t.delta.push_back(light.get());
+        if (light->type() == LightType::Infinite) t.infinite.push_back(light.get());
     }
     return t;
 }
 
+// At most three names, then how many more.
+std::string listed(const std::vector<std::string>& names) {
+    std::string out;
+    for (size_t i = 0; i < names.size() && i < 3; ++i) out += (i ? "; " : "") + names[i];
+    if (names.size() > 3) out += "; and " + std::to_string(names.size() - 3) + " more";
+    return out;
+}
+
+std::string lightNames(const std::vector<const Light*>& lights) {
+    std::vector<std::string> names;
+    for (const Light* l : lights) {
+        if (!l->label.empty()) {
+            names.push_back(l->label);
+            continue;
+        }
+        const char* kind = l->type() == LightType::DeltaPosition    ? "point-like"
+                           : l->type() == LightType::DeltaDirection ? "distant"
+                                                                    : "infinite";
+        names.push_back("light #" + std::to_string(l->index) + " (" + kind + ")");
+    }
+    return listed(names);
+}
+
+std::string materialNames(const std::vector<const Material*>& materials) {
+    std::vector<std::string> names;
+    for (const Material* m : materials) names.push_back(m->label.empty() ? "an unnamed specular material" : m->label);
+    return listed(names);
+}
+
+std::string cameraName(const Camera& camera) {
+    const Camera::Params& p = camera.params();
+    switch (p.projection) {
+        case Camera::Projection::Perspective:
+            if (p.lensRadius > 0) {
+                char r[32];
+                std::snprintf(r, sizeof r, "%g", double(p.lensRadius));
+                return std::string("the thin-lens camera (lensradius ") + r + ")";
+            }
+            return "the pinhole camera (perspective, lensradius 0)";
+        case Camera::Projection::Orthographic: return "the orthographic camera";
+        case Camera::Projection::Spherical: return "the spherical camera";
+        case Camera::Projection::Realistic: return "the realistic camera";
+    }
+    return "the camera";
+}
+
+constexpr const char* kRemedies =
+    "Veach's remedies: a small area light instead of the delta light, a roughness floor on the specular materials "
+    "(e.g. \"float roughness\" 0.01), or a finite aperture (Camera \"float lensradius\" > 0) rendered with bdpt, "
+    "light or pssmlt, whose t = 0 strategy samples these paths";
+
+// Class (a): L S+ E from a delta light, through a camera that no light subpath can hit
+// (thesis §1.1: no unbiased technique samples them).
+std::optional<UnsampledPaths> deltaSpecularEye(const Scene& scene, const SceneTraits& t, const std::string& integrator) {
+    if (t.delta.empty() || t.specular.empty() || samplesLensHits(scene, integrator)) return std::nullopt;
+    const bool every = !samplesLensHits(scene, "bdpt");
+    return UnsampledPaths{
+        "delta-specular-eye",
+        "no technique of \"" + integrator + "\" samples the light of " + lightNames(t.delta) + " seen through " +
+            materialNames(t.specular) + " by " + cameraName(scene.camera()) + " (L S+ E paths, thesis sec. 1.1): " +
+            (every ? "every integrator renders them black" : "bdpt and light sample them through this lens (t = 0)") +
+            ". " + kRemedies,
+        every};
+}
+
 }  // namespace
+
+bool samplesLensHits(const Scene& scene, const std::string& integrator) {
+    // pssmlt mutates BDPT's samples, all strategies at once, t = 0 included (BDPTIntegrator::
+    // lensHits); mmlt samples one strategy with t >= 1 at a time, Veach's mlt its own paths.
+    return (integrator == "bdpt" || integrator == "light" || integrator == "pssmlt") &&
+           scene.camera().hasLensDisk() && !scene.hasMedia();
+}
+
+std::vector<UnsampledPaths> unsampledPaths(const Scene& scene, const std::string& integrator) {
+    std::vector<UnsampledPaths> out;
+    // Nothing reaches a camera without importance: the one class says all.
+    if ((integrator == "light" || integrator == "mlt") && !scene.camera().hasImportance())
+        return {{integrator + "-lens", "it " + lensRequirement(integrator)}};
+    const SceneTraits t = traitsOf(scene);
+    if (integrator == "path" && !t.delta.empty() && !t.specular.empty())
+        out.push_back({"delta-caustic",
+                       "path tracing cannot reach a point, spot, goniometric, projection or distant light through a "
+                       "specular surface (their caustics are black); use bdpt (lights: " + lightNames(t.delta) +
+                           "; specular: " + materialNames(t.specular) + ")"});
+    if (integrator == "light") {
+        if (!t.infinite.empty())
+            out.push_back({"light-environment", "light tracing cannot show the environment seen directly; use path or "
+                                                "bdpt (" + lightNames(t.infinite) + ")"});
+        // Unbiased, but a scattering point at distance d from the lens contributes 1/d^2, whose
+        // square a volume around the lens does not integrate: the render never converges.
+        if (scene.cameraMedium())
+            out.push_back({"light-camera-medium", "light tracing from scattering points around a camera in a medium has "
+                                                  "unbounded variance; use path or bdpt"});
+        if (!t.specular.empty() && !samplesLensHits(scene, integrator))
+            out.push_back({"light-specular", "light tracing cannot show what the camera sees in a specular surface "
+                                             "(mirror, smooth glass or coating); use path or bdpt (specular: " +
+                                                 materialNames(t.specular) + "; " + cameraName(scene.camera()) +
+                                                 "; with a thin lens, light tracing's t = 0 strategy would)"});
+    }
+    if (auto a = deltaSpecularEye(scene, t, integrator)) out.push_back(*a);
+    return out;
+}
 
 std::string inconsistentSurfaces(const Scene& scene, const std::string& integrator) {
     if (integrator == "path") return "";
@@ -68,24 +177,8 @@ std::string lensRequirement(const std::string& integrator) {
 }
 
 std::string missingPaths(const Scene& scene, const std::string& integrator) {
-    if ((integrator == "light" || integrator == "mlt") && !scene.camera().hasImportance())
-        return "it " + lensRequirement(integrator);
-    if (integrator != "light" && integrator != "path") return "";
-    const SceneTraits t = traitsOf(scene);
-    if (integrator == "path")
-        return t.deltaLight && t.specular
-                   ? "path tracing cannot reach a point, spot, goniometric, projection or distant light through a "
-                     "specular surface (their caustics are black); use bdpt"
-                   : "";
-    if (t.infinite) return "light tracing cannot show the environment seen directly; use path or bdpt";
-    // Unbiased, but a scattering point at distance d from the lens contributes 1/d^2, whose
-    // square a volume around the lens does not integrate: the render never converges.
-    if (scene.cameraMedium())
-        return "light tracing from scattering points around a camera in a medium has unbounded variance; use path or "
-               "bdpt";
-    if (t.specular)
-        return "light tracing cannot show what the camera sees in a specular surface (mirror, smooth glass or "
-               "coating); use path or bdpt";
+    for (const UnsampledPaths& c : unsampledPaths(scene, integrator))
+        if (!c.everyIntegrator) return c.message;
     return "";
 }
 

@@ -6,12 +6,39 @@
 // agreement matrix leave the integrator out of that scene's comparisons.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "render/scene.h"
 
 namespace ps {
 
-// Why `integrator` cannot render all of the scene's light, or "" when it can. For a known
+// One class of light paths that no technique of an integrator samples in a scene (thesis
+// §1.1: a delta light seen through specular vertices by a pinhole is such a class for every
+// unbiased technique; §10.2: each of BDPT's strategies covers only the paths whose vertices it
+// can generate). Detected from the scene's lights, materials and camera at load time.
+struct UnsampledPaths {
+    // "delta-specular-eye": L S+ E from a delta light, through a delta camera; "delta-caustic":
+    // path tracing's L S+ D ... E from a delta light; "light-*": light tracing's own (its lens,
+    // the environment, a camera in a medium, specular surfaces seen by the camera);
+    // "mlt-lens": Veach's mlt through a camera without importance.
+    std::string id;
+    // What is missed, naming the lights, the materials and the camera, and Veach's remedies.
+    std::string message;
+    // No integrator samples the class with this scene: all render it black alike, so
+    // comparisons between integrators stay fair (missingPaths leaves such classes out).
+    bool everyIntegrator = false;
+};
+
+// Every class `integrator` misses in the scene, once each, in a fixed order (for the warnings
+// at scene load and --stats). For a known name.
+std::vector<UnsampledPaths> unsampledPaths(const Scene& scene, const std::string& integrator);
+
+// Whether `integrator` has the t = 0 strategy in this scene (a light subpath reaching the lens
+// by itself, thesis §10.2): BDPT and light tracing through a thin lens (lensradius > 0).
+bool samplesLensHits(const Scene& scene, const std::string& integrator);
+
+// Why `integrator` cannot render all of the scene's light that another integrator renders, or
+// "" when it can: the first of unsampledPaths that not every integrator misses. For a known
 // name: createIntegrator reports an unknown one.
 std::string missingPaths(const Scene& scene, const std::string& integrator);
 

@@ -1,5 +1,6 @@
 #include "transport/light_tracer.h"
 
+#include <algorithm>
 #include <new>
 #include <optional>
 
@@ -29,6 +30,20 @@ void LightTracer::splatEmitter(const PathVertex& v, SampleContext& ctx, const Me
     ctx.film.addSplat(cs->pRaster, ctx.toFilm(L), ctx.sampleIndex);
 }
 
+// The t = 0 strategy (lens_hits.h) where t = 1 cannot sample the path: the vertex before the
+// lens is specular (a delta light's highlight in a mirror, thesis §1.1) or not connectible.
+// Elsewhere the lens connection (t = 1) has it: light tracing adds each path once, unweighted.
+void LightTracer::splatLensHits(const PathVertex* light, const LensHits& lens, SampleContext& ctx) const {
+    for (int i = 0; i < lens.n; ++i) {
+        const LensHit& hit = lens.hits[i];
+        const PathVertex& before = light[hit.index - 1];
+        if (hit.index - 1 > bdpt_.subpaths().maxDepth() || (before.connectible() && !before.delta)) continue;
+        const Spectrum L = hit.beta * hit.lens.We;
+        if (L.isBlack() || !L.isFinite()) continue;
+        ctx.film.addSplat(hit.lens.pRaster, ctx.toFilm(L), ctx.sampleIndex);
+    }
+}
+
 // The camera ray is not traced; its time (the camera sample's, uniform over the shutter) is
 // the one time of this light path.
 Spectrum LightTracer::Li(const Ray& cameraRay, SampleContext& ctx) const {
@@ -39,10 +54,19 @@ Spectrum LightTracer::Li(const Ray& cameraRay, SampleContext& ctx) const {
     std::optional<MediaSample> media;
     if (paths.scene().hasMedia()) media = paths.mediaSample(ctx.sampler, ctx.lambda);
     const MediaSample* ms = media ? &*media : nullptr;
-    int nLight = paths.lightSubpath(ctx.sampler, cameraRay.time, ctx.scratch, ctx.stats, light, ctx.lambda, ms);
+    LensHits lens;
+    if (paths.lensHits()) {
+        lens.capacity = n;
+        lens.hits = static_cast<LensHit*>(ctx.scratch.allocBytes(sizeof(LensHit) * size_t(n), alignof(LensHit)));
+    }
+    int nLight = paths.lightSubpath(ctx.sampler, cameraRay.time, ctx.scratch, ctx.stats, light, ctx.lambda, ms,
+                                    paths.lensHits() ? &lens : nullptr);
     if (nLight > 0) splatEmitter(light[0], ctx, ms);
+    splatLensHits(light, lens, ctx);
     PathVertex camera[1];
-    for (int s = 2; s <= nLight; ++s) {
+    // With lens hits the subpath has one vertex more, for t = 0 alone (Subpaths::maxLightVertices).
+    const int sMax = std::min(nLight, paths.maxDepth() + 1);
+    for (int s = 2; s <= sMax; ++s) {
         auto c = bdpt_.connect(light, camera, s, 1, ctx.sampler, ctx.stats, false, nullptr, &ctx, nullptr, ms);
         if (!c.L.isBlack()) ctx.film.addSplat(c.pRaster, ctx.toFilm(c.L), ctx.sampleIndex);
     }

@@ -18,6 +18,8 @@ public:
 private:
     // The (s, t) = (1, 1) strategy: the light point itself seen through the lens.
     void splatEmitter(const PathVertex& v, SampleContext& ctx, const MediaSample* media) const;
+    // The t = 0 paths that the lens connections miss (light_tracer.cpp).
+    void splatLensHits(const PathVertex* light, const LensHits& lens, SampleContext& ctx) const;
     BDPTIntegrator bdpt_;  // its connection code; light tracing uses no MIS
 };
 

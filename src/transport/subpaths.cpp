@@ -1,6 +1,7 @@
 #include "transport/subpaths.h"
 
 #include <algorithm>
+#include <limits>
 #include <new>
 
 #include "lights/infinity_disk.h"
@@ -50,9 +51,9 @@ int Subpaths::cameraSubpath(const Ray& ray, S& sampler, ScratchBuffer& scratch, 
 
 template <typename S>
 int Subpaths::lightSubpath(S& sampler, float time, ScratchBuffer& scratch, PathStats& stats, PathVertex* path,
-                           SampledWavelengths* lambda, const MediaSample* media) const {
+                           SampledWavelengths* lambda, const MediaSample* media, LensHits* lens) const {
     LightOrigin origin = lightOrigin(sampler, time, stats, path, lambda);
-    return continueLightSubpath(origin, sampler, scratch, stats, path, 0, lambda, media);
+    return continueLightSubpath(origin, sampler, scratch, stats, path, 0, lambda, media, lens);
 }
 
 template <typename S>
@@ -103,14 +104,14 @@ Subpaths::LightOrigin Subpaths::lightOrigin(S& sampler, float time, PathStats& s
 template <typename S>
 int Subpaths::continueLightSubpath(const LightOrigin& o, S& sampler, ScratchBuffer& scratch, PathStats& stats,
                                    PathVertex* path, int maxVertices, SampledWavelengths* lambda,
-                                   const MediaSample* media) const {
+                                   const MediaSample* media, LensHits* lens) const {
     if (!o.valid) return 0;
     PathVertex& v = path[0];
     int limit = maxVertices > 0 ? std::min(maxVertices, maxLightVertices()) : maxLightVertices();
     int n = media ? randomWalkInMedia(o.ray, o.medium, o.beta, o.pdfDir, sampler, stats, scratch, path + 1, limit - 1,
                                       TransportMode::Importance, kLightStartDimensions, lambda, *media)
                   : randomWalk(o.ray, o.beta, o.pdfDir, sampler, scratch, stats, path + 1, limit - 1,
-                               TransportMode::Importance, kLightStartDimensions, lambda);
+                               TransportMode::Importance, kLightStartDimensions, lambda, lens);
     // From a disk at infinity the second vertex's density is the disk's area density
     // projected onto its surface, and the first is the directional density (thesis §10.2).
     if (v.infinite) {
@@ -126,7 +127,7 @@ int Subpaths::continueLightSubpath(const LightOrigin& o, S& sampler, ScratchBuff
 template <typename S>
 int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, ScratchBuffer& scratch,
                          PathStats& stats, PathVertex* path, int maxVertices, TransportMode mode,
-                         int firstDimension, SampledWavelengths* lambda) const {
+                         int firstDimension, SampledWavelengths* lambda, LensHits* lens) const {
     if (maxVertices <= 0) return 0;
     int bounces = 0, passThroughs = 0;
     Spectrum scatter(1.0f);  // the walk's own throughput, for Russian roulette
@@ -147,7 +148,13 @@ int Subpaths::randomWalk(Ray ray, Spectrum beta, float pdfFwd, S& sampler, Scrat
         ++stats.rays;
         PathVertex& prev = path[bounces - 1];
         PathVertex& v = path[bounces];
-        if (!scene_.intersect(ray, si)) {
+        const bool hit = scene_.intersect(ray, si);
+        // The lens vertex would be walk vertex `bounces`, light subpath vertex bounces + 1.
+        if (lens)
+            recordLensCrossing(scene_.camera(), ray,
+                               hit ? dot(si.p - ray.o, ray.d) / lengthSquared(ray.d) : std::numeric_limits<float>::infinity(), bounces + 1,
+                               beta, pdfFwd, *lens);
+        if (!hit) {
             // A camera ray leaving the scene ends on the infinite lights (the s = 0 strategy).
             if (mode == TransportMode::Radiance && !scene_.infiniteLights().empty()) {
                 initEscapeVertex(v, ray, beta, pdfFwd);
@@ -223,12 +230,12 @@ MediaSample Subpaths::mediaSample(S& sampler, const SampledWavelengths* lambda) 
     template int Subpaths::cameraSubpath<S>(const Ray&, S&, ScratchBuffer&, PathStats&, PathVertex*, int,      \
                                             SampledWavelengths*, const MediaSample*) const;                    \
     template int Subpaths::lightSubpath<S>(S&, float, ScratchBuffer&, PathStats&, PathVertex*,                 \
-                                           SampledWavelengths*, const MediaSample*) const;                     \
+                                           SampledWavelengths*, const MediaSample*, LensHits*) const;          \
     template Subpaths::LightOrigin Subpaths::lightOrigin<S>(S&, float, PathStats&, PathVertex*,                 \
                                                             const SampledWavelengths*) const;                  \
     template int Subpaths::continueLightSubpath<S>(const LightOrigin&, S&, ScratchBuffer&, PathStats&,          \
-                                                   PathVertex*, int, SampledWavelengths*, const MediaSample*)  \
-        const;                                                                                                 \
+                                                   PathVertex*, int, SampledWavelengths*, const MediaSample*,  \
+                                                   LensHits*) const;                                           \
     template MediaSample Subpaths::mediaSample<S>(S&, const SampledWavelengths*) const;
 PS_SUBPATH_WALKS(Sampler)
 PS_SUBPATH_WALKS(PaddedSobolSampler)

@@ -6,6 +6,7 @@
 #include "mc/sampler.h"
 #include "render/scene.h"
 #include "transport/integrator.h"
+#include "transport/lens_hits.h"
 #include "transport/path_vertex.h"
 #include "util/scratch.h"
 
@@ -33,7 +34,13 @@ public:
     // Room a caller must provide: camera subpaths hold the lens vertex and up to maxDepth + 1
     // surface or escape vertices; light subpaths the light vertex and maxDepth surfaces.
     int maxCameraVertices() const { return maxDepth_ + 2; }
-    int maxLightVertices() const { return maxDepth_ + 1; }
+    // With lens hits (setLensHits) a light subpath takes one vertex more, so that its last
+    // vertex at depth maxDepth scatters too and may reach the lens (t = 0 at every depth).
+    int maxLightVertices() const { return maxDepth_ + 1 + (lensHits_ ? 1 : 0); }
+    // Whether light walks look for the lens (the t = 0 strategy): their owner passes a
+    // LensHits to the walk and connects no more than maxDepth deep.
+    void setLensHits(bool on) { lensHits_ = on; }
+    bool lensHits() const { return lensHits_; }
     // Russian roulette ends walks early (on by default). A caller that fixes the subpaths'
     // lengths itself (multiplexed Metropolis) turns it off.
     void setRoulette(bool on) { roulette_ = on; }
@@ -68,9 +75,12 @@ public:
     // Vertex 0 on a light chosen as light subpaths choose (Scene::sampleLight), then the walk;
     // returns the number of vertices.
     // `time`: the scene time of the whole path (the camera sample's, for BDPT).
+    // `lens` (non-null, thin lens, no media): the rays that cross the lens are recorded there
+    // (lens_hits.h, the t = 0 strategy).
     template <typename S>
     int lightSubpath(S& sampler, float time, ScratchBuffer& scratch, PathStats& stats, PathVertex* path,
-                     SampledWavelengths* lambda = nullptr, const MediaSample* media = nullptr) const;
+                     SampledWavelengths* lambda = nullptr, const MediaSample* media = nullptr,
+                     LensHits* lens = nullptr) const;
     // lightSubpath in two steps: the emitted ray (vertex 0 written to path[0]), then the walk.
     // BDPT samples the origin before tracing its camera subpath, so that the emission
     // sampling's latency overlaps that walk (only the order of sample dimensions changes).
@@ -88,7 +98,7 @@ public:
     template <typename S>
     int continueLightSubpath(const LightOrigin& origin, S& sampler, ScratchBuffer& scratch, PathStats& stats,
                              PathVertex* path, int maxVertices = 0, SampledWavelengths* lambda = nullptr,
-                             const MediaSample* media = nullptr) const;
+                             const MediaSample* media = nullptr, LensHits* lens = nullptr) const;
     // A scene with media: draws the sample's hero (RGB mode; spectral mode's is lambda[0]) and
     // seed from the camera stream, past every value the camera walk, the time and the wavelengths read.
     template <typename S>
@@ -138,7 +148,7 @@ private:
     template <typename S>
     int randomWalk(Ray ray, Spectrum beta, float pdfDir, S& sampler, ScratchBuffer& scratch, PathStats& stats,
                    PathVertex* path, int maxVertices, TransportMode mode, int firstDimension,
-                   SampledWavelengths* lambda) const;
+                   SampledWavelengths* lambda, LensHits* lens = nullptr) const;
     // randomWalk in a scene with media (subpaths_media.cpp): free flights by delta tracking
     // from `medium`, medium vertices, medium changes at boundaries.
     template <typename S>
@@ -149,6 +159,7 @@ private:
     const Scene& scene_;
     int maxDepth_;
     bool roulette_ = true;
+    bool lensHits_ = false;
 };
 
 // The adjoint BSDF's shading-normal factor (thesis §5.3, the adjoint of a BSDF with

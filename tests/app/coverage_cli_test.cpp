@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 #include "render/mlt_scenes.h"
 #include "run_binary.h"
 
@@ -42,6 +44,48 @@ TEST(CoverageCli, LightTracingWarnsWhereItCannotSample) {
     EXPECT_EQ(r.out.find("will render part"), std::string::npos) << r.out;
     r = ps::test::runPathspace(render(withMirror, "--integrator bdpt --spp 1"));
     EXPECT_EQ(r.out.find("will render part"), std::string::npos) << r.out;
+}
+
+// A point light seen in a mirror sphere: through a pinhole no integrator samples its highlight
+// (thesis §1.1), and the render says so once, naming the light's directive, the material's
+// and the camera, with Veach's remedies; --stats records the class. Through a thin lens BDPT's
+// t = 0 strategy samples it: no warning there, while path tracing still warns.
+TEST(CoverageCli, NamesPathsNoTechniqueSamples) {
+    const auto scene = [](const char* lens) {
+        return std::string("LookAt 0 1 4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 40 ] "
+                           "\"float lensradius\" [ ") + lens + " ] \"float focaldistance\" [ 4 ]\n" +
+               "Film \"rgb\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ]\nWorldBegin\n"
+               "LightSource \"point\" \"rgb I\" [ 5 5 5 ] \"point3 from\" [ 0 3 0 ]\n"
+               "Material \"diffuse\"\nShape \"trianglemesh\" \"point3 P\" [ -5 0 -5  5 0 -5  5 0 5  -5 0 5 ] "
+               "\"integer indices\" [ 0 1 2 0 2 3 ]\n"
+               "MakeNamedMaterial \"chrome\" \"string type\" \"conductor\" \"float roughness\" [ 0 ]\n"
+               "NamedMaterial \"chrome\"\nAttributeBegin\nTranslate 0 0.5 0\nShape \"sphere\" \"float radius\" [ 0.5 ]\n"
+               "AttributeEnd\n";
+    };
+    const SceneFile pinhole(scene("0"), "unsampled-pinhole"), thinLens(scene("0.05"), "unsampled-lens");
+    const std::string stats = (fs::temp_directory_path() / ("unsampled-" + std::to_string(getpid()) + ".json")).string();
+    auto r = ps::test::runPathspace(render(pinhole, "--integrator bdpt --spp 1 --stats " + stats));
+    EXPECT_EQ(r.status, 0) << r.out;
+    const std::string warning = "integrator \"bdpt\" will render part of this scene's light black: no technique of "
+                                "\"bdpt\" samples the light of LightSource \"point\" at " + pinhole.path.string() + ":5:1 seen "
+                                "through MakeNamedMaterial \"chrome\" (conductor) at " + pinhole.path.string() + ":8:1 by the "
+                                "pinhole camera (perspective, lensradius 0) (L S+ E paths, thesis sec. 1.1): every integrator "
+                                "renders them black. Veach's remedies: a small area light instead of the delta light, a "
+                                "roughness floor on the specular materials";
+    EXPECT_NE(r.out.find(warning), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("will render part"), r.out.rfind("will render part")) << "one warning per class: " << r.out;
+    const auto j = nlohmann::json::parse(std::ifstream(stats));
+    ASSERT_EQ(j["unsampled_paths"].size(), 1u) << j.dump();
+    EXPECT_EQ(j["unsampled_paths"][0]["class"], "delta-specular-eye");
+    EXPECT_EQ(j["unsampled_paths"][0]["every_integrator"], true);
+    fs::remove(stats);
+    r = ps::test::runPathspace(render(thinLens, "--integrator bdpt --spp 1"));
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(r.out.find("will render part"), std::string::npos) << r.out;
+    r = ps::test::runPathspace(render(thinLens, "--integrator path --spp 1"));
+    EXPECT_NE(r.out.find("no technique of \"path\" samples the light of LightSource \"point\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("bdpt and light sample them through this lens (t = 0)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("the thin-lens camera (lensradius 0.05)"), std::string::npos) << r.out;
 }
 
 // Flat and cylinder curves of a material other than hair: every integrator but the path tracer

@@ -19,6 +19,14 @@ using namespace ps::test;
 
 namespace {
 
+// `lensradius` of the thin-lens variant (the t = 0 strategy), inserted after the camera.
+std::string withLens(const char* scene) {
+    std::string text = scene;
+    const std::string camera = "Camera \"perspective\" \"float fov\" [ 30 ]";
+    text.insert(text.find(camera) + camera.size(), " \"float lensradius\" [ 0.3 ] \"float focaldistance\" [ 2 ]");
+    return text;
+}
+
 const char* kScene = R"(
     LookAt 0 0.5 2.2  0 0.5 0  0 1 0
     Camera "perspective" "float fov" [ 30 ]
@@ -54,14 +62,14 @@ struct SubpathPair {
     int nCamera, nLight;
 };
 SubpathPair tracePair(const Scene& scene, const Subpaths& paths, Sampler& sampler, ScratchBuffer& scratch,
-                      PathStats& stats, int i) {
+                      PathStats& stats, int i, LensHits* lens = nullptr) {
     int px = i % 32, py = (i / 32) % 32;
     sampler.startPixelSample(px, py, i);
     CameraSample cs{{px + sampler.get1D(), py + sampler.get1D()}, {0.5f, 0.5f}};
     Ray ray = scene.camera().generateRay(cs);
     SubpathPair p{allocPath(scratch, paths.maxCameraVertices()), allocPath(scratch, paths.maxLightVertices()), 0, 0};
     p.nCamera = paths.cameraSubpath(ray, sampler, scratch, stats, p.camera);
-    p.nLight = paths.lightSubpath(sampler, 0.0f, scratch, stats, p.light);
+    p.nLight = paths.lightSubpath(sampler, 0.0f, scratch, stats, p.light, nullptr, nullptr, lens);
     return p;
 }
 
@@ -98,8 +106,10 @@ FullPath rebuild(const Subpaths& paths, const PathVertex* light, int s, const Pa
 }
 
 // Whether strategy (s', t') can sample this path at all.
-bool possible(const FullPath& fp, int s) {
+bool possible(const BDPTIntegrator& bdpt, const FullPath& fp, int s) {
     int k = int(fp.y.size()) - 1, t = k + 1 - s;
+    // t = 0: the light subpath reaches a thin lens, after a scattering vertex (k >= 2).
+    if (t == 0) return bdpt.lensHits() && k >= 2;
     if (t < 1 || (s == 1 && t == 1)) return false;
     if (s == 0) return !fp.y[0].isDeltaLight();
     if (t == 1) return fp.y[size_t(k - 1)].connectible() && !fp.y[size_t(k - 1)].delta;
@@ -114,9 +124,16 @@ float weightOf(const BDPTIntegrator& bdpt, const FullPath& fp, int s) {
     std::vector<PathVertex> camera(static_cast<size_t>(t));
     for (int i = 0; i < s; ++i) {
         light[size_t(i)] = fp.y[size_t(i)];
-        light[size_t(i)].mode = TransportMode::Importance;
+        if (fp.y[size_t(i)].kind != VertexKind::Camera) light[size_t(i)].mode = TransportMode::Importance;
         light[size_t(i)].pdfFwd = fp.pLight[size_t(i)];
         light[size_t(i)].pdfRev = fp.pCamera[size_t(i)];
+    }
+    // t = 0: the lens has no normal of its own, so its area density from the light walk takes
+    // the lens cosine here (as BDPTIntegrator::connectLens gives it; camera subpaths keep the
+    // reverse density without it, which lensRatio completes).
+    if (t == 0) {
+        const Camera& cam = bdpt.subpaths().scene().camera();
+        light[size_t(k)].pdfFwd *= std::fabs(dot(cam.forward(0), normalize(fp.y[size_t(k - 1)].p - fp.y[size_t(k)].p)));
     }
     for (int j = 0; j < t; ++j) {
         camera[size_t(j)] = fp.y[size_t(k - j)];
@@ -138,26 +155,37 @@ bool stepwise(const MisWeighting& w) {
 
 }  // namespace
 
-// "HEURISTIC@SHARE": the heuristic with BDPT's light path share (setLightPathShare).
+// "HEURISTIC@SHARE": the heuristic with BDPT's light path share (setLightPathShare);
+// "...#lens": through a thin lens, where the light subpaths' lens crossings are the t = 0
+// strategy (lens_hits.h), whose weights are checked too.
 TEST_P(BdptMis, WeightsOfAllStrategiesSumToOne) {
     setWarningsQuiet(true);
-    SceneDescription desc = parseSceneString(kScene, ".", "<test>");
+    std::string param = GetParam();
+    const bool thinLens = param.size() > 5 && param.substr(param.size() - 5) == "#lens";
+    if (thinLens) param.resize(param.size() - 5);
+    SceneDescription desc = parseSceneString(thinLens ? withLens(kScene) : std::string(kScene), ".", "<test>");
     auto scene = buildScene(desc);
-    const std::string param = GetParam();
     const size_t at = param.find('@');
     const MisWeighting mis = parseMisWeighting(param.substr(0, at));
     BDPTIntegrator bdpt(*scene, scene->settings().maxDepth, mis);
+    ASSERT_EQ(bdpt.lensHits(), thinLens);
     if (at != std::string::npos) bdpt.setLightPathShare(std::stof(param.substr(at + 1)));
     const Subpaths& paths = bdpt.subpaths();
     auto sampler = createSampler("independent", 5, 1);
     ScratchBuffer scratch;
     PathStats stats;
-    int checked = 0, withDelta = 0, deltaLight = 0, skipped = 0, stepped = 0;
-    for (int i = 0; i < 4000 && checked < 600; ++i) {
-        auto [camera, light, nc, nl] = tracePair(*scene, paths, *sampler, scratch, stats, i);
+    int checked = 0, withDelta = 0, deltaLight = 0, skipped = 0, stepped = 0, lensChecked = 0;
+    for (int i = 0; i < (thinLens ? 40000 : 4000) && (checked < 600 || (thinLens && lensChecked < 200)); ++i) {
+        LensHits lens;
+        std::vector<LensHit> hits(size_t(paths.maxLightVertices()));
+        lens.hits = hits.data();
+        lens.capacity = thinLens ? int(hits.size()) : 0;
+        auto [camera, light, nc, nl] = tracePair(*scene, paths, *sampler, scratch, stats, i, &lens);
         // The weights as the renderer computes them: from the running sums along each subpath.
         const auto prefixes = bdpt.misPrefixes(light, nl, camera, nc, scratch);
-        for (int t = 2; t <= nc; ++t)
+        // Through a thin lens the loop goes on for lens crossings (rarer): the connections stop
+        // at the same count as through a pinhole.
+        for (int t = 2; t <= (checked < 600 ? nc : 0); ++t)
             for (int s = 2; s <= nl; ++s) {
                 if (s + t - 2 > paths.maxDepth()) continue;
                 auto c = bdpt.connect(light, camera, s, t, *sampler, stats, true, &prefixes);
@@ -173,8 +201,8 @@ TEST_P(BdptMis, WeightsOfAllStrategiesSumToOne) {
                     continue;
                 }
                 double sum = 0;
-                for (int sp = 0; sp <= int(fp.y.size()) - 1; ++sp)
-                    if (possible(fp, sp)) sum += weightOf(bdpt, fp, sp);
+                for (int sp = 0; sp <= int(fp.y.size()); ++sp)
+                    if (possible(bdpt, fp, sp)) sum += weightOf(bdpt, fp, sp);
                 EXPECT_NEAR(sum, 1.0, 2e-3) << "s " << s << " t " << t;
                 const float fresh = weightOf(bdpt, fp, s);
                 if (stepwise(mis) && std::abs(c.weight - fresh) > 2e-3f * std::max(1.0f, c.weight)) ++stepped;
@@ -183,7 +211,35 @@ TEST_P(BdptMis, WeightsOfAllStrategiesSumToOne) {
                 for (const PathVertex& v : fp.y) withDelta += v.delta;
                 deltaLight += fp.y[0].isDeltaLight();
             }
+        // t = 0: each crossing of the lens, its path being the light subpath's and the lens.
+        for (int h = 0; h < lens.n; ++h) {
+            const LensHit& hit = lens.hits[h];
+            if (hit.index - 1 > paths.maxDepth()) continue;
+            auto c = bdpt.connectLens(light, hit, scratch, &prefixes);
+            if (c.L.isBlack()) continue;
+            std::vector<PathVertex> path(light, light + hit.index);
+            PathVertex& v = path.emplace_back();
+            v.kind = VertexKind::Camera;
+            v.mode = TransportMode::Radiance;
+            v.p = hit.lens.p;
+            FullPath fp = rebuild(paths, path.data(), hit.index + 1, nullptr, 0);
+            bool close = false;
+            for (size_t q = 1; q < fp.y.size(); ++q) close |= length(fp.y[q].p - fp.y[q - 1].p) < 0.05f;
+            if (close) continue;
+            double sum = 0;
+            for (int sp = 0; sp <= int(fp.y.size()); ++sp)
+                if (possible(bdpt, fp, sp)) sum += weightOf(bdpt, fp, sp);
+            EXPECT_NEAR(sum, 1.0, 2e-3) << "t = 0, s " << hit.index + 1;
+            const float fresh = weightOf(bdpt, fp, hit.index + 1);
+            if (stepwise(mis) && std::abs(c.weight - fresh) > 2e-3f * std::max(1.0f, c.weight)) ++stepped;
+            else EXPECT_NEAR(c.weight, fresh, 2e-3 * std::max(1.0f, c.weight)) << "t = 0, s " << hit.index + 1;
+            ++lensChecked;
+        }
         scratch.reset();
+    }
+    if (thinLens) {
+        std::printf("  %d lens crossings (t = 0) checked\n", lensChecked);
+        EXPECT_GE(lensChecked, 100);
     }
     std::printf("  %d connected paths checked (%d specular vertices, %d from the point light), %d with vertices "
                 "closer than 0.05 skipped\n",
@@ -198,11 +254,12 @@ TEST_P(BdptMis, WeightsOfAllStrategiesSumToOne) {
 INSTANTIATE_TEST_SUITE_P(Heuristics, BdptMis,
                          ::testing::Values("power", "balance", "none", "power:3", "power:0.5", "cutoff:0.1",
                                            "cutoff:0.5", "maximum", "power@0.3", "balance@0.3", "power:3@0.3",
-                                           "maximum@0.3"),
+                                           "maximum@0.3", "power#lens", "balance#lens", "none#lens",
+                                           "power:3#lens", "power@0.3#lens", "power:3@0.3#lens"),
                          [](const ::testing::TestParamInfo<const char*>& i) {
                              std::string name = i.param;
                              for (char& c : name)
-                                 if (c == ':' || c == '.' || c == '@') c = '_';
+                                 if (c == ':' || c == '.' || c == '@' || c == '#') c = '_';
                              return name == "none" ? std::string("uniform") : name;
                          });
 
@@ -231,8 +288,8 @@ TEST(BdptMis, EveryRatioWalkMatchesThePrefixSums) {
                 auto c = balance.connect(light, camera, s, t, *sampler, stats, false);
                 if (c.L.isBlack()) continue;
                 FullPath fp = rebuild(paths, light, s, camera, t);
-                for (int sp = 0; sp <= int(fp.y.size()) - 1; ++sp) {
-                    if (!possible(fp, sp)) continue;
+                for (int sp = 0; sp <= int(fp.y.size()); ++sp) {
+                    if (!possible(balance, fp, sp)) continue;
                     const float b = weightOf(balance, fp, sp);
                     EXPECT_NEAR(weightOf(powerOne, fp, sp), b, 1e-5f) << "s' " << sp << " of s " << s << " t " << t;
                     EXPECT_NEAR(weightOf(cutoffZero, fp, sp), b, 1e-5f) << "s' " << sp << " of s " << s << " t " << t;
@@ -277,7 +334,7 @@ TEST(BdptMis, LightPathShareEntersTheWeightsAsASampleCount) {
                 FullPath fp = rebuild(paths, light, s, camera, t);
                 std::vector<int> ways;
                 for (int sp = 0; sp <= int(fp.y.size()) - 1; ++sp)
-                    if (possible(fp, sp)) ways.push_back(sp);
+                    if (possible(one, fp, sp)) ways.push_back(sp);
                 for (size_t a = 0; a + 1 < ways.size(); ++a) {
                     const int sa = ways[a], sb = ways[a + 1];
                     const double w1a = weightOf(one, fp, sa), w1b = weightOf(one, fp, sb);

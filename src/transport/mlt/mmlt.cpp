@@ -15,6 +15,8 @@ MMLTIntegrator::MMLTIntegrator(const Scene& scene, int maxDepth, const Metropoli
     : MetropolisIntegrator(scene, maxDepth, params, mis) {
     // The chain chooses each subpath's length: roulette would only add zeros to the target.
     bdpt_.setRoulette(false);
+    // Its strategies are (s, t >= 1), one at a time: no t = 0 (coverage.h says so).
+    bdpt_.disableLensHits();
     for (int d = 0; d <= this->maxDepth(); ++d) {
         firstOfDepth_.push_back(int(strategies_.size()));
         for (int s = 0; s < strategiesOfDepth(d); ++s) strategies_.emplace_back(d, s);
