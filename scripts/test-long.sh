@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The long statistical tier, outside the README's test command and CI: the tests labelled
-# `long` in tests/CMakeLists.txt (84 tests, about 20 minutes of test time; docs/testing.md).
+# `long` in tests/CMakeLists.txt (92 tests, about 22 minutes of test time; docs/testing.md).
 # Run it before changing the chains, the mutations or the spectral sampling.
 # Builds first (scripts/build.sh); extra arguments go to ctest (e.g. -R VeachMLT).
 set -euo pipefail

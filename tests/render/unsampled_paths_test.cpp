@@ -44,6 +44,8 @@ const UnsampledPaths* find(const std::vector<UnsampledPaths>& classes, const std
         if (c.id == id) return &c;
     return nullptr;
 }
+// A pointer into a temporary list would dangle: callers keep the list.
+const UnsampledPaths* find(std::vector<UnsampledPaths>&& classes, const std::string& id) = delete;
 
 // A floor, a mirror sphere or a diffuse one, a point light or a small area light, and a
 // pinhole or a thin-lens camera.
@@ -93,12 +95,14 @@ TEST(UnsampledPaths, AThinLensLetsTZeroSampleIt) {
     auto s = load(scene(true, true, 0.05f));
     for (const char* integrator : {"bdpt", "light", "pssmlt"}) {
         EXPECT_TRUE(samplesLensHits(*s, integrator)) << integrator;
-        EXPECT_EQ(find(unsampledPaths(*s, integrator), "delta-specular-eye"), nullptr) << integrator;
+        const std::vector<UnsampledPaths> classes = unsampledPaths(*s, integrator);
+        EXPECT_EQ(find(classes, "delta-specular-eye"), nullptr) << integrator;
         EXPECT_EQ(missingPaths(*s, integrator), "") << integrator;
     }
     for (const char* integrator : {"path", "mmlt", "mlt"}) {
         EXPECT_FALSE(samplesLensHits(*s, integrator)) << integrator;
-        const UnsampledPaths* a = find(unsampledPaths(*s, integrator), "delta-specular-eye");
+        const std::vector<UnsampledPaths> classes = unsampledPaths(*s, integrator);  // outlives `a`
+        const UnsampledPaths* a = find(classes, "delta-specular-eye");
         ASSERT_NE(a, nullptr) << integrator;
         EXPECT_FALSE(a->everyIntegrator);
         EXPECT_NE(a->message.find("thin-lens camera (lensradius 0.05)"), std::string::npos) << a->message;
