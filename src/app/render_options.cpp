@@ -122,7 +122,7 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
     cmd->add_option("--shadow-roulette", a.shadowRoulette,
                     "Russian roulette on shadow rays (thesis 10.3.4; path, light, bdpt): a connection whose "
                     "unoccluded contribution C is below tau = this share of the image's mean so far traces its "
-                    "shadow ray with probability C / tau (docs/robustness.md). 0 (default): every shadow ray")
+                    "shadow ray with probability C / tau (docs/shadow-roulette.md). 0 (default): every shadow ray")
         ->check([](const std::string& v) {
             char* end = nullptr;
             const float f = std::strtof(v.c_str(), &end);

@@ -26,20 +26,18 @@ Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& fra
         const float pBsdf = bxdf.pdf(woLocal, wiLocal, TransportMode::Radiance);
         return f * ls->L * (misWeight(pLight, pBsdf) / pLight);
     };
-    if (!roulette.active()) {
-        ++stats.shadowRays;
-        if (scene_.occluded(spawnRayTo(si.p, si.ng, ls->pLight, time))) return {};
-        return unoccluded();
-    }
-    const Spectrum C = unoccluded();
-    float scale;
-    if (!roulette.trace(beta * C, uint64_t(slot), &scale)) {
-        ++stats.shadowRaysSkipped;
-        return {};
+    Spectrum C;
+    float scale = 1;
+    if (roulette.active()) {
+        C = unoccluded();
+        if (!roulette.trace(beta * C, uint64_t(slot), &scale)) {
+            ++stats.shadowRaysSkipped;
+            return {};
+        }
     }
     ++stats.shadowRays;
     if (scene_.occluded(spawnRayTo(si.p, si.ng, ls->pLight, time))) return {};
-    return C * scale;
+    return roulette.active() ? C * scale : unoccluded();
 }
 
 Spectrum PathTracer::Li(const Ray& ray, SampleContext& ctx) const {

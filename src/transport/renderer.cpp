@@ -63,13 +63,18 @@ bool renderUniform(SamplePasses& passes, Film& film, int spp, UniformProgress& a
     return true;
 }
 
+// The light paths behind the film's splats: one per camera sample, the imaging ratio scaling
+// splats as well (0 with no imaging).
+double splatLightPaths(const Film& film, const Scene& scene) {
+    const float imagingRatio = scene.settings().imagingRatio;
+    return imagingRatio > 0 ? film.meanSamplesPerPixel() * double(film.bounds().area()) / imagingRatio : 0.0;
+}
+
 // The shadow-ray roulette's threshold from the film so far: `share` of its mean pixel value
 // (channel mean), in the units of a sample's radiance (before the imaging ratio).
 float shadowTau(const Film& film, const Scene& scene, float share) {
     const float imagingRatio = scene.settings().imagingRatio;
-    const double lightPaths =
-        imagingRatio > 0 ? film.meanSamplesPerPixel() * double(film.bounds().area()) / imagingRatio : 0.0;
-    const Image image = film.image(lightPaths);
+    const Image image = film.image(splatLightPaths(film, scene));
     double sum = 0;
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) sum += image.get(x, y).average();
@@ -235,9 +240,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
         options.checkpoint(state);
         ++result.checkpoints;
     }
-    // Every camera sample traced one light path; the imaging ratio scales splats as well.
-    const float imagingRatio = scene.settings().imagingRatio;
-    const double lightPaths = imagingRatio > 0 ? film.meanSamplesPerPixel() * double(bounds.area()) / imagingRatio : 0.0;
+    const double lightPaths = splatLightPaths(film, scene);
     result.meanSpp = (double(std::accumulate(result.distributed.rankSamples.begin(), result.distributed.rankSamples.end(), 0LL)) +
                       double(resume ? resume->samples : 0)) /
                      double(bounds.area());
