@@ -8,6 +8,7 @@
 
 #include "lights/area_light.h"
 #include "materials/create.h"
+#include "render/camera_medium_check.h"
 #include "render/embree_motion.h"
 #include "render/light_image.h"
 
@@ -27,6 +28,7 @@ private:
     void createMedia();
     const Medium* mediumNamed(const std::string& name, const SourceLoc& loc) const;
     void assignMedia(const ShapeEntity& e, Shape& shape) const;
+    void warnIfCameraMediumContradicted() const;
     // An `interface` shape is left out of the BVH unless it may bound a medium.
     bool skipped(const Shape& shape) const {
         return !scene_.hasMedia_ && shape.material && shape.material->isInterface();
@@ -205,6 +207,27 @@ void SceneBuilder::createMedia() {
     scene_.hasMedia_ = scene_.cameraMedium_ || transitions;
 }
 
+void SceneBuilder::warnIfCameraMediumContradicted() const {
+    if (!scene_.hasMedia_) return;
+    const std::optional<const Medium*> implied = mediumImpliedAt(scene_, scene_.camera().position());
+    if (!implied || *implied == scene_.cameraMedium_) return;
+    auto named = [&](const Medium* m) {
+        if (!m) return std::string("no medium");
+        for (const auto& [name, ptr] : media_)
+            if (ptr == m) return "medium \"" + name + "\"";
+        return std::string("an unnamed medium");
+    };
+    // Rendered as declared (pbrt-v4 does the same); the warning says how to declare the other.
+    std::string fix;
+    for (const auto& [name, ptr] : media_)
+        if (ptr == *implied) fix = "; if the camera is meant to be in it, write MediumInterface \"" + name + "\" before Camera";
+    warning(desc_.camera.loc, "the camera is declared in " + named(scene_.cameraMedium_) +
+                                  " (the outside medium of the MediumInterface current at Camera), but the "
+                                  "medium boundaries around it enclose it in " + named(*implied) +
+                                  ". Rays leave the camera in " + named(scene_.cameraMedium_) +
+                                  " until they cross a boundary" + fix);
+}
+
 void SceneBuilder::assignMedia(const ShapeEntity& e, Shape& shape) const {
     if (!e.media.transition()) return;
     shape.mediumInside = mediumNamed(e.media.inside, e.media.loc);
@@ -366,6 +389,8 @@ void SceneBuilder::build() {
             throw std::runtime_error("Embree: " + msg);
         }
     }
+
+    warnIfCameraMediumContradicted();
 
     RTCBounds b;
     rtcGetSceneBounds(scene_.scene_, &b);
