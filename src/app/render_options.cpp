@@ -390,13 +390,15 @@ void configureRender(Scene& scene, const RenderArgs& a, RenderSetup& setup) {
                     "and are all traced");
         opts.shadowRoulette = a.shadowRoulette;
     }
-    // --stats: each technique's figures, and for stratified and QMC samplers K independently
-    // scrambled sample sets whose spread gives the variance (transport/scrambled_sets.h). Not
-    // with adaptive sampling (unequal pixels), checkpoints (their sample sets are the resume's)
-    // or over several processes (the sums are each process's).
+    // --stats: for stratified and QMC samplers K independently scrambled sample sets whose
+    // spread gives the variance (transport/scrambled_sets.h; the same image on any number of
+    // processes), and each technique's figures (one process: the sums are each process's).
+    // Not with adaptive sampling (unequal pixels) or checkpoints (their sample sets are the
+    // resume's).
     const bool uniformDriver = settings.integrator == "path" || settings.integrator == "light" || settings.integrator == "bdpt";
-    if (a.stats() && uniformDriver && adaptive == AdaptiveMode::None && distributed::size() == 1) {
-        opts.techniqueFigures = true;
+    if (a.stats() && uniformDriver && adaptive == AdaptiveMode::None) {
+        opts.techniqueFigures = distributed::size() == 1;
+        opts.batches = batchCount(opts.spp);
         if (a.checkpoint.empty() && a.resume.empty()) {
             opts.scramblings = scramblingCount(opts.sampler, opts.spp);
             if (opts.scramblings > 1) opts.sampleSets = scramblingStarts(opts.spp, opts.scramblings);
@@ -463,7 +465,9 @@ nlohmann::json techniquesJson(const RenderResult& r) {
         }
         list.push_back(figures(e, r.techniqueFigures[k]));
     }
-    return {{"list", list}, {"image", figures(nlohmann::json::object(), r.techniqueFigures.back())}};
+    return {{"list", list},
+            {"image", figures(nlohmann::json::object(), r.techniqueFigures.back())},
+            {"batches", r.techniqueBatches}};
 }
 
 }  // namespace

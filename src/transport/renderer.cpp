@@ -249,7 +249,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     filmResults(film, lightPaths, scene.settings(), options, result);
     // Independently scrambled sets: a splatting film's half-images are two groups of them
     // (SamplePasses); other films' pixels take the spread of their sets' means.
-    if (options.scramblings > 1) result.scramblings = options.scramblings;
+    if (passes.scramblingsEstimate()) result.scramblings = options.scramblings;
     if (const ScrambledPixelVariance* sv = passes.scrambledVariance(); sv && options.errorEstimate) {
         result.error = sv->errorEstimate();
         result.efficiency = efficiency(result.error.meanRelativeVariance, result.seconds);
@@ -257,6 +257,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     if (options.techniqueFigures) {
         result.techniques = integrator.techniques();
         result.techniqueFigures = passes.techniqueTally().figures(result.seconds);
+        result.techniqueBatches = passes.techniqueBatches();
     }
     return result;
 }

@@ -56,7 +56,10 @@ struct RenderOptions {
     // `--stats`: each technique's figures (Integrator::techniques; uniform renders), and the
     // number of independently scrambled sample sets the samples form (sampleSets holds their
     // starts; transport/scrambled_sets.h), whose spread gives the variance (1: the samples' own).
+    // The figures' variance comes from `batches` ranges of sample indices, each covering every
+    // pixel (the scrambled sets when there are some; 1: s^2 / N of the samples).
     bool techniqueFigures = false;
+    int batches = 1;
     int scramblings = 1;
     bool filmMoments() const { return errorEstimate || varianceImage || adaptive != AdaptiveMode::None; }
 };
@@ -132,6 +135,7 @@ struct RenderResult {
     // more for the whole image), and the sets their variance came from (1: the samples' own).
     std::vector<Technique> techniques;
     std::vector<TechniqueTally::Figure> techniqueFigures;
+    int techniqueBatches = 1;
     int scramblings = 1;
     std::vector<Image> depthImages;  // per path depth, if a Metropolis render was asked to record them
     DistributedStats distributed;

@@ -27,7 +27,7 @@ SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, con
           for (const std::unique_ptr<Sampler>& p : prototypes_) s.samplers.push_back(p->clone());
           if (techniqueCount_ > 0) {
               const PixelBounds& b = scene_.pixelBounds();
-              s.tally = TechniqueTally(techniqueCount_, int(setStarts_.size()), Vec2(float(b.x0), float(b.y0)),
+              s.tally = TechniqueTally(techniqueCount_, int(batchStarts_.size()) + 1, Vec2(float(b.x0), float(b.y0)),
                                        Vec2(float(b.x1), float(b.y1)));
           }
           return s;
@@ -45,6 +45,10 @@ SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, con
     if (scene.settings().spectral) spectral_.emplace(scene.settings());
     if (options.techniqueFigures) {
         techniqueCount_ = int(integrator.techniques().size());
+        // Batches of whole passes over the image: their means are independent (the scrambled
+        // sets, or independent samples) and each respects the pixels' stratification, which
+        // s^2 / N over all samples would count as noise.
+        batchStarts_ = options.scramblings > 1 ? options.sampleSets : scramblingStarts(spp, options.batches);
         // Film::image gives a splat the widened film's pixel count over the light paths (the
         // samples over the imaging ratio): over the crop's pixels, this much of the mean.
         const Vec2 r = scene.filter().radius();
@@ -52,8 +56,10 @@ SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, con
         splatScale_ = double(imagingRatio_) * (cp.xRes + 2.0 * r.x) * (cp.yRes + 2.0 * r.y) / double(b.area());
     }
     if (options.scramblings > 1 && int(setStarts_.size()) == options.scramblings) {
+        // The half-images are summed over processes with the film; the pixels' set sums are
+        // each process's, so over several processes their variance is s^2 / n again.
         if (integrator.splats()) scrambledHalves_ = true;
-        else scrambled_ = std::make_unique<ScrambledPixelVariance>(size_t(b.area()), options.scramblings);
+        else if (share_.count == 1) scrambled_ = std::make_unique<ScrambledPixelVariance>(size_t(b.area()), options.scramblings);
     }
     // The pilot of a two-stage render and every later sample set draw from samplers of their
     // own seeds; the first set's is the render's seed itself.
@@ -132,7 +138,9 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                         if (spectral_) L = spectral_->toRendering(L, lambda);
                         st.scratch.reset();
                         if (techniqueCount_ > 0) {
-                            st.tally.endSample(int(set), double(cameraWeight) * imagingRatio_ * fs.weight, splatScale_,
+                            const int batch = int(std::upper_bound(batchStarts_.begin(), batchStarts_.end(), si) -
+                                                  batchStarts_.begin());
+                            st.tally.endSample(batch, double(cameraWeight) * imagingRatio_ * fs.weight, splatScale_,
                                                fs.weight);
                         }
                         if (scrambled_) scrambled_->add(int(set), pixel, double((L * imagingRatio_).luminance()));

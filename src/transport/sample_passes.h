@@ -63,9 +63,12 @@ public:
     void setShadowTau(float tau) { shadowTau_ = tau; }
     // RenderOptions::techniqueFigures: every thread's technique sums, merged (empty if off).
     TechniqueTally techniqueTally() const;
+    int techniqueBatches() const { return int(batchStarts_.size()) + 1; }
     // RenderOptions::scramblings > 1 for a film of the pixels' own samples: its error estimate
     // from the sets' spread (transport/scrambled_sets.h); null otherwise.
     const ScrambledPixelVariance* scrambledVariance() const { return scrambled_.get(); }
+    // Whether the error estimate comes from the scrambled sets (the pixels' or the half-images').
+    bool scramblingsEstimate() const { return scrambledHalves_ || scrambled_; }
 
 private:
     struct Tile {
@@ -94,6 +97,7 @@ private:
     std::vector<int> setStarts_;  // 0, then RenderOptions::sampleSets
     double splatScale_ = 0;       // a unit splat's share of the image mean (Film::image's normalisation)
     int techniqueCount_ = 0;      // RenderOptions::techniqueFigures: the integrator's techniques (0: off)
+    std::vector<int> batchStarts_;  // where the technique figures' batches 2..K begin (RenderOptions::batches)
     // RenderOptions::scramblings > 1: the sample sets are independent scramblings. A splatting
     // film's two half-images then take the first and the last half of the sets (not even and
     // odd indices, which one scrambled point set correlates); other films keep their sets'

@@ -4,11 +4,12 @@
 
 namespace ps {
 
-int scramblingCount(const std::string& sampler, int spp) {
-    if (sampler == "independent") return 1;
-    const int k = std::min(8, spp / 2);
+int batchCount(int spp) {
+    const int k = std::min(8, spp / 4);
     return k >= 2 ? k : 1;
 }
+
+int scramblingCount(const std::string& sampler, int spp) { return sampler == "independent" ? 1 : batchCount(spp); }
 
 std::vector<int> scramblingStarts(int spp, int sets) {
     std::vector<int> starts;

@@ -14,9 +14,11 @@
 
 namespace ps {
 
-// K for a render of `spp` samples per pixel with `sampler`: 8 sets (fewer below 16 spp, each
-// of two points at least), or 1 where the samples are independent already (`independent`)
-// or too few to split.
+// Batches for `spp` samples per pixel: 8 (fewer below 32 spp, each of 4 points at least, so
+// that a set keeps its sampler's structure), 1 below 8 spp.
+int batchCount(int spp);
+// K for a render of `spp` samples per pixel with `sampler`: batchCount(spp) scrambled sets,
+// or 1 where the samples are independent already (`independent`).
 int scramblingCount(const std::string& sampler, int spp);
 // RenderOptions::sampleSets for K sets over spp: where sets 2..K begin (as even as may be).
 std::vector<int> scramblingStarts(int spp, int sets);

@@ -39,6 +39,7 @@ struct SceneRenders {
         opts.sampler = sampler;
         opts.progress = false;
         opts.techniqueFigures = true;
+        opts.batches = batchCount(spp);
         opts.scramblings = scramblingCount(sampler, spp);
         if (opts.scramblings > 1) opts.sampleSets = scramblingStarts(spp, opts.scramblings);
         return render(*scene, *integrator, opts);
@@ -123,8 +124,8 @@ void expectVariancesAgree(const SceneRenders& s, const std::string& sampler, int
 
 TEST(TechniqueFigures, PathVarianceAgreesWithIndependentRenders) {
     const SceneRenders s(smallManyLights(), "path");
-    expectVariancesAgree(s, "independent", 4, 160);  // s^2 / N
-    expectVariancesAgree(s, "sobol", 16, 160);       // 8 scramblings
+    expectVariancesAgree(s, "independent", 16, 160);  // 4 batches of independent samples
+    expectVariancesAgree(s, "sobol", 16, 160);        // 4 scramblings
 }
 
 TEST(TechniqueFigures, BdptVarianceAgreesWithIndependentRenders) {
