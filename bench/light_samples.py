@@ -17,14 +17,12 @@ Run from the repository root, under the lock for the whole measurement:
 import argparse
 import json
 import os
-import resource
-import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bdpt_light_paths import SCENES, reference  # noqa: E402
-from many_lights import PATHSPACE, ROOT, relmse  # noqa: E402
+from many_lights import PATHSPACE, ROOT, cpu_timed, relmse  # noqa: E402
 
 # case -> (scene, spp)
 CASES = {
@@ -37,10 +35,7 @@ CASES = {
 def run(scene, spp, seed, threads, n, out, stats):
     cmd = [PATHSPACE, "render", scene, "--integrator", "path", "--threads", str(threads), "--seed", str(seed),
            "--spp", str(spp), "--quiet", "-o", out, "--stats", stats, "--light-samples", str(n)]
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    cpu = cpu_timed(cmd)
     with open(stats) as f:
         st = json.load(f)
     light = next(t for t in st["techniques"]["list"] if t["name"] == "light")
