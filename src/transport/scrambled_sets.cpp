@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "util/memory_limit.h"
+
 namespace ps {
 
 int batchCount(int spp) {
@@ -17,8 +19,12 @@ std::vector<int> scramblingStarts(int spp, int sets) {
     return starts;
 }
 
-ScrambledPixelVariance::ScrambledPixelVariance(size_t pixels, int sets)
-    : pixels_(pixels), sets_(sets), sum_(pixels * size_t(sets), 0.0), count_(pixels * size_t(sets), 0) {}
+ScrambledPixelVariance::ScrambledPixelVariance(size_t pixels, int sets) : pixels_(pixels), sets_(sets) {
+    requireMemory("--stats' " + std::to_string(sets) + " scrambled sets of " + std::to_string(pixels) + " pixels",
+                  double(pixels) * sets * (sizeof(double) + sizeof(int)));
+    sum_.assign(pixels * size_t(sets), 0.0);
+    count_.assign(pixels * size_t(sets), 0);
+}
 
 Film::ErrorEstimate ScrambledPixelVariance::errorEstimate() const {
     Film::ErrorEstimate e;
