@@ -496,26 +496,6 @@ void BDPTIntegrator::recordStrategies(int maxDepth) {
                                                    scene.settings().imagingRatio);
 }
 
-std::vector<Technique> BDPTIntegrator::techniques() const {
-    std::vector<Technique> out;
-    for (int d = 0; d <= paths_.maxDepth(); ++d)
-        for (int t = 0; t <= d + 2; ++t) {
-            const int s = d + 2 - t;
-            Technique k;
-            k.name = "s";  // appended piecewise: GCC 12's false -Wrestrict (as in strategy_images.cpp)
-            k.name += std::to_string(s);
-            k.name += "_t";
-            k.name += std::to_string(t);
-            k.s = s;
-            k.t = t;
-            k.splat = t <= 1;
-            // (1, 1) is never connected (produce); t = 0 exists only with lens hits.
-            k.possible = !(s == 1 && t == 1) && (t > 0 || lensHits_);
-            out.push_back(k);
-        }
-    return out;
-}
-
 Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
     return withConcreteSampler(ctx.sampler, [&](auto& sampler) { return estimate(ray, sampler, ctx); });
 }
