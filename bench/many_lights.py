@@ -25,6 +25,7 @@ import json
 import math
 import os
 import re
+import resource
 import subprocess
 import sys
 import tempfile
@@ -59,6 +60,14 @@ def timed(cmd, cwd=None):
     if noise:
         print(f"  warnings from {' '.join(cmd)}:\n    " + "\n    ".join(noise[:5]), flush=True)
     return elapsed
+
+
+def cpu_timed(cmd):
+    """Runs cmd (failing on an error); returns the process's user + system CPU seconds."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def with_lightsampler(scene, sampler, tmp):

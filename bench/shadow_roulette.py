@@ -14,14 +14,12 @@ Run from the repository root, under the lock for the whole measurement:
 import argparse
 import json
 import os
-import resource
-import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bdpt_light_paths import SCENES, reference  # noqa: E402
-from many_lights import PATHSPACE, ROOT, relmse  # noqa: E402
+from many_lights import PATHSPACE, ROOT, cpu_timed, relmse  # noqa: E402
 
 # case -> (scene, integrator, spp, extra arguments)
 CASES = {
@@ -37,10 +35,7 @@ CASES = {
 def run(scene, integrator, spp, seed, threads, share, extra, out, stats):
     cmd = [PATHSPACE, "render", scene, "--integrator", integrator, "--threads", str(threads), "--seed", str(seed),
            "--spp", str(spp), "--quiet", "-o", out, "--stats", stats, "--shadow-roulette", f"{share:g}", *extra]
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    cpu = cpu_timed(cmd)
     with open(stats) as f:
         st = json.load(f)
     return cpu, st["shadow_rays_skipped"] / max(1, st["shadow_rays"] + st["shadow_rays_skipped"])

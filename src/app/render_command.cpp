@@ -147,6 +147,7 @@ void RenderCommand::load(Job& job) {
     // Absent: one light subpath per sample, as before the option existed.
     if (settings.integrator == "bdpt" && settings.bdptLightPaths != 1) checkpointSettings["light_paths"] = settings.bdptLightPaths;
     if (args_.shadowRoulette > 0) checkpointSettings["shadow_roulette"] = args_.shadowRoulette;
+    if (settings.lightSamples != 1) checkpointSettings["light_samples"] = settings.lightSamples;  // absent: 1
     // A Markov chain's course depends on every parameter of the chains and the bootstrap.
     if (settings.integrator == "pssmlt" || settings.integrator == "mmlt" || settings.integrator == "mlt") {
         checkpointSettings["chains"] = settings.mltChains;

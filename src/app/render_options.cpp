@@ -14,6 +14,7 @@
 #include "transport/bdpt.h"
 #include "transport/coverage.h"
 #include "transport/integrator.h"
+#include "transport/scrambled_sets.h"
 #include "util/error.h"
 #include "util/memory_limit.h"
 
@@ -129,6 +130,11 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
             return !v.empty() && *end == '\0' && f >= 0 && f <= 100 ? std::string()
                                                                     : "expected a share in [0, 100], got \"" + v + "\"";
         });
+    cmd->add_option("--light-samples", a.lightSamples,
+                    "With --integrator path: light samples per path vertex (next-event estimation split N "
+                    "ways, each counting 1/N; the MIS weights count the light technique N times). Default 1; "
+                    "docs/strategy-figures.md measures when more pay")
+        ->check(wholeCheck(1, 1024));
     cmd->add_option("--sampler", a.sampler,
                      "Sample placement per pixel: sobol (default; Owen-scrambled Sobol, padded), zsobol (Sobol in "
                      "Morton order over the image: blue-noise error), halton (Owen-scrambled Halton), orthogonal "
@@ -331,6 +337,7 @@ void configureRender(Scene& scene, const RenderArgs& a, RenderSetup& setup) {
             throw InputError("--light-paths needs --integrator bdpt (the render uses \"" + settings.integrator + "\")");
         settings.bdptLightPaths = a.lightPaths;
     }
+    if (a.lightSamples > 0) settings.lightSamples = a.lightSamples;
     integrator = createIntegrator(settings.integrator, scene, a.mis);
     // Not silent: their weights jump where densities cross, and rounding there biases a little.
     if (!a.mis.empty()) {
@@ -383,6 +390,20 @@ void configureRender(Scene& scene, const RenderArgs& a, RenderSetup& setup) {
                     "and are all traced");
         opts.shadowRoulette = a.shadowRoulette;
     }
+    // --stats: for stratified and QMC samplers K independently scrambled sample sets whose
+    // spread gives the variance (transport/scrambled_sets.h; the same image on any number of
+    // processes), and each technique's figures (one process: the sums are each process's).
+    // Not with adaptive sampling (unequal pixels) or checkpoints (their sample sets are the
+    // resume's).
+    const bool uniformDriver = settings.integrator == "path" || settings.integrator == "light" || settings.integrator == "bdpt";
+    if (a.stats() && uniformDriver && adaptive == AdaptiveMode::None) {
+        opts.techniqueFigures = distributed::size() == 1;
+        opts.batches = batchCount(opts.spp);
+        if (a.checkpoint.empty() && a.resume.empty()) {
+            opts.scramblings = scramblingCount(opts.sampler, opts.spp);
+            if (opts.scramblings > 1) opts.sampleSets = scramblingStarts(opts.spp, opts.scramblings);
+        }
+    }
     // Only what will be shown or written: a quiet render without --stats or --aov variance
     // leaves the film's luminance moments out (bench/README.md, scene loading).
     opts.errorEstimate = !a.quiet || !a.statsFile.empty();
@@ -420,6 +441,33 @@ nlohmann::json unsampledPathsJson(const Scene& scene) {
     for (const UnsampledPaths& c : unsampledPaths(scene, scene.settings().integrator))
         out.push_back({{"class", c.id}, {"every_integrator", c.everyIntegrator}, {"message", c.message}});
     return out;
+}
+
+// Each technique's figures (transport/technique_tally.h), then the whole image's.
+nlohmann::json techniquesJson(const RenderResult& r) {
+    nlohmann::json list = nlohmann::json::array();
+    auto figures = [](nlohmann::json e, const TechniqueTally::Figure& f) {
+        e["mean"] = f.mean;
+        e["share"] = f.share;
+        e["variance"] = f.variance;
+        e["relative_variance"] = f.relativeVariance;
+        e["efficiency"] = f.efficiency;
+        return e;
+    };
+    for (size_t k = 0; k < r.techniques.size() && k < r.techniqueFigures.size(); ++k) {
+        const Technique& t = r.techniques[k];
+        if (!t.possible) continue;
+        nlohmann::json e = {{"name", t.name}, {"splat", t.splat}};
+        if (t.s >= 0) {
+            e["s"] = t.s;
+            e["t"] = t.t;
+            e["depth"] = t.s + t.t - 2;
+        }
+        list.push_back(figures(e, r.techniqueFigures[k]));
+    }
+    return {{"list", list},
+            {"image", figures(nlohmann::json::object(), r.techniqueFigures.back())},
+            {"batches", r.techniqueBatches}};
 }
 
 }  // namespace
@@ -480,6 +528,13 @@ nlohmann::json renderStatistics(const Scene& scene, const RenderArgs& a, const R
     };
     if (settings.integrator == "bdpt") stats["light_paths_per_sample"] = settings.bdptLightPaths;
     stats["shadow_roulette"] = a.shadowRoulette;
+    if (settings.integrator == "path") stats["light_samples"] = settings.lightSamples;
+    // How the variances were estimated (docs/strategy-figures.md).
+    stats["variance_estimator"] = r.scramblings > 1 ? "scramblings"
+                                  : r.metropolis.present || !setup.integrator->splats() ? "sample variance"
+                                                                                         : "half images";
+    stats["scramblings"] = r.scramblings;
+    if (!r.techniqueFigures.empty() && !r.techniques.empty()) stats["techniques"] = techniquesJson(r);
     const MetropolisStats& ms = r.metropolis;
     // Veach's mlt has no large and small steps in primary sample space: those fields are
     // pssmlt's and mmlt's alone.

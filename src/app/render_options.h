@@ -27,6 +27,7 @@ struct RenderArgs {
     std::string mis;  // empty: the default (power, beta 2)
     float lightPaths = 0;  // --light-paths (bdpt): 0 = not given (one light subpath per sample)
     float shadowRoulette = 0;  // --shadow-roulette: 0 = off
+    int lightSamples = 0;      // --light-samples (path): 0 = not given (one light sample per vertex)
     std::string strategiesDir;
     bool keepStrategies = false;  // strategy images kept in memory (the Python module), not written
     std::string sampler;
@@ -55,6 +56,7 @@ struct RenderArgs {
     bool quiet = false;
 
     bool spectral() const { return color == "spectral"; }
+    bool stats() const { return statsPrint || !statsFile.empty(); }
     bool strategyImages() const { return !strategiesDir.empty() || keepStrategies; }
     bool varianceImage() const;  // --aov variance
 };

@@ -40,6 +40,7 @@ const std::map<std::string, std::string>& optionNames() {
         {"mis", "--mis"},
         {"light_paths", "--light-paths"},
         {"shadow_roulette", "--shadow-roulette"},
+        {"light_samples", "--light-samples"},
         {"sampler", "--sampler"},
         {"adaptive", "--adaptive"},
         {"color", "--color"},

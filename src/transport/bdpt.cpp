@@ -594,6 +594,10 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
             }
         }
         if (c.weight == 0) return;
+        if (ctx.tally) {
+            if (t <= 1) ctx.tally->addSplat(techniqueIndex(s, t), ctx.toFilm(contribution), c.pRaster);
+            else ctx.tally->addCamera(techniqueIndex(s, t), ctx.toFilm(contribution));
+        }
         if (t <= 1) ctx.film.addSplat(c.pRaster, ctx.toFilm(contribution), ctx.sampleIndex);
         else L += contribution;
     });

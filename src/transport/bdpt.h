@@ -21,6 +21,13 @@ public:
     Spectrum Li(const Ray& ray, SampleContext& ctx) const override;
     bool splats() const override { return true; }
     bool supportsSpectral() const override { return true; }
+    // Every strategy (s, t) up to maxdepth, at techniqueIndex(s, t) (--stats' figures).
+    std::vector<Technique> techniques() const override;
+    // Depth d = s + t - 2 holds t = 0 .. d + 2 after the d (d + 5) / 2 slots of smaller depths.
+    static int techniqueIndex(int s, int t) {
+        const int d = s + t - 2;
+        return d * (d + 5) / 2 + t;
+    }
 
     // One strategy's contribution for the subpath prefixes (s, t), unweighted, and its MIS
     // weight. For t = 1, *pRaster receives the film position. Exposed for tests.

@@ -24,6 +24,15 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
         throw InputError("--mis " + mis + ": integrator \"" + name + "\" combines no sampling techniques by a " +
                          "heuristic (--mis applies to path, bdpt, pssmlt and mmlt)");
     int maxDepth = scene.settings().maxDepth;
+    const int lightSamples = scene.settings().lightSamples;
+    // Splitting next-event estimation is the path tracer's: BDPT's s = 1 strategy would need
+    // its weights against every other strategy recounted, light tracing and the chains have
+    // no per-vertex light sample, and volpath's spectral MIS weighs per wavelength.
+    if (lightSamples != 1 && (name != "path" || scene.hasMedia()))
+        throw InputError("--light-samples " + std::to_string(lightSamples) + ": " +
+                         (name != "path" ? "integrator \"" + name + "\" takes no light samples per vertex"
+                                         : std::string("in a scene with participating media")) +
+                         "; it applies to path in scenes without media");
     if (name == "path") {
         // volpath divides by the densities' mean over wavelengths and techniques: spectral
         // MIS, the balance heuristic (volpath.cpp).
@@ -31,7 +40,7 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
             throw InputError("--mis " + mis + ": in a scene with participating media, path weighs light and " +
                              "scattering samples over wavelengths by the balance heuristic (spectral MIS); " +
                              "only --mis balance applies");
-        return std::make_unique<PathTracer>(scene, maxDepth, heuristic);
+        return std::make_unique<PathTracer>(scene, maxDepth, heuristic, lightSamples);
     }
     if (name == "light" || name == "bdpt" || name == "pssmlt" || name == "mmlt" ||
         name == "mlt") {

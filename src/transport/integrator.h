@@ -11,6 +11,7 @@
 #include "mc/sampler.h"
 #include "render/scene.h"
 #include "transport/shadow_roulette.h"
+#include "transport/technique_tally.h"
 #include "util/scratch.h"
 
 namespace ps {
@@ -85,6 +86,9 @@ struct SampleContext {
     const SpectralFilm* sensor = nullptr;
     // Roulette on this sample's visibility tests (off unless --shadow-roulette).
     ShadowRoulette roulette;
+    // `--stats`: where Li reports each technique's contribution (Integrator::techniques);
+    // null otherwise, and then Li does no work for it.
+    TechniqueTally* tally = nullptr;
     // A splat's value as the film takes it: the rendering space's RGB. Splats are made after
     // both subpaths exist, so the wavelengths' termination is final by then.
     Spectrum toFilm(const Spectrum& L) const;
@@ -100,6 +104,9 @@ public:
     virtual bool splats() const { return false; }
     // Whether Li handles SampleContext::lambda (spectral mode, `--color spectral`).
     virtual bool supportsSpectral() const { return false; }
+    // The techniques whose contributions Li reports to SampleContext::tally, indexed as it
+    // reports them (transport/technique_tally.h); none: the integrator reports none.
+    virtual std::vector<Technique> techniques() const { return {}; }
 };
 
 // Names: "path", "light", "bdpt", "pssmlt", "mmlt" (Markov chains over BDPT: render() runs its own

@@ -5,7 +5,7 @@ namespace ps {
 Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& frame, const BxDF& bxdf, Vec3 woLocal,
                                   float uLight, Vec2 u, float time, const SampledWavelengths* lambda,
                                   PathStats& stats, const Spectrum& beta, const ShadowRoulette& roulette,
-                                  int slot) const {
+                                  uint64_t slot) const {
     // The light is chosen for this point (the scene's "lightsampler"); the MIS weights of
     // emitters the next ray hits ask the same sampler at the same point (prevCtx).
     const LightSampleContext ctx{si.p, si.ng, lambda};
@@ -20,17 +20,18 @@ Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& fra
     if (f.isBlack()) return {};
     const float pLight = pmf * ls->pdf;
     // The contribution if unoccluded; the MIS weight's BSDF density (costly for layered
-    // BxDFs) waits for the shadow ray unless the roulette needs it first.
+    // BxDFs) waits for the shadow ray unless the roulette needs it first. With N light
+    // samples the light technique's density counts N times (n_i p_i, thesis eq. 9.8-9.13).
     const auto unoccluded = [&] {
         if (light->isDelta()) return f * ls->L / pLight;
         const float pBsdf = bxdf.pdf(woLocal, wiLocal, TransportMode::Radiance);
-        return f * ls->L * (misWeight(pLight, pBsdf) / pLight);
+        return f * ls->L * (misWeight(lightCount_ * pLight, pBsdf) / pLight);
     };
     Spectrum C;
     float scale = 1;
     if (roulette.active()) {
         C = unoccluded();
-        if (!roulette.trace(beta * C, uint64_t(slot), &scale)) {
+        if (!roulette.trace(beta * C, slot, &scale)) {
             ++stats.shadowRaysSkipped;
             return {};
         }
@@ -40,18 +41,28 @@ Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& fra
     return roulette.active() ? C * scale : unoccluded();
 }
 
+std::vector<Technique> PathTracer::techniques() const {
+    if (scene_.hasMedia()) return {};
+    return {{"light"}, {"bsdf"}};
+}
+
 Spectrum PathTracer::Li(const Ray& ray, SampleContext& ctx) const {
     if (scene_.hasMedia()) return estimateInMedia(ray, ctx.sampler, ctx.scratch, ctx.stats, ctx.lambda);
-    return withConcreteSampler(ctx.sampler,
-                               [&](auto& sampler) {
-        return estimate(ray, sampler, ctx.scratch, ctx.stats, ctx.lambda, ctx.roulette);
+    return withConcreteSampler(ctx.sampler, [&](auto& sampler) {
+        // The plain instance is the estimator as it was before splitting and the figures existed
+        // (bit for bit the same images); the other adds them.
+        return ctx.tally || lightSamples_ > 1 ? estimate<true>(ray, sampler, ctx) : estimate<false>(ray, sampler, ctx);
     });
 }
 
-template <typename S>
-Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& scratch, PathStats& stats,
-                              SampledWavelengths* lambda, const ShadowRoulette& roulette) const {
+template <bool Split, typename S>
+Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, SampleContext& ctx) const {
+    ScratchBuffer& scratch = ctx.scratch;
+    PathStats& stats = ctx.stats;
+    SampledWavelengths* lambda = ctx.lambda;
+    const ShadowRoulette& roulette = ctx.roulette;
     Spectrum L, beta(1.0f);
+    Spectrum lightPart;  // Split: the light technique's part of L (the rest is BSDF sampling's)
     Ray ray = cameraRay;
     int depth = 0;
     bool specularBounce = false;
@@ -82,7 +93,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
                     L += beta * Le;
                 } else {
                     float pl = scene_.lightSampler().pmf(prevCtx, light) * light->pdfLi(prevCtx, ray.d, nullptr);
-                    L += beta * Le * misWeight(prevBsdfPdf, pl);
+                    L += beta * Le * misWeight(prevBsdfPdf, Split ? lightCount_ * pl : pl);
                 }
             }
             break;
@@ -96,7 +107,7 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
                     L += beta * Le;
                 } else {
                     float pl = scene_.lightSampler().pmf(prevCtx, si.areaLight) * si.areaLight->pdfLi(prevCtx, ray.d, &si);
-                    L += beta * Le * misWeight(prevBsdfPdf, pl);
+                    L += beta * Le * misWeight(prevBsdfPdf, Split ? lightCount_ * pl : pl);
                 }
             }
         }
@@ -118,9 +129,27 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
         auto bs = bxdf->sample(woLocal, uc, uBsdf, TransportMode::Radiance);
         haveSamples = false;
         uint8_t flags = bxdf->flags();
-        if (flags & (kDiffuse | kGlossy))
-            L += beta * sampleDirect(si, frame, *bxdf, woLocal, uLight, uLightPoint, ray.time, lambda, stats, beta,
-                                     roulette, depth);
+        if (flags & (kDiffuse | kGlossy)) {
+            if constexpr (!Split) {
+                L += beta * sampleDirect(si, frame, *bxdf, woLocal, uLight, uLightPoint, ray.time, lambda, stats, beta,
+                                         roulette, uint64_t(depth));
+            } else {
+                Spectrum direct = sampleDirect(si, frame, *bxdf, woLocal, uLight, uLightPoint, ray.time, lambda, stats,
+                                               beta, roulette, uint64_t(depth));
+                // Splitting (--light-samples N): N - 1 more light samples, each counting 1 / N.
+                if (lightSamples_ > 1) {
+                    for (int i = 1; i < lightSamples_; ++i) {
+                        const float u1 = sampler.get1D();
+                        const Vec2 u2 = sampler.get2D();
+                        direct += sampleDirect(si, frame, *bxdf, woLocal, u1, u2, ray.time, lambda, stats, beta,
+                                               roulette, uint64_t(depth) | uint64_t(i) << 32);
+                    }
+                    direct /= lightCount_;
+                }
+                L += beta * direct;
+                lightPart += beta * direct;
+            }
+        }
         if (!bs || !(bs->pdf > 0) || bs->f.isBlack()) break;
         Vec3 wi = frame.toWorld(bs->wi);
         Spectrum weight = bs->f * (absCosTheta(bs->wi) / bs->pdf);
@@ -143,6 +172,12 @@ Spectrum PathTracer::estimate(const Ray& cameraRay, S& sampler, ScratchBuffer& s
             float q = std::max(0.0f, 1 - m);
             if (sampler.get1D() < q) break;
             beta /= 1 - q;
+        }
+    }
+    if constexpr (Split) {
+        if (ctx.tally) {
+            ctx.tally->addCamera(kLightTechnique, ctx.toFilm(lightPart));
+            ctx.tally->addCamera(kBsdfTechnique, ctx.toFilm(L - lightPart));
         }
     }
     return L;

@@ -247,6 +247,18 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     if (options.pixelSamples) result.pixelSamples = film.sampleCounts();
     result.stoppedEarly = !complete;
     filmResults(film, lightPaths, scene.settings(), options, result);
+    // Independently scrambled sets: a splatting film's half-images are two groups of them
+    // (SamplePasses); other films' pixels take the spread of their sets' means.
+    if (passes.scramblingsEstimate()) result.scramblings = options.scramblings;
+    if (const ScrambledPixelVariance* sv = passes.scrambledVariance(); sv && options.errorEstimate) {
+        result.error = sv->errorEstimate();
+        result.efficiency = efficiency(result.error.meanRelativeVariance, result.seconds);
+    }
+    if (options.techniqueFigures) {
+        result.techniques = integrator.techniques();
+        result.techniqueFigures = passes.techniqueTally().figures(result.seconds);
+        result.techniqueBatches = passes.techniqueBatches();
+    }
     return result;
 }
 

@@ -53,6 +53,14 @@ struct RenderOptions {
     // Shadow-ray roulette (transport/shadow_roulette.h) in uniform renders: after each whole
     // pass, tau = shadowRoulette x the image's mean so far; 0: off.
     float shadowRoulette = 0;
+    // `--stats`: each technique's figures (Integrator::techniques; uniform renders), and the
+    // number of independently scrambled sample sets the samples form (sampleSets holds their
+    // starts; transport/scrambled_sets.h), whose spread gives the variance (1: the samples' own).
+    // The figures' variance comes from `batches` ranges of sample indices, each covering every
+    // pixel (the scrambled sets when there are some; 1: s^2 / N of the samples).
+    bool techniqueFigures = false;
+    int batches = 1;
+    int scramblings = 1;
     bool filmMoments() const { return errorEstimate || varianceImage || adaptive != AdaptiveMode::None; }
 };
 
@@ -123,6 +131,12 @@ struct RenderResult {
     // Efficiency 1/(V T) with V the mean relative variance and T the render time (thesis eq. 2.26).
     double efficiency = 0;
     MetropolisStats metropolis;
+    // RenderOptions::techniqueFigures: the integrator's techniques and their figures (one
+    // more for the whole image), and the sets their variance came from (1: the samples' own).
+    std::vector<Technique> techniques;
+    std::vector<TechniqueTally::Figure> techniqueFigures;
+    int techniqueBatches = 1;
+    int scramblings = 1;
     std::vector<Image> depthImages;  // per path depth, if a Metropolis render was asked to record them
     DistributedStats distributed;
     int resumedSpp = 0;   // samples per pixel the render resumed from (RenderOptions::resume)

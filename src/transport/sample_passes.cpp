@@ -25,6 +25,11 @@ SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, con
       states_([this] {
           ThreadState s;
           for (const std::unique_ptr<Sampler>& p : prototypes_) s.samplers.push_back(p->clone());
+          if (techniqueCount_ > 0) {
+              const PixelBounds& b = scene_.pixelBounds();
+              s.tally = TechniqueTally(techniqueCount_, int(batchStarts_.size()) + 1, Vec2(float(b.x0), float(b.y0)),
+                                       Vec2(float(b.x1), float(b.y1)));
+          }
           return s;
       }),
       arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {
@@ -38,6 +43,24 @@ SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, con
     for (int start : options.sampleSets)
         if (start > setStarts_.back() && start < spp) setStarts_.push_back(start);
     if (scene.settings().spectral) spectral_.emplace(scene.settings());
+    if (options.techniqueFigures) {
+        techniqueCount_ = int(integrator.techniques().size());
+        // Batches of whole passes over the image: their means are independent (the scrambled
+        // sets, or independent samples) and each respects the pixels' stratification, which
+        // s^2 / N over all samples would count as noise.
+        batchStarts_ = options.scramblings > 1 ? options.sampleSets : scramblingStarts(spp, options.batches);
+        // Film::image gives a splat the widened film's pixel count over the light paths (the
+        // samples over the imaging ratio): over the crop's pixels, this much of the mean.
+        const Vec2 r = scene.filter().radius();
+        const Camera::Params& cp = scene.camera().params();
+        splatScale_ = double(imagingRatio_) * (cp.xRes + 2.0 * r.x) * (cp.yRes + 2.0 * r.y) / double(b.area());
+    }
+    if (options.scramblings > 1 && int(setStarts_.size()) == options.scramblings) {
+        // The half-images are summed over processes with the film; the pixels' set sums are
+        // each process's, so over several processes their variance is s^2 / n again.
+        if (integrator.splats()) scrambledHalves_ = true;
+        else if (share_.count == 1) scrambled_ = std::make_unique<ScrambledPixelVariance>(size_t(b.area()), options.scramblings);
+    }
     // The pilot of a two-stage render and every later sample set draw from samplers of their
     // own seeds; the first set's is the render's seed itself.
     for (uint64_t stream : {0, 1})
@@ -98,11 +121,15 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                         if (spectral_) lambda = SpectralFilm::sampleWavelengths(sampler.get1D());
                         float cameraWeight = 1;
                         Ray ray = scene_.camera().generateRay(cs, &cameraWeight);
-                        SampleContext ctx{sampler, st.scratch, st.stats, film, si, px, py, fs.weight, nullptr, nullptr, {}};
+                        // The half-buffer a splatting film puts the sample in: its index's parity,
+                        // or with scrambled sets, the half of the sets it belongs to.
+                        const int half = scrambledHalves_ ? int(2 * set >= setStarts_.size()) : si;
+                        SampleContext ctx{sampler, st.scratch, st.stats, film, half, px, py, fs.weight, nullptr, nullptr, {}};
                         if (spectral_) {
                             ctx.lambda = &lambda;
                             ctx.sensor = &*spectral_;
                         }
+                        if (techniqueCount_ > 0) ctx.tally = &st.tally;
                         if (shadowTau_ > 0)
                             ctx.roulette = {shadowTau_, hashCombine(hashCombine(rouletteSeed_, pixel), uint64_t(si)),
                                             ctx.sensor, ctx.lambda};
@@ -110,7 +137,14 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                         Spectrum L = cameraWeight > 0 ? integrator_.Li(ray, ctx) * cameraWeight : Spectrum(0.0f);
                         if (spectral_) L = spectral_->toRendering(L, lambda);
                         st.scratch.reset();
-                        film.addSample(px, py, L * imagingRatio_, fs.weight, si);
+                        if (techniqueCount_ > 0) {
+                            const int batch = int(std::upper_bound(batchStarts_.begin(), batchStarts_.end(), si) -
+                                                  batchStarts_.begin());
+                            st.tally.endSample(batch, double(cameraWeight) * imagingRatio_ * fs.weight, splatScale_,
+                                               fs.weight);
+                        }
+                        if (scrambled_) scrambled_->add(int(set), pixel, double((L * imagingRatio_).luminance()));
+                        film.addSample(px, py, L * imagingRatio_, fs.weight, half);
                     }
                     if (taken) (*taken)[pixel] |= mine;
                 }
@@ -118,6 +152,12 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
         });
     });
     return !skipped.load();
+}
+
+TechniqueTally SamplePasses::techniqueTally() const {
+    TechniqueTally total;
+    for (const ThreadState& st : states_) total.merge(st.tally);
+    return total;
 }
 
 PathStats SamplePasses::stats() const {

@@ -19,7 +19,9 @@
 #include "film/film.h"
 #include "render/scene.h"
 #include "transport/integrator.h"
+#include "transport/scrambled_sets.h"
 #include "transport/spectral_film.h"
+#include "transport/technique_tally.h"
 
 namespace ps {
 
@@ -59,6 +61,14 @@ public:
     Share share() const { return share_; }
     // The shadow-ray roulette's threshold for the passes that follow (0: off); between passes.
     void setShadowTau(float tau) { shadowTau_ = tau; }
+    // RenderOptions::techniqueFigures: every thread's technique sums, merged (empty if off).
+    TechniqueTally techniqueTally() const;
+    int techniqueBatches() const { return int(batchStarts_.size()) + 1; }
+    // RenderOptions::scramblings > 1 for a film of the pixels' own samples: its error estimate
+    // from the sets' spread (transport/scrambled_sets.h); null otherwise.
+    const ScrambledPixelVariance* scrambledVariance() const { return scrambled_.get(); }
+    // Whether the error estimate comes from the scrambled sets (the pixels' or the half-images').
+    bool scramblingsEstimate() const { return scrambledHalves_ || scrambled_; }
 
 private:
     struct Tile {
@@ -69,6 +79,7 @@ private:
         std::vector<std::unique_ptr<Sampler>> samplers;
         ScratchBuffer scratch;
         PathStats stats;
+        TechniqueTally tally;  // --stats' technique figures (empty: off)
     };
 
     const Scene& scene_;
@@ -84,6 +95,15 @@ private:
     std::optional<SpectralFilm> spectral_;  // spectral mode's sensor (empty in RGB mode)
     Share share_;
     std::vector<int> setStarts_;  // 0, then RenderOptions::sampleSets
+    double splatScale_ = 0;       // a unit splat's share of the image mean (Film::image's normalisation)
+    int techniqueCount_ = 0;      // RenderOptions::techniqueFigures: the integrator's techniques (0: off)
+    std::vector<int> batchStarts_;  // where the technique figures' batches 2..K begin (RenderOptions::batches)
+    // RenderOptions::scramblings > 1: the sample sets are independent scramblings. A splatting
+    // film's two half-images then take the first and the last half of the sets (not even and
+    // odd indices, which one scrambled point set correlates); other films keep their sets'
+    // sums per pixel here.
+    bool scrambledHalves_ = false;
+    std::unique_ptr<ScrambledPixelVariance> scrambled_;
     std::vector<std::unique_ptr<Sampler>> prototypes_;
     tbb::enumerable_thread_specific<ThreadState> states_;
     tbb::task_arena arena_;
