@@ -349,10 +349,6 @@ Material "mix" "string materials" [ "a" "b" ] "float amount" [ 0.4 ])");
     // leaves through the rough boundary, so every integrator samples it.
     material("subsurface-rough", R"(Material "subsurface" "float roughness" [ 0.3 ] "float g" [ 0.3 ]
   "rgb sigma_a" [ 0.5 1 2 ] "rgb sigma_s" [ 6 5 4 ])");
-    // The default smooth boundary, coefficients from reflectance and mean free path (spectral
-    // mode: the albedo inverted per wavelength): specular, so light tracing cannot see it.
-    material("subsurface-smooth", R"(Material "subsurface" "rgb reflectance" [ 0.7 0.5 0.3 ] "rgb mfp" [ 0.1 0.1 0.1 ])",
-             noLight);
 
     // Hair fibres across the box, as flat curves (pbrt-v4's default type: ribbons that face
     // each ray) and as cylinder curves (the same strips, shaded as tubes). The hair BSDF needs
