@@ -10,11 +10,15 @@
 #include "materials/image_texture.h"
 #include "materials/materials.h"
 #include "materials/measured_material.h"
+#include "materials/named_scattering.h"
 #include "materials/procedural_textures.h"
 #include "materials/shading_detail.h"
 #include "materials/spectral_textures.h"
+#include "materials/subsurface_material.h"
+#include "materials/beam_diffusion.h"
 #include "materials/textures.h"
 #include "scene/spectra.h"
+#include "spectral/cie.h"
 #include "spectral/named_spectra.h"
 #include "util/path.h"
 
@@ -154,6 +158,91 @@ HairTextures hairParams(const ParamSet& ps, const TextureRegistry& reg) {
     t.betaN = floatParam(ps, "beta_n", 0.3f, reg);
     t.alpha = floatParam(ps, "alpha", 2, reg);
     return t;
+}
+
+// ---- subsurface (pbrt-v4's SubsurfaceMaterial::Create) ----
+
+// A constant coefficient of the interior medium; a texture cannot vary a homogeneous medium
+// with the entry point, so it is refused where it is given rather than replaced silently.
+std::optional<MediumSpectrum> constantCoefficient(const ParamSet& ps, const std::string& name, SpectrumKind kind,
+                                                  float scale) {
+    if (!ps.getTexture(name).empty())
+        throw InputError(locOf(ps, name), "subsurface: \"" + name + "\" is a texture; the random walk's interior is one "
+                                          "homogeneous medium, so it takes a constant (rgb, spectrum or blackbody) value");
+    auto rgb = ps.getSpectrum(name, kind);
+    if (!rgb) return std::nullopt;
+    const Spectrum v = *rgb * scale;
+    if (!(std::min({v.r, v.g, v.b}) >= 0) || !std::isfinite(v.maxComponent()))
+        throw InputError(locOf(ps, name), "subsurface: \"" + name + "\" must be finite and not negative");
+    return MediumSpectrum(v, *ps.getSpectrumSource(name, kind), scale);
+}
+
+// "reflectance" with "mfp" (pbrt-v4's SubsurfaceFromDiffuse): per channel, and in spectral
+// mode per wavelength on the 1 nm grid, the albedo rho whose beam-diffusion reflectance is
+// the given one; sigma_s = rho / mfp, sigma_a = (1 - rho) / mfp, with mfp times "scale".
+void coefficientsFromReflectance(const ParamSet& ps, const MediumSpectrum& refl, const MediumSpectrum& mfp,
+                                 const EffectiveAlbedoTable& table, SubsurfaceInterior& in) {
+    auto split = [&](float r, float m, float& sa, float& ss) {
+        const float rho = albedoForReflectance(table, r);
+        ss = rho / m;
+        sa = (1 - rho) / m;
+    };
+    const Spectrum R = refl(nullptr), M = mfp(nullptr);
+    if (!(std::min({M.r, M.g, M.b}) > 0)) throw InputError(locOf(ps, "mfp"), "subsurface: \"mfp\" (times \"scale\") must be positive");
+    Spectrum sa, ss;
+    for (int c = 0; c < 3; ++c) split(R[c], M[c], sa[c], ss[c]);
+    auto denseA = std::make_shared<DenseSpectrum>(), denseS = std::make_shared<DenseSpectrum>();
+    for (int i = 0; i < kCieSamples; ++i) {
+        SampledWavelengths w;
+        w.lambda.fill(float(kCieLambdaMin + i));
+        const float r = refl(&w)[0], m = mfp(&w)[0];
+        if (!(m > 0)) throw InputError(locOf(ps, "mfp"), "subsurface: \"mfp\" (times \"scale\") must be positive at every wavelength");
+        split(r, m, denseA->value[i], denseS->value[i]);
+    }
+    in.sigmaA = MediumSpectrum(Spectrum(sa.r, sa.g, sa.b), SpectrumSource::dense(denseA), 1);
+    in.sigmaS = MediumSpectrum(Spectrum(ss.r, ss.g, ss.b), SpectrumSource::dense(denseS), 1);
+}
+
+// Four exclusive forms, as pbrt-v4: "name" (measured, g forced to 0), sigma_a with sigma_s,
+// reflectance (with mfp, default 1), or none (pbrt-v4's default, Jensen et al.'s whole milk).
+// "scale" multiplies the coefficients, or mfp.
+std::shared_ptr<Material> subsurfaceMaterial(const ParamSet& ps, const TextureRegistry& reg) {
+    const SpectrumKind U = SpectrumKind::Unbounded;
+    SubsurfaceInterior in;
+    in.g = ps.getFloat("g", 0);
+    if (!(in.g > -1 && in.g < 1)) throw InputError(locOf(ps, "g"), "subsurface: \"g\" must be between -1 and 1");
+    const float scale = ps.getFloat("scale", 1);
+    if (!(scale >= 0) || !std::isfinite(scale)) throw InputError(locOf(ps, "scale"), "subsurface: \"scale\" must be finite and at least 0");
+    const float eta = ps.getFloat("eta", 1.33f);
+    if (!(eta > 0) || !std::isfinite(eta)) throw InputError(locOf(ps, "eta"), "subsurface: \"eta\" must be positive");
+    const std::string name = ps.getString("name", "");
+    if (!name.empty()) {
+        auto measured = namedScattering(name);
+        if (!measured)
+            throw InputError(locOf(ps, "name"), "subsurface: no measured medium is named " + quoteForMessage(name) +
+                                                    " (known: " + namedScatteringList() + ")");
+        if (in.g != 0) warning(locOf(ps, "g"), "subsurface: \"g\" is ignored with \"name\" (its coefficients are reduced ones, for g = 0)");
+        in.g = 0;
+        in.sigmaA = srgbCoefficient(measured->sigmaA, scale);
+        in.sigmaS = srgbCoefficient(measured->sigmaS, scale);
+    } else if (ps.has("sigma_a") || ps.has("sigma_s")) {
+        auto a = constantCoefficient(ps, "sigma_a", U, scale), s = constantCoefficient(ps, "sigma_s", U, scale);
+        if (!a || !s)
+            throw InputError(locOf(ps, a ? "sigma_a" : "sigma_s"), std::string("subsurface: \"") + (a ? "sigma_a" : "sigma_s") +
+                                                                       "\" is given without \"" + (a ? "sigma_s" : "sigma_a") + "\"");
+        in.sigmaA = *a;
+        in.sigmaS = *s;
+    } else if (ps.has("reflectance")) {
+        auto refl = constantCoefficient(ps, "reflectance", SpectrumKind::Albedo, 1);
+        auto mfp = constantCoefficient(ps, "mfp", U, scale);
+        if (!refl) throw InputError(locOf(ps, "reflectance"), "subsurface: \"reflectance\" must be an rgb, spectrum or blackbody value");
+        coefficientsFromReflectance(ps, *refl, mfp ? *mfp : MediumSpectrum(Spectrum(scale), SpectrumSource::constant(1), scale),
+                                    effectiveAlbedoTable(in.g, eta), in);
+    } else {
+        in.sigmaA = srgbCoefficient({0.0011f, 0.0024f, 0.014f}, scale);
+        in.sigmaS = srgbCoefficient({2.55f, 3.21f, 3.77f}, scale);
+    }
+    return std::make_shared<SubsurfaceMaterial>(eta, roughness(ps, reg), std::move(in));
 }
 
 std::shared_ptr<Material> defaultDiffuse() {
@@ -363,6 +452,9 @@ std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet
             auto it = named.find(names[i]);
             if (it == named.end()) throw InputError(locOf(ps, "materials"), "mix: material \"" + names[i] + "\" is not defined");
             if (it->second->isInterface()) throw InputError(locOf(ps, "materials"), "mix: \"interface\" cannot be mixed");
+            // Its interior medium belongs to the shape, which a mix chooses point by point.
+            if (dynamic_cast<const SubsurfaceMaterial*>(it->second.get()))
+                throw InputError(locOf(ps, "materials"), "mix: \"subsurface\" cannot be mixed (its medium fills the whole shape)");
             ms[i] = it->second;
         }
         m = std::make_shared<MixMaterial>(ms, floatParam(ps, "amount", 0.5f, reg));
@@ -374,12 +466,7 @@ std::shared_ptr<Material> createMaterial(const std::string& type, const ParamSet
     } else if (type == "hair") {
         m = std::make_shared<HairMaterial>(hairParams(ps, reg));
     } else if (type == "subsurface") {
-        // Subsurface scattering needs participating media. pbrt-v4 chooses the medium's albedo
-        // so that the surface's multiple-scattering diffuse reflectance is "reflectance" (when
-        // given): a diffuse surface of that reflectance is the nearest stand-in.
-        warning(ps.loc, "material \"subsurface\" needs participating media (subsurface scattering), which are not "
-                        "supported; rendered as diffuse with its \"reflectance\" (0.5 when not given)");
-        return std::make_shared<DiffuseMaterial>(spectrumParam(ps, "reflectance", Spectrum(0.5f), A, reg));
+        m = subsurfaceMaterial(ps, reg);
     } else if (type == "interface" || type == "" || type == "none") {
         m = std::make_shared<InterfaceMaterial>();
     } else {

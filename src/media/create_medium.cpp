@@ -4,6 +4,7 @@
 #include "media/grid_medium.h"
 #include "media/nanovdb_medium.h"
 #include "media/homogeneous_medium.h"
+#include "materials/named_scattering.h"
 #include "util/error.h"
 #include "util/path.h"
 
@@ -136,9 +137,20 @@ std::unique_ptr<Medium> createMedium(const MediumEntity& e) {
     if (e.type == "nanovdb") return createNanoVDB(e, g);
     const float scale = scaleParam(e);
     if (e.type == "homogeneous") {
-        if (ps.has("preset"))
-            fail(e, "named \"preset\" media (" + quoteForMessage(ps.getString("preset", "")) +
-                        ") are not supported yet; give \"sigma_a\" and \"sigma_s\"");
+        // pbrt-v4: a "preset" names measured coefficients (the subsurface material's table),
+        // which replace sigma_a and sigma_s; an unknown one warns and leaves them.
+        const std::string preset = ps.getString("preset", "");
+        std::optional<NamedScattering> named = preset.empty() ? std::nullopt : namedScattering(preset);
+        if (!preset.empty() && !named)
+            warning(ps.find("preset")->loc, "MakeNamedMedium " + quoteForMessage(e.name) + ": no measured medium is named " +
+                                                quoteForMessage(preset) + "; using \"sigma_a\" and \"sigma_s\" (known: " +
+                                                namedScatteringList() + ")");
+        if (named) {
+            auto medium = std::make_unique<HomogeneousMedium>(srgbCoefficient(named->sigmaA, scale), srgbCoefficient(named->sigmaS, scale),
+                                                              emissionParam(ps, ps.getFloat("Lescale", 1)), g);
+            ps.reportUnused("medium " + quoteForMessage(e.name));
+            return medium;
+        }
         auto medium = std::make_unique<HomogeneousMedium>(spectrumParam(ps, "sigma_a", SpectrumKind::Unbounded, 1, scale),
                                                           spectrumParam(ps, "sigma_s", SpectrumKind::Unbounded, 1, scale),
                                                           emissionParam(ps, ps.getFloat("Lescale", 1)), g);

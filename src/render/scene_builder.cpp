@@ -3,11 +3,13 @@
 #include "lights/bvh_light_sampler.h"
 #include "lights/emission_choice.h"
 #include "media/create_medium.h"
+#include "media/homogeneous_medium.h"
 
 #include <mutex>
 
 #include "lights/area_light.h"
 #include "materials/create.h"
+#include "materials/subsurface_material.h"
 #include "render/camera_medium_check.h"
 #include "render/embree_motion.h"
 #include "render/light_image.h"
@@ -27,7 +29,9 @@ private:
     // medium and whether any shape bounds a medium.
     void createMedia();
     const Medium* mediumNamed(const std::string& name, const SourceLoc& loc) const;
-    void assignMedia(const ShapeEntity& e, Shape& shape) const;
+    // The interior medium of a `subsurface` material, made once per material; null for others.
+    const Medium* subsurfaceMedium(const Material* m);
+    void assignMedia(const ShapeEntity& e, Shape& shape);
     void warnIfCameraMediumContradicted() const;
     // An `interface` shape is left out of the BVH unless it may bound a medium.
     bool skipped(const Shape& shape) const {
@@ -56,6 +60,7 @@ private:
     TextureRegistry textures_;
     std::map<std::string, std::shared_ptr<Material>> named_;
     std::map<std::string, const Medium*> media_;
+    std::map<const Material*, const Medium*> subsurfaceMedia_;
 };
 
 namespace {
@@ -199,7 +204,7 @@ void SceneBuilder::createMedia() {
         // Both names resolve even when equal: an undefined name is an error wherever it is.
         mediumNamed(e.media.inside, e.media.loc);
         mediumNamed(e.media.outside, e.media.loc);
-        transitions = transitions || e.media.transition();
+        transitions = transitions || e.media.transition() || subsurfaceMedium(materialFor(e));
     };
     for (const ShapeEntity& e : desc_.shapes) check(e);
     for (const auto& [n, def] : desc_.instances)
@@ -215,7 +220,7 @@ void SceneBuilder::warnIfCameraMediumContradicted() const {
         if (!m) return std::string("no medium");
         for (const auto& [name, ptr] : media_)
             if (ptr == m) return "medium \"" + name + "\"";
-        return std::string("an unnamed medium");
+        return std::string("the medium inside a \"subsurface\" material");
     };
     // Rendered as declared (pbrt-v4 does the same); the warning says how to declare the other.
     std::string fix;
@@ -228,7 +233,30 @@ void SceneBuilder::warnIfCameraMediumContradicted() const {
                                   " until they cross a boundary" + fix);
 }
 
-void SceneBuilder::assignMedia(const ShapeEntity& e, Shape& shape) const {
+const Medium* SceneBuilder::subsurfaceMedium(const Material* m) {
+    const auto* sss = dynamic_cast<const SubsurfaceMaterial*>(m);
+    if (!sss) return nullptr;
+    const Medium*& medium = subsurfaceMedia_[m];
+    if (!medium) {
+        const SubsurfaceInterior& in = sss->interior();
+        scene_.media_.push_back(std::make_unique<HomogeneousMedium>(in.sigmaA, in.sigmaS, MediumSpectrum(), in.g));
+        medium = scene_.media_.back().get();
+    }
+    return medium;
+}
+
+void SceneBuilder::assignMedia(const ShapeEntity& e, Shape& shape) {
+    // A subsurface shape bounds its material's medium; outside is the current medium, as for
+    // any shape without a transition (pbrt-v4's MediumInterface outside).
+    if (const Medium* interior = subsurfaceMedium(shape.material)) {
+        if (e.media.transition() && !e.media.inside.empty())
+            warning(e.loc, "the shape's \"subsurface\" material fills it with its own medium; MediumInterface's inside " +
+                               quoteForMessage(e.media.inside) + " is not used");
+        shape.mediumInside = interior;
+        shape.mediumOutside = mediumNamed(e.media.outside, e.media.loc);
+        shape.mediumTransition = true;
+        return;
+    }
     if (!e.media.transition()) return;
     shape.mediumInside = mediumNamed(e.media.inside, e.media.loc);
     shape.mediumOutside = mediumNamed(e.media.outside, e.media.loc);

@@ -344,6 +344,11 @@ AttributeEnd)";
 MakeNamedMaterial "b" "string type" "conductor" "float roughness" [ 0.2 ]
 Material "mix" "string materials" [ "a" "b" ] "float amount" [ 0.4 ])");
     material("measured", "Material \"measured\" \"string filename\" [ \"" + data + "/pbrt-v4/measured/ggx-spectral.bsdf\" ]");
+    // pbrt-v4's subsurface by random walk (issue 36): a rough dielectric around a chromatic,
+    // forward-scattering medium about 3 mean free paths across the sphere; light enters and
+    // leaves through the rough boundary, so every integrator samples it.
+    material("subsurface-rough", R"(Material "subsurface" "float roughness" [ 0.3 ] "float g" [ 0.3 ]
+  "rgb sigma_a" [ 0.5 1 2 ] "rgb sigma_s" [ 6 5 4 ])");
 
     // Hair fibres across the box, as flat curves (pbrt-v4's default type: ribbons that face
     // each ray) and as cylinder curves (the same strips, shaded as tubes). The hair BSDF needs

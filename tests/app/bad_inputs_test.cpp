@@ -108,6 +108,13 @@ std::vector<Case> cases() {
         {"degenerate_lookat",
          "LookAt 0 0 0  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\nShape \"sphere\"\n", {}, 2, {":1:1:", "LookAt"}},
         {"unknown_parameter", kHeader + "Shape \"sphere\" \"float radiuss\" [ 1 ]", {}, 0, {":7:", "radiuss"}},
+        // subsurface (issue 36): located errors for what no medium can be, a warning for a typo.
+        {"subsurface_unknown_name", kHeader + "Material \"subsurface\" \"string name\" \"Skin9\"\nShape \"sphere\"", {}, 2,
+         {":7:23:", "no measured medium is named \"Skin9\"", "\"Skin1\""}},
+        {"subsurface_eta_not_positive", kHeader + "Material \"subsurface\" \"float eta\" [ 0 ]\nShape \"sphere\"", {}, 2,
+         {":7:23:", "\"eta\" must be positive"}},
+        {"subsurface_unknown_parameter", kHeader + "Material \"subsurface\" \"float mfpp\" [ 1 ]\nShape \"sphere\"", {}, 0,
+         {":7:", "mfpp"}},
         {"parameter_of_wrong_type", kHeader + "Shape \"sphere\" \"string radius\" [ \"big\" ]", {}, 0,
          {":7:", "string radius"}},
         {"binary_bytes_in_a_warning", kHeader + "Shape \"tri\x80\x01mesh\"", {}, 0, {":7:1:", "tri\\x80\\x01mesh"}},

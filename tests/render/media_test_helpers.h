@@ -72,6 +72,33 @@ inline void expectTransmittance(const std::array<Mean, 3>& got, const std::array
     }
 }
 
+// An orthographic view (16 x 16 pixels) through two quads at z = 1 and 2.5, normals outwards
+// (away from the 1.5 between them), onto a black light of radiance 1 behind them that covers
+// the view (reflecting, it would add light the quads reflect back to it); `header` comes before WorldBegin, `attributes` (material, media) before the quads.
+inline std::string slabScene(const std::string& header, const std::string& attributes) {
+    return R"(
+        LookAt 0 0 0  0 0 1  0 1 0
+        Camera "orthographic"
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        Sampler "independent"
+        )" + header + R"(
+        WorldBegin
+        AttributeBegin
+          )" + attributes + R"(
+          Shape "trianglemesh" "point3 P" [ -5 -5 1  5 -5 1  5 5 1  -5 5 1 ] "integer indices" [ 0 1 2  0 2 3 ]
+              "normal N" [ 0 0 -1  0 0 -1  0 0 -1  0 0 -1 ]
+          Shape "trianglemesh" "point3 P" [ -5 -5 2.5  5 -5 2.5  5 5 2.5  -5 5 2.5 ] "integer indices" [ 0 1 2  0 2 3 ]
+              "normal N" [ 0 0 1  0 0 1  0 0 1  0 0 1 ]
+        AttributeEnd
+        AttributeBegin
+          AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+          Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+          ReverseOrientation
+          Shape "disk" "float height" [ 3 ] "float radius" [ 10 ]
+        AttributeEnd
+    )";
+}
+
 // The message of the InputError that building `text` (named scene.pbrt) raises, or "".
 inline std::string buildError(const std::string& text) {
     setWarningsQuiet(true);

@@ -67,6 +67,17 @@ inline void expectSpectralMean(const RegionStats& r, const std::array<double, 3>
     }
 }
 
+// Each channel of an image's mean within 4 sigma (plus kSpectralSystematic) of `exact`, with
+// sigma small enough to catch a 2% error.
+inline void expectImageMean(const RegionStats& s, const std::array<double, 3>& exact) {
+    for (int c = 0; c < 3; ++c) {
+        std::printf("  channel %d: %.5f +- %.5f, exact %.5f, %+.2f sigma\n", c, s.mean[c], s.stdErr[c], exact[c],
+                    (s.mean[c] - exact[c]) / std::max(1e-12, s.stdErr[c]));
+        EXPECT_NEAR(s.mean[c], exact[c], 4 * s.stdErr[c] + kSpectralSystematic * exact[c]) << "channel " << c;
+        EXPECT_LT(4 * s.stdErr[c], 0.02 * exact[c]) << "channel " << c << ": cannot resolve a 2% error";
+    }
+}
+
 // A render that is deterministic in RGB mode (every sample gives the exact value) is checked
 // there to `rgbTolerance`; spectral mode adds the wavelengths' noise (expectSpectralMean).
 inline void expectExact(const RegionStats& r, const std::array<double, 3>& exact, bool spectral,
