@@ -69,7 +69,9 @@ def test_variance_and_statistics_are_the_command_lines(pathspace, binary, small_
     import json
     cli_stats = json.loads(stats_file.read_text())
     stats = result.stats
-    assert set(stats) == set(cli_stats)
+    # The figures per technique are the command line's alone: they render a QMC sampler's spp as
+    # scrambled sets (docs/strategy-figures.md), which the module's renders never do.
+    assert set(stats) == set(cli_stats) - {"techniques"}
     for key in ["integrator", "color", "sampler", "resolution", "pixels", "seed", "maxdepth", "spp_target", "spp_mean",
                 "camera_paths", "rays", "mean_pixel_variance", "interrupted"]:
         assert stats[key] == cli_stats[key], key
