@@ -455,7 +455,7 @@ nlohmann::json techniquesJson(const RenderResult& r) {
         return e;
     };
     for (size_t k = 0; k < r.techniques.size() && k < r.techniqueFigures.size(); ++k) {
-        const Technique& t = r.techniques[k];
+        const RenderTechnique& t = r.techniques[k];
         if (!t.possible) continue;
         nlohmann::json e = {{"name", t.name}, {"splat", t.splat}};
         if (t.s >= 0) {

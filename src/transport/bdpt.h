@@ -22,7 +22,7 @@ public:
     bool splats() const override { return true; }
     bool supportsSpectral() const override { return true; }
     // Every strategy (s, t) up to maxdepth, at techniqueIndex(s, t) (--stats' figures).
-    std::vector<Technique> techniques() const override;
+    std::vector<RenderTechnique> techniques() const override;
     // Depth d = s + t - 2 holds t = 0 .. d + 2 after the d (d + 5) / 2 slots of smaller depths.
     static int techniqueIndex(int s, int t) {
         const int d = s + t - 2;

@@ -4,12 +4,12 @@
 
 namespace ps {
 
-std::vector<Technique> BDPTIntegrator::techniques() const {
-    std::vector<Technique> out;
+std::vector<RenderTechnique> BDPTIntegrator::techniques() const {
+    std::vector<RenderTechnique> out;
     for (int d = 0; d <= paths_.maxDepth(); ++d)
         for (int t = 0; t <= d + 2; ++t) {
             const int s = d + 2 - t;
-            Technique k;
+            RenderTechnique k;
             k.name = "s";  // appended piecewise: GCC 12's false -Wrestrict (as in strategy_images.cpp)
             k.name += std::to_string(s);
             k.name += "_t";

@@ -106,7 +106,7 @@ public:
     virtual bool supportsSpectral() const { return false; }
     // The techniques whose contributions Li reports to SampleContext::tally, indexed as it
     // reports them (transport/technique_tally.h); none: the integrator reports none.
-    virtual std::vector<Technique> techniques() const { return {}; }
+    virtual std::vector<RenderTechnique> techniques() const { return {}; }
 };
 
 // Names: "path", "light", "bdpt", "pssmlt", "mmlt" (Markov chains over BDPT: render() runs its own

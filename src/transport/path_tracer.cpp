@@ -41,7 +41,7 @@ Spectrum PathTracer::sampleDirect(const SurfaceInteraction& si, const Frame& fra
     return roulette.active() ? C * scale : unoccluded();
 }
 
-std::vector<Technique> PathTracer::techniques() const {
+std::vector<RenderTechnique> PathTracer::techniques() const {
     if (scene_.hasMedia()) return {};
     return {{"light"}, {"bsdf"}};
 }

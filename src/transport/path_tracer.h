@@ -23,7 +23,7 @@ public:
     bool supportsSpectral() const override { return true; }
     // Light sampling (next-event estimation) and BSDF sampling (emitters the path finds, the
     // camera ray's and specular bounces' included); none in media (volpath's are spectral MIS).
-    std::vector<Technique> techniques() const override;
+    std::vector<RenderTechnique> techniques() const override;
     static constexpr int kLightTechnique = 0, kBsdfTechnique = 1;
 
 private:

@@ -133,7 +133,7 @@ struct RenderResult {
     MetropolisStats metropolis;
     // RenderOptions::techniqueFigures: the integrator's techniques and their figures (one
     // more for the whole image), and the sets their variance came from (1: the samples' own).
-    std::vector<Technique> techniques;
+    std::vector<RenderTechnique> techniques;
     std::vector<TechniqueTally::Figure> techniqueFigures;
     int techniqueBatches = 1;
     int scramblings = 1;

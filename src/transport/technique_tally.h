@@ -21,7 +21,7 @@
 namespace ps {
 
 // What an integrator tells of its techniques (Integrator::techniques).
-struct Technique {
+struct RenderTechnique {
     std::string name;   // "light", "bsdf", or "s2_t3"
     int s = -1, t = -1;  // BDPT's strategy; -1 for the path tracer's
     bool splat = false;  // lands anywhere on the film (light tracing's t <= 1), not on its own pixel
