@@ -216,16 +216,22 @@ void SceneBuilder::warnIfCameraMediumContradicted() const {
     if (!scene_.hasMedia_) return;
     const std::optional<const Medium*> implied = mediumImpliedAt(scene_, scene_.camera().position());
     if (!implied || *implied == scene_.cameraMedium_) return;
+    // A medium's name in the file; none for a subsurface material's (made by the builder).
+    auto nameOf = [&](const Medium* m) -> const std::string* {
+        for (const auto& [name, ptr] : media_)
+            if (ptr == m) return &name;
+        return nullptr;
+    };
     auto named = [&](const Medium* m) {
         if (!m) return std::string("no medium");
-        for (const auto& [name, ptr] : media_)
-            if (ptr == m) return "medium \"" + name + "\"";
-        return std::string("the medium inside a \"subsurface\" material");
+        const std::string* name = nameOf(m);
+        return name ? "medium \"" + *name + "\"" : std::string("the medium inside a \"subsurface\" material");
     };
     // Rendered as declared (pbrt-v4 does the same); the warning says how to declare the other.
-    std::string fix;
-    for (const auto& [name, ptr] : media_)
-        if (ptr == *implied) fix = "; if the camera is meant to be in it, write MediumInterface \"" + name + "\" before Camera";
+    const std::string* impliedName = nameOf(*implied);
+    const std::string fix = impliedName ? "; if the camera is meant to be in it, write MediumInterface \"" + *impliedName +
+                                              "\" before Camera"
+                                        : "";
     warning(desc_.camera.loc, "the camera is declared in " + named(scene_.cameraMedium_) +
                                   " (the outside medium of the MediumInterface current at Camera), but the "
                                   "medium boundaries around it enclose it in " + named(*implied) +
