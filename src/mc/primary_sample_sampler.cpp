@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "mc/metropolis.h"
+#include "mc/permutation.h"
+#include "mc/sobol.h"
 
 namespace ps {
 
@@ -76,6 +78,7 @@ void PrimarySampleSampler::startIteration(bool largeStep) {
 }
 
 void PrimarySampleSampler::accept() {
+    strata_.count = 0;  // the first iteration's alone
     if (largeStep_)
         lastLargeStep_ = iteration_;
     else
@@ -85,6 +88,7 @@ void PrimarySampleSampler::accept() {
 }
 
 void PrimarySampleSampler::reject() {
+    strata_.count = 0;
     for (const Touched& t : touched_) {
         Value& v = streams_[t.stream][t.index];
         v.value = v.backupValue;
@@ -128,7 +132,9 @@ double PrimarySampleSampler::read(int stream, size_t index) {
     x.backupModified = x.modified;
     x.backupSteps = x.steps;
     if (largeStep_) {
-        x.value = rng_.uniformDouble();
+        // A stratified value still takes its draw: the chain's random stream stays the same.
+        const double u = rng_.uniformDouble();
+        x.value = iteration_ == 1 && strata_.count > 0 && index < size_t(kStratifiedValues) ? stratified(stream, index) : u;
     } else if (moved_ >> stream & 1u) {
         x.value = small(x.value, stepUnits_);
         x.steps = steps + stepUnits_;
@@ -136,6 +142,23 @@ double PrimarySampleSampler::read(int stream, size_t index) {
     x.modified = iteration_;
     touched_.push_back({uint32_t(stream), uint32_t(index)});
     return x.value;
+}
+
+void PrimarySampleSampler::stratifyFirstIteration(uint64_t key, int64_t i, int64_t n) {
+    // Sets of more than 2^32 samples continue as further sets of their own (keyed apart).
+    const int64_t count = std::min<int64_t>(std::max<int64_t>(n, 1), int64_t(UINT32_MAX));
+    strata_.key = mixWithKey(key, uint64_t(i / count));
+    strata_.index = uint32_t(i % count);
+    strata_.count = uint32_t(count);
+}
+
+double PrimarySampleSampler::stratified(int stream, size_t index) const {
+    const uint64_t key = mixWithKey(strata_.key, uint64_t(stream) * 64 + index / 2);
+    const uint32_t p = permuteIndex(strata_.index, strata_.count, uint32_t(key));
+    // Reversed Sobol points (sobol.h): dimension 0's is the index itself.
+    const uint32_t v = index % 2 == 0 ? owenScrambleReversed(p, uint32_t(key >> 32))
+                                      : owenScrambleReversed(sobolDim1Reversed(p), uint32_t(mix64(key) >> 32));
+    return double(v) * 0x1p-32;
 }
 
 void PrimarySampleSampler::set(int stream, int index, double value) {

@@ -79,6 +79,16 @@ public:
     // Sets the value of `stream` at `index` in the proposal under way (in [0,1)): a state
     // placed by the caller, restored by a rejection like any other value.
     void set(int stream, int index, double value);
+    // The first iteration's fresh values as sample i of a set of n (a Markov-chain render's
+    // bootstrap, whose mean weight b scales the whole image: thesis §2.7 on stratification):
+    // the first kStratifiedValues values of each stream come, two at a time, from point i of
+    // the first n points of an Owen-scrambled (0,2)-sequence keyed by `key`, each pair through
+    // its own random permutation of the points (padding, as PaddedSobolSampler pairs a
+    // pixel's dimensions). Every value is still uniform on its own, which is all that an
+    // unbiased b and an unbiased start of the chains use; the other values and every later
+    // iteration are drawn as before. Called before the first iteration's values are read.
+    static constexpr int kStratifiedValues = 8;
+    void stratifyFirstIteration(uint64_t key, int64_t i, int64_t n);
     // A new random stream for the mutations from here on; the stored values stay. A chain
     // started from a replayed bootstrap sample takes its own stream this way.
     void reseed(uint64_t chainSeed);
@@ -113,6 +123,7 @@ public:
 
 private:
     double read(int stream, size_t index);
+    double stratified(int stream, size_t index) const;
     double small(double v, double units);
 
     PrimarySampleParams params_;
@@ -133,6 +144,10 @@ private:
         uint32_t stream, index;
     };
     std::vector<Touched> touched_;  // the values the proposal under way modified
+    struct Strata {
+        uint64_t key = 0;
+        uint32_t index = 0, count = 0;  // count 0: none
+    } strata_;
 };
 
 // The acceptance probability of a proposal with target value fy from a state with fx, for

@@ -53,10 +53,14 @@ verify::VerifyOptions options(const Variant& v, uint64_t seed) {
     const int k = v.sppScale * scale();
     o.spp = 32 * k;
     for (const auto& [name, scale] : v.integratorScale) o.sppOf[name] = o.spp * scale;
-    // The bootstrap's estimate of b scales a Metropolis image: its error is most of the image
-    // mean's spread. pssmlt's samples (whole BDPT samples) spread most; mmlt's are per depth.
-    o.configure = [k](const std::string& name, RenderSettings& st) {
-        st.mltBootstrapSamples = (name == "pssmlt" ? 60000 : name == "mmlt" ? 25000 : 15000) * k;
+    // The bootstrap's estimate of b scales a Metropolis image: its error is the image mean's
+    // (pssmlt's and mmlt's bootstraps are stratified: PrimarySampleSampler::
+    // stratifyFirstIteration). pssmlt's samples (whole BDPT samples) spread most; mmlt's are
+    // per depth.
+    o.configure = [k, &v](const std::string& name, RenderSettings& st) {
+        const auto extra = v.bootstrapScale.find(name);
+        st.mltBootstrapSamples = (name == "pssmlt" ? 20000 : name == "mmlt" ? 10000 : 15000) * k *
+                                 (extra == v.bootstrapScale.end() ? 1 : extra->second);
     };
     return o;
 }

@@ -23,6 +23,8 @@ struct Variant {
     bool spectral = true;  // --color spectral (the renderer's default) or rgb
     int sppScale = 1;      // the variant's samples per pixel over the matrix's
     std::map<std::string, int> integratorScale;  // and one integrator's over that
+    // A Metropolis integrator's bootstrap over the matrix's (its b's error is the image mean's).
+    std::map<std::string, int> bootstrapScale;
     // Open bugs the matrix found: integrator -> what is wrong. Such a cell must still differ
     // (it fails once the bug is fixed, so that the marker goes with it).
     std::map<std::string, std::string> knownBias;

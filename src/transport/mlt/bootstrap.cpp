@@ -28,6 +28,14 @@ struct Samples {
     std::vector<double> weight, parts, groupSum, groupSumSquares;
 };
 
+// Sample j of a run from `first` on, stratified within its group: b is the image mean
+// (PrimarySampleSampler::stratifyFirstIteration; docs/integrators.md, "The bootstrap").
+void stratify(const BootstrapContext& ctx, PrimarySampleSampler& sampler, int64_t first, const BootstrapAllocation& alloc,
+              int g, int64_t j) {
+    sampler.stratifyFirstIteration(hashCombine(hashCombine(ctx.seed ^ 0x3c6ef372fe94f82bULL, uint64_t(first)), uint64_t(g)),
+                                   j - alloc.start[size_t(g)], alloc.count[size_t(g)]);
+}
+
 // Samples first .. first + alloc.total - 1. Blocks of samples are summed in order, so the
 // sums do not depend on the thread count; over several processes each takes its blocks
 // (chain_ranks.h) and every process gets all the weights and block sums, bit for bit.
@@ -69,6 +77,7 @@ Samples sampleIndependently(const BootstrapContext& ctx, int64_t first, const Bo
                 const int g = alloc.groupOf(j);
                 PrimarySampleSampler sampler(bootstrapSeed(ctx.seed, first + j), ctx.pss);
                 sampler.startIteration();
+                stratify(ctx, sampler, first, alloc, g, j);
                 ctx.integrator.bootstrapSample(sampler, g, alloc.scale(g), choice, ctx.evaluators.local(), states);
                 double w = 0;
                 for (const BootstrapState& st : states) {
@@ -253,6 +262,7 @@ bool startChain(const BootstrapContext& ctx, const Bootstrap& boot, Rng& rng,
     const int g = boot.groups.groupOf(i);
     sampler = std::make_unique<PrimarySampleSampler>(bootstrapSeed(ctx.seed, boot.first + i), ctx.pss);
     sampler->startIteration();
+    stratify(ctx, *sampler, boot.first, boot.groups, g, i);
     ChainEvaluator& ev = ctx.evaluators.local();
     std::vector<BootstrapState> found;
     ctx.integrator.bootstrapSample(*sampler, g, boot.groups.scale(g), boot.choice, ev, found);
