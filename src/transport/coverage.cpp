@@ -120,17 +120,19 @@ std::optional<UnsampledPaths> deltaSpecularEye(const Scene& scene, const SceneTr
 
 // Light emitted inside a medium (sigma_a Le, pbrt-v4's volpath) is sampled only by a camera
 // walk's free flights: no light sampler chooses points in volumes, so no light subpath starts
-// there. Light tracing has no other strategy, and Veach's mlt builds its paths (initial ones
-// and bidirectional mutations' new parts) from light subpaths and connections only.
+// there. Light tracing has no other strategy. Veach's mlt's paths begin with a vertex x0 on a
+// light (mlt/veach/path_space.h), which its mutations generate by sampling lights: an
+// emitting medium point would be a new kind of x0, with a density none of them has (not
+// implemented, rather than impossible as for light tracing).
 std::optional<UnsampledPaths> mediumEmission(const Scene& scene, const std::string& integrator) {
     if ((integrator != "light" && integrator != "mlt") || !scene.hasEmissiveMedia()) return std::nullopt;
     const std::string why =
         integrator == "light"
             ? "light tracing cannot render light emitted inside a medium: its only subpaths start on lights, and "
               "no light sampler chooses points in volumes (only a camera walk's free flights find that emission)"
-            : "Veach's mlt cannot render light emitted inside a medium: its paths begin at light vertices sampled on "
-              "lights, and no light sampler chooses points in volumes (only a camera walk's free flights find that "
-              "emission)";
+            : "Veach's mlt cannot render light emitted inside a medium: its paths begin at a vertex on a light, "
+              "which its mutations sample from the lights, and no light sampler chooses points in volumes (an emitting "
+              "medium point as a path's first vertex is not implemented)";
     return UnsampledPaths{"medium-emission", why + "; use path, bdpt, pssmlt or mmlt", false};
 }
 
