@@ -68,26 +68,6 @@ TEST(MediaRender, LightSeenThroughAnAbsorbingSlab) {
 
 namespace {
 
-// The camera inside an emitting sphere of radiance 1 whose surface is black, all of it filled
-// with `medium`: whatever the medium scatters, every path ends on the wall or in absorption,
-// and where it absorbs it also emits Le = 1 (sigma_a Le), so the radiance is 1 everywhere
-// (with the depth limit far beyond what the paths reach).
-std::string enclosedFurnace(const std::string& medium) {
-    return "MakeNamedMedium \"fog\" " + medium + R"(
-        MediumInterface "" "fog"
-        LookAt 0 0 0  0 0 1  0 1 0
-        Camera "perspective" "float fov" [ 70 ]
-        Film "rgb" "integer xresolution" [ 12 ] "integer yresolution" [ 12 ]
-        Sampler "independent"
-        Integrator "volpath" "integer maxdepth" [ 200 ]
-        WorldBegin
-        AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
-        Material "diffuse" "rgb reflectance" [ 0 0 0 ]
-        ReverseOrientation
-        Shape "sphere" "float radius" [ 1 ]
-    )";
-}
-
 void expectFurnace(const std::string& medium, int spp) {
     const bool spectral = defaultSpectral();
     RenderResult r = renderString(enclosedFurnace(medium), spp);

@@ -10,9 +10,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "media_test_helpers.h"
-#include "render_helpers.h"
-#include "spectral_answer.h"
+#include "medium_emission_scenes.h"
 #include "transport/bdpt.h"
 #include "transport/coverage.h"
 
@@ -20,54 +18,6 @@ using namespace ps;
 using namespace ps::test;
 
 namespace {
-
-const std::array<float, 3> kSigmaA{0.5f, 1.0f, 2.0f}, kLe{1.0f, 0.8f, 0.6f};
-
-// The camera at the centre of an `interface` sphere of radius 1 (nothing beyond it), filled
-// with a homogeneous medium that absorbs sigma_a and emits Le: every ray sees
-// Le (1 - exp(-sigma_a)), per channel (per wavelength in spectral mode).
-std::string glowingSphere(const std::string& integrator, int maxDepth) {
-    return R"(MakeNamedMedium "glow" "string type" "homogeneous" "rgb sigma_a" [ 0.5 1 2 ] "rgb sigma_s" [ 0 0 0 ]
-  "rgb Le" [ 1 0.8 0.6 ]
-MediumInterface "" "glow"
-LookAt 0 0 0  0 0 1  0 1 0
-Camera "perspective" "float fov" [ 60 ]
-Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
-PixelFilter "box"
-Sampler "independent"
-Integrator ")" + integrator + R"(" "integer maxdepth" [ )" + std::to_string(maxDepth) + R"( ]
-WorldBegin
-Material "interface"
-MediumInterface "glow" ""
-Shape "sphere" "float radius" [ 1 ]
-)";
-}
-
-std::array<double, 3> glowingSphereExact(bool spectral) {
-    const Lifted sigma{kSigmaA, SpectrumSource::rgbUnbounded(srgbColorSpace(), kSigmaA), 1};
-    return exactPixel(spectral, [](double L, double s) { return L * (1 - std::exp(-s)); }, emission(kLe), sigma);
-}
-
-// The image's channel means and luminance over `renders` independent renders (their spread
-// gives sigma, also for Metropolis, whose pixels are correlated and whose normalisation b is
-// one estimate per render) against `exact`: each within 4 sigma, and the luminance's sigma
-// small enough to catch a 2% error.
-void expectRendersMatch(const std::string& scene, const std::string& integrator, int spp, int renders,
-                        const std::array<double, 3>& exact) {
-    const BlockMeans b = blockMeans(scene, integrator, spp, renders, 1);
-    for (int c = 0; c < 3; ++c) {
-        std::printf("[ %-8s ] channel %d: %.5f +- %.5f, exact %.5f, ratio %.4f, %+.2f sigma\n", integrator.c_str(), c,
-                    b.channelMean[c], b.channelStdErr[c], exact[c], b.channelMean[c] / exact[c],
-                    (b.channelMean[c] - exact[c]) / std::max(1e-12, b.channelStdErr[c]));
-        EXPECT_NEAR(b.channelMean[c], exact[c], 4 * b.channelStdErr[c] + kSpectralSystematic * exact[c])
-            << integrator << " channel " << c;
-    }
-    const double y = 0.2126 * exact[0] + 0.7152 * exact[1] + 0.0722 * exact[2];
-    std::printf("[ %-8s ] luminance: %.5f +- %.5f, exact %.5f, ratio %.4f, %+.2f sigma\n", integrator.c_str(), b.imageMean,
-                b.imageStdErr, y, b.imageMean / y, (b.imageMean - y) / std::max(1e-12, b.imageStdErr));
-    EXPECT_NEAR(b.imageMean, y, 4 * b.imageStdErr + kSpectralSystematic * y) << integrator;
-    EXPECT_LT(4 * b.imageStdErr, 0.02 * y) << integrator << ": cannot resolve 2%";
-}
 
 struct Case {
     const char* integrator;
@@ -92,21 +42,10 @@ TEST(MediumEmission, AbsorbingGlowAroundTheCameraIsExact) {
 // and mmlt, which mutate BDPT's samples: the agreement matrix's medium/emissive.)
 TEST(MediumEmission, ScatteringGlowInsideAnEqualWallIsExact) {
     const bool spectral = defaultSpectral();
-    const std::string scene = R"(MakeNamedMedium "fog" "string type" "homogeneous" "rgb sigma_a" [ 1 0.5 0.2 ]
-  "rgb sigma_s" [ 0.5 1 0.5 ] "float g" [ -0.3 ] "rgb Le" [ 1 1 1 ]
-MediumInterface "" "fog"
-LookAt 0 0 0  0 0 1  0 1 0
-Camera "perspective" "float fov" [ 70 ]
-Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]
-PixelFilter "box"
-Sampler "independent"
-Integrator "bdpt" "integer maxdepth" [ 20 ]
-WorldBegin
-AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
-Material "diffuse" "rgb reflectance" [ 0 0 0 ]
-ReverseOrientation
-Shape "sphere" "float radius" [ 1 ]
-)";
+    // MediaRender.EmittingMediumFurnace's medium, in bdpt.
+    const std::string scene = enclosedFurnace(R"("string type" "homogeneous" "rgb sigma_a" [ 1 0.5 0.2 ]
+                                                 "rgb sigma_s" [ 0.5 1 0.5 ] "float g" [ -0.3 ] "rgb Le" [ 1 1 1 ])",
+                                              "bdpt", 20);
     expectRendersMatch(scene, "bdpt", 64, 16, exactPixel(spectral, itself, emission({1, 1, 1})));
 }
 
