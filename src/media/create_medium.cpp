@@ -96,34 +96,48 @@ std::unique_ptr<Medium> createCloud(const MediumEntity& e, float g) {
 }
 
 // pbrt-v4's NanoVDBMedium::Create: "filename" (required), the float grid "gridname"
-// ("density"), sigma_a, sigma_s (1) times "scale" (1), g. A "temperaturename" grid
-// ("temperature") makes pbrt-v4's medium emit blackbody light when "Lescale" > 0: refused
-// here until emission from it is implemented, rather than rendered dark.
+// ("density"), sigma_a, sigma_s (1) times "scale" (1), g; and emission from the float grid
+// "temperaturename" ("temperature") if the file has one and "Lescale" (1) > 0, its values
+// mapped to kelvin by "temperatureoffset" (or its older name "temperaturecutoff"; 0) and
+// "temperaturescale" (1) (nanovdb_medium.h).
 std::unique_ptr<Medium> createNanoVDB(const MediumEntity& e, float g) {
     const ParamSet& ps = e.params;
     const std::string file = ps.getString("filename", "");
     if (file.empty()) fail(e, "a \"nanovdb\" medium needs a \"filename\"");
     const std::string path = resolvePath(ps.baseDirectory, file);
     const std::string gridName = ps.getString("gridname", "density");
+    const bool namedTemperature = ps.has("temperaturename");
     const std::string temperatureName = ps.getString("temperaturename", "temperature");
-    const float LeScale = ps.getFloat("Lescale", 1);
-    ps.getFloat("temperatureoffset", ps.getFloat("temperaturecutoff", 0));
-    ps.getFloat("temperaturescale", 1);
+    NanoVDBTemperature t;
+    t.LeScale = ps.getFloat("Lescale", 1);
+    t.offset = ps.getFloat("temperatureoffset", ps.getFloat("temperaturecutoff", 0));
+    t.scale = ps.getFloat("temperaturescale", 1);
+    if (!(t.LeScale >= 0) || !std::isfinite(t.LeScale)) fail(e, "\"Lescale\" must be a finite number at least 0");
+    if (!std::isfinite(t.offset) || !std::isfinite(t.scale))
+        fail(e, "\"temperatureoffset\" and \"temperaturescale\" must be finite numbers");
     const float scale = scaleParam(e);
-    std::optional<NanoVDBGrid> density;
+    std::optional<NanoVDBGrid> density, temperature;
     try {
         density = readNanoVDBGrid(path, gridName);
         if (!density) fail(e, path + ": the file has no grid named " + quoteForMessage(gridName));
-        if (LeScale > 0 && readNanoVDBGrid(path, temperatureName))
-            fail(e, path + ": emission from its " + quoteForMessage(temperatureName) +
-                        " grid is not supported yet (give \"float Lescale\" 0 to render the medium without it)");
+        // Without a temperature grid the medium does not emit (pbrt-v4), unless the scene
+        // named one that is not there: then it is a mistake worth stopping for.
+        temperature = readNanoVDBGrid(path, temperatureName);
+        if (!temperature && namedTemperature)
+            fail(e, path + ": the file has no grid named " + quoteForMessage(temperatureName) + " (\"temperaturename\")");
     } catch (const std::runtime_error& err) {
         if (dynamic_cast<const InputError*>(&err)) throw;
         fail(e, err.what());
     }
+    std::optional<NanoVDBTemperature> emission;
+    if (temperature && t.LeScale > 0) {
+        t.grid = std::move(*temperature);
+        emission = std::move(t);
+    }
     auto medium = std::make_unique<NanoVDBMedium>(e.worldFromMedium, std::move(*density),
                                                   spectrumParam(ps, "sigma_a", SpectrumKind::Unbounded, 1, scale),
-                                                  spectrumParam(ps, "sigma_s", SpectrumKind::Unbounded, 1, scale), g);
+                                                  spectrumParam(ps, "sigma_s", SpectrumKind::Unbounded, 1, scale), g,
+                                                  std::move(emission));
     ps.reportUnused("medium " + quoteForMessage(e.name));
     return medium;
 }
@@ -175,13 +189,21 @@ std::unique_ptr<Medium> createMedium(const MediumEntity& e) {
         return medium;
     }
     if (e.type == "rgbgrid") {
-        if (ps.has("Le")) fail(e, "emission (\"Le\") in an \"rgbgrid\" medium is not supported yet");
         std::vector<Spectrum> a = rgbValues(e, "sigma_a", scale), s = rgbValues(e, "sigma_s", scale);
         if (a.empty() && s.empty()) fail(e, "an \"rgbgrid\" medium needs \"sigma_a\" and/or \"sigma_s\" values");
-        VoxelGrid<Spectrum> ga, gs;
+        // pbrt-v4's RGBGridMedium: "Le" is a grid of RGB illuminants, one per voxel like the
+        // sigma grids, scaled by a single "Lescale" (1); emission needs a sigma_a grid (it is
+        // sigma_a Le that the medium emits).
+        std::vector<Spectrum> le = rgbValues(e, "Le", 1);
+        const float LeScale = ps.getFloat("Lescale", 1);
+        if (!le.empty() && a.empty()) fail(e, "\"Le\" needs a \"sigma_a\" grid (the medium emits sigma_a Le)");
+        if (!(LeScale >= 0) || !std::isfinite(LeScale)) fail(e, "\"Lescale\" must be a finite number at least 0");
+        VoxelGrid<Spectrum> ga, gs, gl;
         if (!a.empty()) ga = gridOf(e, std::move(a), "sigma_a");
         if (!s.empty()) gs = gridOf(e, std::move(s), "sigma_s");
-        auto medium = std::make_unique<GridMedium>(boxOf(e), std::move(ga), std::move(gs), ps.colorSpace, g);
+        if (!le.empty()) gl = gridOf(e, std::move(le), "Le");
+        auto medium = std::make_unique<GridMedium>(boxOf(e), std::move(ga), std::move(gs), ps.colorSpace, g,
+                                                   std::move(gl), LeScale);
         ps.reportUnused("medium " + quoteForMessage(e.name));
         return medium;
     }

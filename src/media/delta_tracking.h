@@ -10,6 +10,22 @@
 
 namespace ps {
 
+// One tentative collision's estimate of the light a medium emits along a flight (pbrt-v4's
+// volpath adds sigma_a Le at every tentative majorant collision, whatever the collision then
+// turns out to be): beta T_maj sigma_a Le / pdf, with pdf = sigma_maj T_maj in the hero
+// channel, over the channel mean of the whole path's densities rU sigma_maj T_maj / pdf
+// (spectral MIS). The path tracer and BDPT's camera walks share it, so that both estimate
+// the same integral the same way.
+inline Spectrum emissionAtCollision(const MediumProperties& mp, const Spectrum& sigmaMaj, const Spectrum& Tm,
+                                    const Spectrum& beta, const Spectrum& rU, int h, bool spectral) {
+    if (mp.Le.isBlack()) return {};
+    const float pdf = sigmaMaj[h] * Tm[h];
+    if (!(pdf > 0)) return {};
+    const Spectrum rE = rU * sigmaMaj * Tm / pdf;
+    if (rE.isBlack()) return {};
+    return beta * Tm / pdf * mp.sigmaA * mp.Le / channelMean(rE, spectral);
+}
+
 enum class FlightEnd { Passed, Scattered, Absorbed };
 
 struct Flight {

@@ -16,9 +16,13 @@ public:
     // The density at a point of the medium's space.
     virtual float density(Vec3 pMedium) const = 0;
 
+    // The emitted radiance Le at a point of the medium's space (emissive media only).
+    virtual Spectrum emission(Vec3 /*pMedium*/, const SampledWavelengths* /*lambda*/) const { return {}; }
+
     MediumProperties at(Vec3 p, const SampledWavelengths* lambda) const final {
-        const float d = density(box_.toMedium(p));
-        return {sigmaA_(lambda) * d, sigmaS_(lambda) * d, Spectrum(0.0f)};
+        const Vec3 pm = box_.toMedium(p);
+        const float d = density(pm);
+        return {sigmaA_(lambda) * d, sigmaS_(lambda) * d, emissive() ? emission(pm, lambda) : Spectrum(0.0f)};
     }
     MajorantIterator majorants(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda) const final {
         return box_.iterate(o, d, tMax, majorants_, sigmaA_(lambda) + sigmaS_(lambda));

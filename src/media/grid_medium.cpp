@@ -56,9 +56,13 @@ GridMedium::GridMedium(const Box& box, VoxelGrid<float> density, MediumSpectrum 
 }
 
 GridMedium::GridMedium(const Box& box, VoxelGrid<Spectrum> sigmaA, VoxelGrid<Spectrum> sigmaS, const RGBColorSpace* space,
-                       float g)
-    : Medium(g), box_(box), rgb_(true), rgbA_(std::move(sigmaA)), rgbS_(std::move(sigmaS)),
-      space_(space ? space : &srgbColorSpace()), liftedMajorants_(16, 16, 16) {
+                       float g, VoxelGrid<Spectrum> Le, float LeScale)
+    : Medium(g), box_(box), rgb_(true), rgbA_(std::move(sigmaA)), rgbS_(std::move(sigmaS)), rgbLe_(std::move(Le)),
+      rgbLeScale_(LeScale), space_(space ? space : &srgbColorSpace()), liftedMajorants_(16, 16, 16) {
+    // pbrt-v4's RGBGridMedium emits when it has an Le grid and Lescale > 0.
+    float maxLe = 0;
+    for (const Spectrum& v : rgbLe_.values) maxLe = std::max(maxLe, v.maxComponent());
+    emissive_ = maxLe > 0 && rgbLeScale_ > 0;
     // Per channel in RGB mode; in spectral mode an unbounded lift scale * sigmoid(...) never
     // exceeds its scale, 2 max(rgb). A missing grid is 1 everywhere (pbrt-v4's default).
     auto perChannel = [](const Spectrum& m, const Spectrum& v) {
@@ -86,7 +90,16 @@ MediumProperties GridMedium::at(Vec3 p, const SampledWavelengths* lambda) const 
     }
     auto lift = [&](const Spectrum& rgb) { return lambda ? liftUnbounded(rgb, *lambda, *space_) : rgb; };
     auto grid = [&](const VoxelGrid<Spectrum>& g) { return g.values.empty() ? Spectrum(1.0f) : g.lookup(u, lift); };
-    return {grid(rgbA_), grid(rgbS_), Spectrum(0.0f)};
+    MediumProperties mp{grid(rgbA_), grid(rgbS_), Spectrum(0.0f)};
+    if (emissive_) {
+        // Each voxel's RGB is an illuminant of the colour space (pbrt-v4's RGBIlluminantSpectrum),
+        // the lifted spectra blended as the sigma grids' are; RGB mode takes the colour itself.
+        auto illuminant = [&](const Spectrum& rgb) {
+            return lambda ? liftIlluminant(rgb, *lambda, *space_) : toRenderingSpace(rgb, space_, SpectrumKind::Illuminant);
+        };
+        mp.Le = rgbLe_.lookup(u, illuminant) * rgbLeScale_;
+    }
+    return mp;
 }
 
 MajorantIterator GridMedium::majorants(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda) const {

@@ -1,6 +1,8 @@
 // pbrt-v4's grid media, placed by the CTM at MakeNamedMedium in the box p0..p1:
 // "uniformgrid" (a density grid scaling constant sigma_a and sigma_s, optional Le with a
-// "Lescale" grid) and "rgbgrid" (per-voxel RGB sigma_a and sigma_s). Voxel values sit at cell
+// "Lescale" grid) and "rgbgrid" (per-voxel RGB sigma_a and sigma_s, optional RGB
+// illuminant Le times a scalar "Lescale"). Emission needs no majorant of its own: the tracking
+// adds sigma_a Le at the tentative collisions sigma_t's majorant gives. Voxel values sit at cell
 // centres and are interpolated trilinearly, zero beyond the grid, as pbrt-v4's SampledGrid.
 // Tracking samples against a 16^3 majorant grid over the box, as pbrt-v4's GridMedium and
 // RGBGridMedium do.
@@ -32,7 +34,9 @@ public:
     GridMedium(const Box& box, VoxelGrid<float> density, MediumSpectrum sigmaA, MediumSpectrum sigmaS,
                MediumSpectrum Le, VoxelGrid<float> LeScale, float g);
     // rgbgrid: an empty grid is 1 everywhere (pbrt-v4's default); values already scaled.
-    GridMedium(const Box& box, VoxelGrid<Spectrum> sigmaA, VoxelGrid<Spectrum> sigmaS, const RGBColorSpace* space, float g);
+    // Le (empty: none): per-voxel RGB illuminants of `space`, times LeScale.
+    GridMedium(const Box& box, VoxelGrid<Spectrum> sigmaA, VoxelGrid<Spectrum> sigmaS, const RGBColorSpace* space, float g,
+               VoxelGrid<Spectrum> Le = {}, float LeScale = 0);
 
     bool emissive() const override { return emissive_; }
     MediumProperties at(Vec3 p, const SampledWavelengths* lambda) const override;
@@ -45,7 +49,8 @@ private:
     bool rgb_ = false, emissive_ = false;
     VoxelGrid<float> density_, LeScale_;
     MediumSpectrum sigmaA_, sigmaS_, Le_;
-    VoxelGrid<Spectrum> rgbA_, rgbS_;
+    VoxelGrid<Spectrum> rgbA_, rgbS_, rgbLe_;
+    float rgbLeScale_ = 0;
     const RGBColorSpace* space_ = nullptr;
     // uniformgrid: each cell's largest density. rgbgrid: each cell's largest sigma_a + sigma_s
     // per channel (RGB mode), and a bound on the lifted spectra's (spectral mode).

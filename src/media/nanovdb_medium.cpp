@@ -8,11 +8,12 @@
 namespace ps {
 
 NanoVDBMedium::NanoVDBMedium(const Transform& worldFromMedium, NanoVDBGrid density, MediumSpectrum sigmaA,
-                             MediumSpectrum sigmaS, float g)
+                             MediumSpectrum sigmaS, float g, std::optional<NanoVDBTemperature> temperature)
     // The medium's box is the grid's world box, as pbrt-v4's; 64^3 majorant cells, as pbrt-v4's.
     : DensityMedium(MediumBox{worldFromMedium.inverse(), density.worldMin(), density.worldMax()}, std::move(sigmaA),
                     std::move(sigmaS), g, 64),
-      grid_(std::move(density)) {
+      grid_(std::move(density)), temperature_(std::move(temperature)) {
+    buildBlackbodyTable();
     const Vec3 e = box_.p1 - box_.p0;
     if (!(e.x > 0 && e.y > 0 && e.z > 0))
         throw std::runtime_error(grid_.name() + ": the grid's world bounding box is empty");

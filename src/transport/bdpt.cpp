@@ -560,6 +560,19 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
             c.dispersive = lambda && usesDispersiveVertex(light, camera, s, t);
             deposit(s, t, c);
         }
+    // Emission inside media that the camera walk met along its flights: strategy (0, k + 2)
+    // for the flight leaving camera vertex k, with weight 1 under every heuristic, since no
+    // other strategy has a density for it (subpaths_media.cpp collects it at pbrt-v4's
+    // depths, k < maxdepth).
+    if (ms)
+        for (int k = 0; k < nCamera; ++k) {
+            if (camera[k].mediumLe.isBlack() || (onlyDepth >= 0 && k != onlyDepth)) continue;
+            Connection c;
+            c.L = camera[k].mediumLe;
+            c.weight = 1;
+            c.dispersive = lambda && usesDispersiveVertex(light, camera, 0, k + 1);
+            deposit(0, k + 2, c);
+        }
     // t = 0: the light subpath's rays that crossed the lens (lens_hits.h).
     for (int i = 0; i < lensHits.n; ++i) {
         const LensHit& hit = lensHits.hits[i];
@@ -589,8 +602,10 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
             if (t == 1) {
                 strategies_->splat(s, c.pRaster, ctx.toFilm(contribution), ctx.toFilm(c.L), ctx.sampleIndex);
             } else if (int k = strategies_->slot(s, t); k >= 0) {
-                perStrategy[2 * k] = ctx.toFilm(contribution);
-                perStrategy[2 * k + 1] = ctx.toFilm(c.L);
+                // Added: strategy (0, t) may come twice, from an emitter the walk hit and from a
+                // medium's emission along the flight before it.
+                perStrategy[2 * k] += ctx.toFilm(contribution);
+                perStrategy[2 * k + 1] += ctx.toFilm(c.L);
             }
         }
         if (c.weight == 0) return;
@@ -639,12 +654,27 @@ bool BDPTIntegrator::strategyContribution(const Ray& ray, Vec2 pFilm, int s, int
         if (paths_.continueLightSubpath(origin, sampler, scratch, stats, light, s, lambda, ms) != s) return false;
     }
     sampler.startStream(kCameraStream);
-    if (paths_.cameraSubpath(ray, sampler, scratch, stats, camera, t, lambda, ms) != t) return false;
-    sampler.startStream(kConnectionStream);
-    sampler.seekDimension(connectionDimension(s, t));
-    Connection c = connect(light, camera, s, t, sampler, stats, true, nullptr, nullptr, lambda, ms);
-    if (c.L.isBlack() || c.weight == 0) return false;
-    out = {t == 1 ? c.pRaster : pFilm, c.L * c.weight, s, t, lambda && usesDispersiveVertex(light, camera, s, t)};
+    const int nCamera = paths_.cameraSubpath(ray, sampler, scratch, stats, camera, t, lambda, ms);
+    // s = 0 in an emissive medium: the emission along the flight from camera vertex t - 2,
+    // whatever that flight then did (produce's strategy (0, t), weight 1).
+    Spectrum L;
+    bool dispersive = false;
+    if (s == 0 && ms && t >= 2 && nCamera >= t - 1 && !camera[t - 2].mediumLe.isBlack()) {
+        L = camera[t - 2].mediumLe;
+        dispersive = lambda && usesDispersiveVertex(light, camera, 0, t - 1);
+    }
+    if (nCamera == t) {
+        sampler.startStream(kConnectionStream);
+        sampler.seekDimension(connectionDimension(s, t));
+        Connection c = connect(light, camera, s, t, sampler, stats, true, nullptr, nullptr, lambda, ms);
+        if (!c.L.isBlack() && c.weight != 0) {
+            L += c.L * c.weight;
+            dispersive = dispersive || (lambda && usesDispersiveVertex(light, camera, s, t));
+            if (t == 1) pFilm = c.pRaster;
+        }
+    }
+    if (L.isBlack()) return false;
+    out = {pFilm, L, s, t, dispersive};
     return true;
 }
 

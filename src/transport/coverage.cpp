@@ -118,6 +118,24 @@ std::optional<UnsampledPaths> deltaSpecularEye(const Scene& scene, const SceneTr
         every};
 }
 
+// Light emitted inside a medium (sigma_a Le, pbrt-v4's volpath) is sampled only by a camera
+// walk's free flights: no light sampler chooses points in volumes, so no light subpath starts
+// there. Light tracing has no other strategy. Veach's mlt's paths begin with a vertex x0 on a
+// light (mlt/veach/path_space.h), which its mutations generate by sampling lights: an
+// emitting medium point would be a new kind of x0, with a density none of them has (not
+// implemented, rather than impossible as for light tracing).
+std::optional<UnsampledPaths> mediumEmission(const Scene& scene, const std::string& integrator) {
+    if ((integrator != "light" && integrator != "mlt") || !scene.hasEmissiveMedia()) return std::nullopt;
+    const std::string why =
+        integrator == "light"
+            ? "light tracing cannot render light emitted inside a medium: its only subpaths start on lights, and "
+              "no light sampler chooses points in volumes (only a camera walk's free flights find that emission)"
+            : "Veach's mlt cannot render light emitted inside a medium: its paths begin at a vertex on a light, "
+              "which its mutations sample from the lights, and no light sampler chooses points in volumes (an emitting "
+              "medium point as a path's first vertex is not implemented)";
+    return UnsampledPaths{"medium-emission", why + "; use path, bdpt, pssmlt or mmlt", false};
+}
+
 }  // namespace
 
 bool samplesLensHits(const Scene& scene, const std::string& integrator) {
@@ -154,6 +172,7 @@ std::vector<UnsampledPaths> unsampledPaths(const Scene& scene, const std::string
                                                  "; with a thin lens, light tracing's t = 0 strategy would)"});
     }
     if (auto a = deltaSpecularEye(scene, t, integrator)) out.push_back(*a);
+    if (auto e = mediumEmission(scene, integrator)) out.push_back(*e);
     return out;
 }
 
@@ -183,11 +202,9 @@ std::string missingPaths(const Scene& scene, const std::string& integrator) {
 }
 
 std::string unsupportedMedia(const Scene& scene, const std::string& integrator) {
-    if (!scene.hasMedia() || integrator == "path") return "";
-    // Medium vertices carry no emission (Veach's mlt's included): sigma_a Le is only path tracing's.
-    if (scene.hasEmissiveMedia())
-        return "integrator \"" + integrator + "\" does not support emissive media yet; render this scene with \"path\" "
-               "(pbrt-v4's \"volpath\")";
+    // Refused rather than rendered without the emission (it would be an image darker than
+    // every other integrator's, unsampled-paths' warning alone is too easy to miss).
+    if (auto e = mediumEmission(scene, integrator)) return e->message;
     return "";
 }
 

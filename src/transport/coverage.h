@@ -20,7 +20,8 @@ struct UnsampledPaths {
     // "delta-specular-eye": L S+ E from a delta light, through a delta camera; "delta-caustic":
     // path tracing's L S+ D ... E from a delta light; "light-*": light tracing's own (its lens,
     // the environment, a camera in a medium, specular surfaces seen by the camera);
-    // "mlt-lens": Veach's mlt through a camera without importance.
+    // "mlt-lens": Veach's mlt through a camera without importance; "medium-emission": light
+    // and mlt with emissive media.
     std::string id;
     // What is missed, naming the lights, the materials and the camera, and Veach's remedies.
     std::string message;
@@ -51,9 +52,10 @@ std::string inconsistentSurfaces(const Scene& scene, const std::string& integrat
 
 // Why `integrator` cannot render the scene's participating media, or "" when it can: the path
 // tracer (pbrt-v4's volpath), the integrators over the shared subpaths (light, bdpt, pssmlt,
-// mmlt) and Veach's mlt (mlt/veach/path_space_media.cpp) have medium vertices; emissive media
-// outside path tracing not yet (issue 36): those refuse the scene (createIntegrator) rather
-// than render it without.
+// mmlt) and Veach's mlt (mlt/veach/path_space_media.cpp) have medium vertices. Emission
+// inside media: path, bdpt, pssmlt and mmlt sample it by the camera walk's free flights;
+// light and mlt have no strategy for it ("medium-emission" of unsampledPaths) and refuse
+// the scene (createIntegrator) rather than render it without.
 std::string unsupportedMedia(const Scene& scene, const std::string& integrator);
 
 // A warning for Veach's mlt in a scene where a shape that bounds a medium may scatter

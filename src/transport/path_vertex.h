@@ -51,6 +51,12 @@ struct PathVertex {
     const Medium* mediumAbove = nullptr;
     const Medium* mediumBelow = nullptr;
     Spectrum rU{1.0f};
+    // Camera subpaths in emissive media: the light the media emit along the free flights that
+    // leave this vertex (pbrt-v4's sigma_a Le at tentative collisions, weighted and divided by
+    // the path's channel-mean density already). A point that emits inside a medium is the last
+    // vertex of strategy (s = 0, t = this vertex's index + 2), which no other strategy
+    // samples (no light sampler chooses points in volumes): its MIS weight is 1.
+    Spectrum mediumLe;
 
     bool onSurface() const { return ng.x != 0 || ng.y != 0 || ng.z != 0; }
     // An escaped camera ray, or an emitter found by the camera subpath, or a light vertex.

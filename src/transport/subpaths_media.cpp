@@ -35,7 +35,15 @@ int Subpaths::randomWalkInMedia(Ray ray, const Medium* medium, Spectrum beta0, f
     // channels' flight densities relative to the hero's.
     Spectrum scatter(1.0f), rU(1.0f);
     float etaScale = 1;
-    auto noEmission = [](const MediumProperties&, const Spectrum&, const Spectrum&) {};
+    // Camera walks collect the media's emission along each flight, into the vertex the flight
+    // leaves, at the depths the path tracer does (volpath: fewer than maxdepth scatterings
+    // before it). Light walks have no use for it: emission inside a medium is no light
+    // subpath's origin.
+    const bool camera = mode == TransportMode::Radiance;
+    PathVertex* from = nullptr;
+    auto emission = [&](const MediumProperties& mp, const Spectrum& sigmaMaj, const Spectrum& Tm) {
+        if (from) from->mediumLe += emissionAtCollision(mp, sigmaMaj, Tm, beta0 * scatter, rU, media.hero, media.spectral);
+    };
     int flightBlock = -1;  // the block whose flight numbers were read (a second flight, past an interface, draws from rng)
     while (true) {
         const int block = firstDimension + kDimensionsPerMediaVertex * bounces;
@@ -54,8 +62,9 @@ int Subpaths::randomWalkInMedia(Ray ray, const Medium* medium, Spectrum beta0, f
                 uFlight = sampler.get1D();
                 uEvent = sampler.get1D();
             }
+            from = camera && bounces < maxDepth_ && medium->emissive() ? &prev : nullptr;
             const Flight fl = deltaTrack(*medium, ray, tEnd, uFlight, rng, lambda, media.hero, scatter, rU, nullptr,
-                                         noEmission, uEvent);
+                                         emission, uEvent);
             if (fl.end == FlightEnd::Absorbed || !scatter.isFinite()) break;
             if (fl.end == FlightEnd::Scattered) {
                 scattered = true;

@@ -84,11 +84,7 @@ Spectrum PathTracer::estimateInMedia(const Ray& cameraRay, Sampler& sampler, Scr
             const Flight fl = deltaTrack(*medium, ray, tEnd, sampler.get1D(), rng, lambda, h, st.beta, st.rU, &st.rL,
                                          [&](const MediumProperties& mp, const Spectrum& sigmaMaj, const Spectrum& Tm) {
                 // Emission along the flight (pbrt-v4 adds sigma_a Le at every tentative collision).
-                if (depth < maxDepth_ && !mp.Le.isBlack()) {
-                    const float pdf = sigmaMaj[h] * Tm[h];
-                    const Spectrum betaE = st.beta * Tm / pdf, rE = st.rU * sigmaMaj * Tm / pdf;
-                    if (!rE.isBlack()) st.L += betaE * mp.sigmaA * mp.Le / st.mean(rE);
-                }
+                if (depth < maxDepth_) st.L += emissionAtCollision(mp, sigmaMaj, Tm, st.beta, st.rU, h, st.spectral);
             });
             if (fl.end == FlightEnd::Absorbed || !st.beta.isFinite()) return st.L;
             if (fl.end == FlightEnd::Scattered) {

@@ -460,6 +460,21 @@ AttributeBegin
 AttributeEnd)";
     })->bootstrapScale = {{"pssmlt", 3}, {"mmlt", 2}};  // with the matrix's: 2.5% and 1.8%
 
+    // The same fog glowing (pbrt-v4's sigma_a Le, a third of the image): emission found by the
+    // camera walk's free flights alone, the s = 0 strategies of bdpt, pssmlt and mmlt with
+    // weight 1. Light tracing and Veach's mlt have no strategy for it (coverage.h).
+    box("medium/emissive", [](Box& b) {
+        b.maxDepth = 4;
+        b.light = "AttributeBegin\nMediumInterface \"fog\" \"fog\"\n" + b.light + "\nAttributeEnd";
+        b.extra = R"(MakeNamedMedium "fog" "string type" "homogeneous" "rgb sigma_a" [ 0.1 0.2 0.3 ]
+  "rgb sigma_s" [ 0.8 0.5 0.3 ] "float g" [ 0.3 ] "rgb Le" [ 1.5 1 0.8 ]
+AttributeBegin
+  Material "interface"
+  MediumInterface "fog" ""
+  Shape "bilinearmesh" "point3 P" [ -0.5 0 0.5   0.5 0 0.5   -0.5 1 0.5   0.5 1 0.5 ]
+AttributeEnd)";
+    }, {"light", "mlt"});
+
     // The same with a 2 x 2 x 2 density grid: null collisions in both walks' delta tracking and
     // in every connection's ratio tracking, against one chromatic majorant.
     box("medium/grid-fog", [](Box& b) {

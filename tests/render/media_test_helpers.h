@@ -46,6 +46,26 @@ inline std::unique_ptr<Scene> sceneInMedium(const std::string& medium) {
     return buildScene(parseSceneString(text, ".", "<test>"), false);
 }
 
+// The camera inside an emitting sphere of radiance 1 whose surface is black, all of it filled
+// with `medium`: whatever the medium scatters, every path ends on the wall or in absorption,
+// and where it absorbs it also emits Le = 1 (sigma_a Le), so the radiance is 1 everywhere
+// (with the depth limit far beyond what the paths reach: 200 by default).
+inline std::string enclosedFurnace(const std::string& medium, const std::string& integrator = "volpath", int maxDepth = 200) {
+    return "MakeNamedMedium \"fog\" " + medium + R"(
+        MediumInterface "" "fog"
+        LookAt 0 0 0  0 0 1  0 1 0
+        Camera "perspective" "float fov" [ 70 ]
+        Film "rgb" "integer xresolution" [ 12 ] "integer yresolution" [ 12 ]
+        Sampler "independent"
+        Integrator ")" + integrator + R"(" "integer maxdepth" [ )" + std::to_string(maxDepth) + R"( ]
+        WorldBegin
+        AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+        Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+        ReverseOrientation
+        Shape "sphere" "float radius" [ 1 ]
+    )";
+}
+
 // Ratio tracking from p0 to p1, per channel in RGB mode with the hero drawn uniformly as the
 // path tracer draws it: the estimate of each channel's transmittance is T / mean(rL), what a
 // shadow ray towards a delta light contributes (media/transmittance.h).
