@@ -40,5 +40,5 @@ TEST(PbrtMediaReference, Cloud) {
 
 // The NanoVDB test grid (tests/data/media/tiny.nvdb) turned and scaled, under a point light.
 TEST(PbrtMediaReference, NanoVDBGrid) {
-    expectPbrtReference("media-nanovdb.pbrt", "media-nanovdb-4096spp.exr", 4096, 32, 0, true);
+    expectPbrtReference("media-nanovdb.pbrt", "media-nanovdb-2048spp.exr", 2048, 32, 0, true);
 }
