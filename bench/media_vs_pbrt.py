@@ -8,8 +8,9 @@ sky). The cloud's .nvdb is written into the cache by tests/tools/make_nvdb (`mak
 cloud N`, built with the tests) and the scene read from a copy naming it.
 
 For each scene:
-  1. a long reference: pathspace `path`, spectral (pbrt-v4 renders spectrally), --ref-spp
-     samples, seed 1000 (cached in build/bench-cache/);
+  1. a long reference: pathspace `path`, spectral (pbrt-v4 renders spectrally), a render of
+     --ref-time seconds (30 times the runs' by default), seed 1000 (cached in
+     build/bench-cache/; delete it, and the .nvdb, after changing a scene or make_nvdb);
   2. equal-time runs of the same whole-process wall time T (--time), 2 threads, --seeds seeds,
      alternating the two renderers within each seed: pbrt-v4 volpath (its --spp from two
      timed probes, the power of two nearest T: its default zsobol sampler renders no other
@@ -77,10 +78,11 @@ def scene_copy(name, tmp, nvdb, film=None, drop_cloud=False):
 
 def equal_time(name, scene, args, tmp):
     tag = f"-{args.nvdb_res}" if name == "cloud" else ""
-    ref = os.path.join(args.cache, f"media-{name}{tag}-ref{args.ref_spp}.pfm")
+    ref = os.path.join(args.cache, f"media-{name}{tag}-ref{args.ref_time:g}s.pfm")
     if not os.path.exists(ref):
-        t = ours(scene, ref, 1000, args.threads, spp=args.ref_spp, extra=SPECTRAL)
-        print(f"  reference: pathspace path spectral, {args.ref_spp} spp, {t:.1f} s", flush=True)
+        st = os.path.join(tmp, "ref-stats.json")
+        t = ours(scene, ref, 1000, args.threads, seconds=args.ref_time, stats=st, extra=SPECTRAL)
+        print(f"  reference: pathspace path spectral, {json.load(open(st))['spp_mean']:.0f} spp, {t:.1f} s", flush=True)
     m_ref = pfm_mean_luminance(ref)
     spp, a, b = pbrt_spp_for(scene, args.time, args.threads, tmp)
     print(f"  pbrt-v4 volpath: {a:.2f} s + {b * 1000:.1f} ms/spp -> --spp {spp}", flush=True)
@@ -148,7 +150,7 @@ def main():
     ap.add_argument("--time", type=float, default=6.0, help="whole-process wall time of each run, seconds")
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--threads", type=int, default=2)
-    ap.add_argument("--ref-spp", type=int, default=4096, help="pathspace reference, samples per pixel")
+    ap.add_argument("--ref-time", type=float, default=180, help="pathspace reference, seconds")
     ap.add_argument("--nvdb-res", type=int, default=128, help="the cloud grid's voxels per side (8 to 128)")
     ap.add_argument("--load-runs", type=int, default=3)
     ap.add_argument("--pbrt", default=many_lights.PBRT)

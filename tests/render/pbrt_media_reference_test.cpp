@@ -19,26 +19,26 @@ TEST(PbrtMediaReference, HomogeneousFogBox) {
 // The camera inside a medium (the MediumInterface in effect at Camera): a room of thin haze
 // (g -0.3) with a sphere of a denser medium nested in it (MediumInterface "jade" "haze").
 TEST(PbrtMediaReference, CameraInHazeWithANestedMedium) {
-    expectPbrtReference("media-haze-room.pbrt", "media-haze-room-4096spp.exr", 4096, 32, 0, true);
+    expectPbrtReference("media-haze-room.pbrt", "media-haze-room-4096spp.exr", 4096, 16, 0, true);
 }
 
 // uniformgrid: an 8x8x8 density with chromatic coefficients times "scale", and emission
 // ("Le" normalised by its luminance times an 8x8x8 "Lescale" grid), lit by a spotlight.
 TEST(PbrtMediaReference, UniformGridWithEmission) {
-    expectPbrtReference("media-uniformgrid.pbrt", "media-uniformgrid-4096spp.exr", 4096, 32, 0, true);
+    expectPbrtReference("media-uniformgrid.pbrt", "media-uniformgrid-4096spp.exr", 4096, 16, 0, true);
 }
 
 // rgbgrid: 4x4x4 RGB sigma_a and sigma_s in a box turned and stretched by the medium's transform.
 TEST(PbrtMediaReference, RgbGrid) {
-    expectPbrtReference("media-rgbgrid.pbrt", "media-rgbgrid-4096spp.exr", 4096, 32, 0, true);
+    expectPbrtReference("media-rgbgrid.pbrt", "media-rgbgrid-4096spp.exr", 4096, 8, 0, true);
 }
 
 // pbrt-v4's procedural cloud in a stretched box, under a distant light and a sky.
 TEST(PbrtMediaReference, Cloud) {
-    expectPbrtReference("media-cloud.pbrt", "media-cloud-4096spp.exr", 4096, 32, 0, true);
+    expectPbrtReference("media-cloud.pbrt", "media-cloud-4096spp.exr", 4096, 16, 0, true);
 }
 
 // The NanoVDB test grid (tests/data/media/tiny.nvdb) turned and scaled, under a point light.
 TEST(PbrtMediaReference, NanoVDBGrid) {
-    expectPbrtReference("media-nanovdb.pbrt", "media-nanovdb-2048spp.exr", 2048, 32, 0, true);
+    expectPbrtReference("media-nanovdb.pbrt", "media-nanovdb-2048spp.exr", 2048, 8, 0, true);
 }

@@ -177,7 +177,7 @@ float cloudValue(int n, int i, int j, int k) {
         return v;
     };
     const float x = (i + 0.5f) / n - 0.5f, y = (j + 0.5f) / n - 0.5f, z = (k + 0.5f) / n - 0.5f;
-    const float blobs[4][4] = {{0, -0.05f, 0, 0.3f}, {0.17f, 0.06f, 0.05f, 0.2f}, {-0.18f, 0.02f, -0.06f, 0.2f}, {0.04f, 0.16f, -0.03f, 0.17f}};
+    const float blobs[4][4] = {{0, -0.07f, 0, 0.42f}, {0.22f, 0.05f, 0.06f, 0.27f}, {-0.22f, 0.02f, -0.07f, 0.27f}, {0.05f, 0.2f, -0.03f, 0.25f}};
     float shape = 0;
     for (const auto& b : blobs) {
         const float d2 = ((x - b[0]) * (x - b[0]) + (y - b[1]) * (y - b[1]) + (z - b[2]) * (z - b[2])) / (b[3] * b[3]);
