@@ -177,7 +177,8 @@ float cloudValue(int n, int i, int j, int k) {
         return v;
     };
     const float x = (i + 0.5f) / n - 0.5f, y = (j + 0.5f) / n - 0.5f, z = (k + 0.5f) / n - 0.5f;
-    const float blobs[4][4] = {{0, -0.07f, 0, 0.42f}, {0.22f, 0.05f, 0.06f, 0.27f}, {-0.22f, 0.02f, -0.07f, 0.27f}, {0.05f, 0.2f, -0.03f, 0.25f}};
+    const float blobs[4][4] = {  // centre, radius
+        {0, -0.07f, 0, 0.42f}, {0.22f, 0.05f, 0.06f, 0.27f}, {-0.22f, 0.02f, -0.07f, 0.27f}, {0.05f, 0.2f, -0.03f, 0.25f}};
     float shape = 0;
     for (const auto& b : blobs) {
         const float d2 = ((x - b[0]) * (x - b[0]) + (y - b[1]) * (y - b[1]) + (z - b[2]) * (z - b[2])) / (b[3] * b[3]);
@@ -192,14 +193,16 @@ float cloudValue(int n, int i, int j, int k) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2 || (argc > 2 && std::string(argv[2]) == "cloud" && (argc < 4 || std::atoi(argv[3]) < 8 || std::atoi(argv[3]) > 128 || std::atoi(argv[3]) % 8 != 0))) {
+    const bool cloud = argc > 2 && std::string(argv[2]) == "cloud";
+    const int cloudSize = cloud && argc > 3 ? std::atoi(argv[3]) : 0;
+    if (argc < 2 || (cloud && (cloudSize < 8 || cloudSize > 128 || cloudSize % 8 != 0))) {
         std::fprintf(stderr, "usage: make_nvdb OUT.nvdb [zip]  or  make_nvdb OUT.nvdb cloud N (N a multiple of 8, 8 to 128)\n");
         return 2;
     }
     const bool zip = argc > 2 && std::string(argv[2]) == "zip";
     std::vector<std::pair<std::string, Bytes>> grids;
-    if (argc > 2 && std::string(argv[2]) == "cloud") {
-        const int n = std::atoi(argv[3]);
+    if (cloud) {
+        const int n = cloudSize;
         auto value = [n](int i, int j, int k) { return cloudValue(n, i, j, k); };
         auto empty = [&](int i0, int j0, int k0) {  // a block of zeros is a constant tile of 0
             for (int i = i0; i < i0 + 8; ++i)
