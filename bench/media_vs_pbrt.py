@@ -22,12 +22,12 @@ For each scene:
 Then the load: both renderers on the cloud scene at 1 spp, 16x16 pixels (the film's size
 changed in a copy), whole process, against the same scene without the cloud (its medium and
 boundary removed): wall time (the best of --load-runs, alternating) and peak resident memory
-(the child's ru_maxrss from wait4, what /usr/bin/time -v reports as its maximum resident set
-size), and the differences, the cloud's own cost.
+(/usr/bin/time's maximum resident set size, %M; not wait4's ru_maxrss from Python, which
+Linux starts at the forking Python's own 20 MiB), and the differences, the cloud's own cost.
 
 Run from the repository root, under the lock for the whole measurement:
 
-  flock /tmp/ps-build.lock python3 bench/media_vs_pbrt.py [--time 6] [--seeds 3] [--pbrt PBRT]
+  flock /tmp/ps-build.lock python3 bench/media_vs_pbrt.py [--time 6] [--seeds 3] [--pbrt PBRT] [--load-only]
 """
 import argparse
 import json
@@ -36,12 +36,12 @@ import re
 import subprocess
 import sys
 import tempfile
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import many_lights  # noqa: E402
 from image_means import mean_and_error, pfm_mean_luminance  # noqa: E402
 from many_lights import ROOT, ours, pbrt_spp_for, relmse  # noqa: E402
-from scene_load import run as run_measured  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENES = {"fog": os.path.join(HERE, "scenes", "media-fog.pbrt"), "cloud": os.path.join(HERE, "scenes", "media-cloud.pbrt")}
@@ -119,6 +119,18 @@ def equal_time(name, scene, args, tmp):
     return {"pbrt_spp": spp, "pbrt_probe": [a, b], "table": table, "ratio": ratio, "ratio_at_T": ratio_t}
 
 
+def run_measured(cmd, cwd):
+    """(wall seconds, peak RSS in MiB, exit status, output tail) of one process, through
+    /usr/bin/time (its %M, KiB)."""
+    t0 = time.perf_counter()
+    p = subprocess.run(["/usr/bin/time", "-f", "maxrss %M", *cmd], cwd=cwd, stdout=subprocess.DEVNULL,
+                       stderr=subprocess.PIPE, text=True)
+    wall = time.perf_counter() - t0
+    lines = p.stderr.splitlines()
+    rss = next((int(l.split()[1]) / 1024.0 for l in reversed(lines) if l.startswith("maxrss ")), float("nan"))
+    return wall, rss, p.returncode, lines[-5:]
+
+
 def load(args, tmp, nvdb, pbrt):
     out = os.path.join(tmp, "load.exr")
     scenes = {"cloud": scene_copy("cloud", tmp, nvdb, film=(16, 16)),
@@ -153,6 +165,7 @@ def main():
     ap.add_argument("--ref-time", type=float, default=180, help="pathspace reference, seconds")
     ap.add_argument("--nvdb-res", type=int, default=128, help="the cloud grid's voxels per side (8 to 128)")
     ap.add_argument("--load-runs", type=int, default=3)
+    ap.add_argument("--load-only", action="store_true", help="only the load time and memory")
     ap.add_argument("--pbrt", default=many_lights.PBRT)
     ap.add_argument("--cache", default=os.path.join(ROOT, "build", "bench-cache"))
     ap.add_argument("--json", help="write every figure here")
@@ -162,7 +175,7 @@ def main():
     nvdb = make_nvdb(args.cache, args.nvdb_res)
     results = {"nvdb": {"file": os.path.basename(nvdb), "bytes": os.path.getsize(nvdb)}}
     with tempfile.TemporaryDirectory() as tmp:
-        for name in args.scenes:
+        for name in [] if args.load_only else args.scenes:
             print(f"== {name}", flush=True)
             results[name] = equal_time(name, scene_copy(name, tmp, nvdb), args, tmp)
         print(f"== load: {os.path.basename(nvdb)}, {os.path.getsize(nvdb) / 2**20:.1f} MiB", flush=True)
