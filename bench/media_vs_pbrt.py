@@ -19,6 +19,7 @@ For each scene:
      (x - r)^2 / (r^2 + 0.01), as bench/README.md's equal-time figures), mean and spread over
      the seeds, the ratio ours / pbrt-v4 (the goal: at most 1/3), and "at T": each run's relMSE
      times its own whole-process time over T (relMSE falls as 1/time), for runs that missed T.
+     --ours-fixed-spp adds ours at a fixed spp chosen from probes as pbrt-v4's is.
 Then the load: both renderers on the cloud scene at 1 spp, 16x16 pixels (the film's size
 changed in a copy), whole process, against the same scene without the cloud (its medium and
 boundary removed): wall time (the best of --load-runs, alternating) and peak resident memory
@@ -89,6 +90,17 @@ def equal_time(name, scene, args, tmp):
     configs = [("pbrt-v4 volpath", lambda o, sd, st: many_lights.pbrt(scene, o, sd, args.threads, spp)),
                ("ours path", lambda o, sd, st: ours(scene, o, sd, args.threads, seconds=args.time, stats=st,
                                                     extra=SPECTRAL))]
+    if args.ours_fixed_spp:
+        # Ours at a fixed count too, chosen as pbrt-v4's is (any count: t = a + b spp fitted to
+        # probes at 8 and 32 spp), to set the --time renders' sampling apart from the rest.
+        out = os.path.join(tmp, "probe.pfm")
+        t1 = min(ours(scene, out, 90, args.threads, spp=8, extra=SPECTRAL) for _ in range(2))
+        t2 = min(ours(scene, out, 91, args.threads, spp=32, extra=SPECTRAL) for _ in range(2))
+        ob = max((t2 - t1) / 24, 1e-6)
+        oa = max(t1 - 8 * ob, 0.0)
+        ospp = max(1, round((args.time - oa) / ob))
+        print(f"  ours fixed: {oa:.2f} s + {ob * 1000:.1f} ms/spp -> --spp {ospp}", flush=True)
+        configs.append(("ours path fixed spp", lambda o, sd, st: ours(scene, o, sd, args.threads, spp=ospp, extra=SPECTRAL)))
     runs = {label: [] for label, _ in configs}
     for seed in range(1, args.seeds + 1):
         for label, run in configs:
@@ -96,7 +108,7 @@ def equal_time(name, scene, args, tmp):
             if os.path.exists(st):
                 os.remove(st)
             t = run(out, seed, st)
-            s = spp if label.startswith("pbrt") else round(json.load(open(st))["spp_mean"], 1)
+            s = spp if label.startswith("pbrt") else ospp if "fixed" in label else round(json.load(open(st))["spp_mean"], 1)
             runs[label].append({"seed": seed, "seconds": t, "spp": s, "relmse": relmse(out, ref),
                                 "mean": pfm_mean_luminance(out)})
             print(f"    seed {seed} {label}: {t:.2f} s, {s} spp, relMSE {runs[label][-1]['relmse']:.4g}", flush=True)
@@ -108,6 +120,9 @@ def equal_time(name, scene, args, tmp):
                         "seconds": [r["seconds"] for r in rs], "spp": [r["spp"] for r in rs],
                         "image_mean_over_ref": sum(r["mean"] for r in rs) / len(rs) / m_ref, "runs": rs}
     p, o = table["pbrt-v4 volpath"], table["ours path"]
+    if "ours path fixed spp" in table:
+        f = table["ours path fixed spp"]
+        print(f"  relMSE ours at a fixed spp / pbrt-v4: {f['relmse'] / p['relmse']:.3f} (at T {f['relmse_at_T'] / p['relmse_at_T']:.3f})")
     print(f"  {'':16s} {'relMSE':>10s} {'sd':>9s} {'at T':>10s} {'seconds':>20s} {'spp':>20s} {'mean/ref':>8s}")
     for label, row in table.items():
         print(f"  {label:16s} {row['relmse']:10.4g} {row['relmse_sd']:9.2g} {row['relmse_at_T']:10.4g} "
@@ -166,6 +181,8 @@ def main():
     ap.add_argument("--nvdb-res", type=int, default=128, help="the cloud grid's voxels per side (8 to 128)")
     ap.add_argument("--load-runs", type=int, default=3)
     ap.add_argument("--load-only", action="store_true", help="only the load time and memory")
+    ap.add_argument("--ours-fixed-spp", action="store_true",
+                    help="also ours at a fixed spp chosen from timed probes, as pbrt-v4's (not --time)")
     ap.add_argument("--pbrt", default=many_lights.PBRT)
     ap.add_argument("--cache", default=os.path.join(ROOT, "build", "bench-cache"))
     ap.add_argument("--json", help="write every figure here")
