@@ -1,11 +1,16 @@
 // Writes tests/data/media/tiny.nvdb (tests/tools/nvdb_test_grid.h describes it) in NanoVDB's
 // file format 32.3, the version pbrt-v4 pins, without NanoVDB itself (Debian 12 has no
 // package of it). Usage: make_nvdb OUT.nvdb [zip]. "zip" writes the grids zlib-compressed
-// (codec ZIP), to test that path of the reader.
+// (codec ZIP), to test that path of the reader. `make_nvdb OUT.nvdb cloud N` writes instead
+// one "density" grid of N^3 voxels (N a multiple of 8 up to 128), a procedural cloud in the world box
+// [-0.5, 0.5]^3 (bench/media_vs_pbrt.py loads it in both renderers).
 #include <zlib.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -40,10 +45,12 @@ uint64_t nameHash(const std::string& s) {
     return h;
 }
 
-// A grid over index (0..n-1)^3, n <= 16 (one root tile, one upper and one lower node), with
-// `value` at each voxel except where `tile` says a whole 8^3 block is a constant.
+// A grid over index (0..n-1)^3, n <= 128 (one root tile, one upper and one lower node), with
+// `value` at each voxel except where `tile` says a whole 8^3 block is a constant; world =
+// index * voxel + kOrigin.
 template <typename Value, typename TileFn>
-Bytes grid(const std::string& name, int n, Value&& value, TileFn&& tile, float tileValue) {
+Bytes grid(const std::string& name, int n, Value&& value, TileFn&& tile, float tileValue,
+           float voxel = nvdbtest::kVoxelSize) {
     std::vector<int> leaves;  // lower-node slot of each leaf
     int tiles = 0;
     const int blocks = (n + 7) / 8;
@@ -63,7 +70,7 @@ Bytes grid(const std::string& name, int n, Value&& value, TileFn&& tile, float t
     put(g, 28, uint32_t(1));  // grid count
     put(g, 32, uint64_t(size));
     std::memcpy(g.data() + 40, name.c_str(), name.size() + 1);
-    const float s = nvdbtest::kVoxelSize, o = nvdbtest::kOrigin;
+    const float s = voxel, o = nvdbtest::kOrigin;
     for (int i = 0; i < 3; ++i) {
         put(g, 296 + 4 * (4 * i), s);           // mMatF diagonal
         put(g, 332 + 4 * (4 * i), 1 / s);       // mInvMatF
@@ -149,17 +156,66 @@ Bytes constantGrid(const std::string& name, float v) {
     return g;
 }
 
+// The bench's cloud: a few overlapping soft blobs eroded by value noise (4 octaves), 0 outside,
+// over index (0..n-1)^3.
+float cloudValue(int n, int i, int j, int k) {
+    auto hash = [](int x, int y, int z) {
+        uint32_t h = uint32_t(x) * 73856093u ^ uint32_t(y) * 19349663u ^ uint32_t(z) * 83492791u;
+        h ^= h >> 13;
+        h *= 0x5bd1e995u;
+        h ^= h >> 15;
+        return float(h & 0xffffff) / float(0xffffff);
+    };
+    auto noise = [&](float x, float y, float z) {  // trilinear value noise
+        const int x0 = int(std::floor(x)), y0 = int(std::floor(y)), z0 = int(std::floor(z));
+        const float fx = x - x0, fy = y - y0, fz = z - z0;
+        float v = 0;
+        for (int c = 0; c < 8; ++c) {
+            const int dx = c & 1, dy = (c >> 1) & 1, dz = c >> 2;
+            v += hash(x0 + dx, y0 + dy, z0 + dz) * (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy) * (dz ? fz : 1 - fz);
+        }
+        return v;
+    };
+    const float x = (i + 0.5f) / n - 0.5f, y = (j + 0.5f) / n - 0.5f, z = (k + 0.5f) / n - 0.5f;
+    const float blobs[4][4] = {  // centre, radius
+        {0, -0.07f, 0, 0.42f}, {0.22f, 0.05f, 0.06f, 0.27f}, {-0.22f, 0.02f, -0.07f, 0.27f}, {0.05f, 0.2f, -0.03f, 0.25f}};
+    float shape = 0;
+    for (const auto& b : blobs) {
+        const float d2 = ((x - b[0]) * (x - b[0]) + (y - b[1]) * (y - b[1]) + (z - b[2]) * (z - b[2])) / (b[3] * b[3]);
+        shape = std::max(shape, 1 - d2);
+    }
+    if (shape <= 0) return 0;
+    float f = 0, amp = 0.5f, freq = 6;
+    for (int o = 0; o < 4; ++o, amp *= 0.5f, freq *= 2) f += amp * noise(x * freq + 11, y * freq + 23, z * freq + 37);
+    return std::max(0.0f, 2.5f * (shape - 0.55f * f));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: make_nvdb OUT.nvdb [zip]\n");
+    const bool cloud = argc > 2 && std::string(argv[2]) == "cloud";
+    const int cloudSize = cloud && argc > 3 ? std::atoi(argv[3]) : 0;
+    if (argc < 2 || (cloud && (cloudSize < 8 || cloudSize > 128 || cloudSize % 8 != 0))) {
+        std::fprintf(stderr, "usage: make_nvdb OUT.nvdb [zip]  or  make_nvdb OUT.nvdb cloud N (N a multiple of 8, 8 to 128)\n");
         return 2;
     }
     const bool zip = argc > 2 && std::string(argv[2]) == "zip";
     std::vector<std::pair<std::string, Bytes>> grids;
-    grids.emplace_back("smoke", constantGrid("smoke", 0.5f));
-    grids.emplace_back("density", grid("density", nvdbtest::kSize, nvdbtest::value, nvdbtest::inTile, nvdbtest::kTileValue));
+    if (cloud) {
+        const int n = cloudSize;
+        auto value = [n](int i, int j, int k) { return cloudValue(n, i, j, k); };
+        auto empty = [&](int i0, int j0, int k0) {  // a block of zeros is a constant tile of 0
+            for (int i = i0; i < i0 + 8; ++i)
+                for (int j = j0; j < j0 + 8; ++j)
+                    for (int k = k0; k < k0 + 8; ++k)
+                        if (value(i, j, k) != 0) return false;
+            return true;
+        };
+        grids.emplace_back("density", grid("density", n, value, empty, 0.0f, 1.0f / n));
+    } else {
+        grids.emplace_back("smoke", constantGrid("smoke", 0.5f));
+        grids.emplace_back("density", grid("density", nvdbtest::kSize, nvdbtest::value, nvdbtest::inTile, nvdbtest::kTileValue));
+    }
     Bytes out(16, 0);
     put(out, 0, kMagic);
     put(out, 8, kVersion);
