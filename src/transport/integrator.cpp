@@ -44,8 +44,8 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
     }
     if (name == "light" || name == "bdpt" || name == "pssmlt" || name == "mmlt" ||
         name == "mlt") {
-        // Light subpaths and connections do not yet cross media or scatter in them: rendered,
-        // such a scene would be silently wrong (issue 36).
+        // Emission inside media has no strategy in light tracing and mlt: rendered, such a scene
+        // would be silently dark (coverage.h, unsupportedMedia).
         if (const std::string why = unsupportedMedia(scene, name); !why.empty()) throw InputError(why);
         if (const std::string bias = knownMediaBias(scene, name); !bias.empty()) warning(bias);
         // Light tracing and Veach's lens mutations need the camera's importance; BDPT and the

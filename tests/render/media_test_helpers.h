@@ -36,14 +36,14 @@ Mean meanOf(int n, F&& draw) {
 }
 
 // A scene whose camera is in `medium` (pbrt-v4's CameraMedium), to reach the medium.
-inline std::unique_ptr<Scene> sceneInMedium(const std::string& medium) {
+inline std::unique_ptr<Scene> sceneInMedium(const std::string& medium, bool spectral = false) {
     setWarningsQuiet(true);
     const std::string text = "MakeNamedMedium \"m\" " + medium + R"(
         MediumInterface "" "m"
         Camera "perspective"
         WorldBegin
     )";
-    return buildScene(parseSceneString(text, ".", "<test>"), false);
+    return buildScene(parseSceneString(text, ".", "<test>"), spectral);
 }
 
 // The camera inside an emitting sphere of radiance 1 whose surface is black, all of it filled

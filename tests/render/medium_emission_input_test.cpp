@@ -19,17 +19,11 @@ namespace {
 
 const std::string kNvdb = PATHSPACE_SOURCE_DIR "/tests/data/media/tiny.nvdb";
 
-std::unique_ptr<Scene> mediumScene(const std::string& medium, bool spectral) {
-    setWarningsQuiet(true);
-    const std::string text = "MakeNamedMedium \"m\" " + medium + "\nMediumInterface \"\" \"m\"\nCamera \"perspective\"\nWorldBegin\n";
-    return buildScene(parseSceneString(text, ".", "<test>"), spectral);
-}
-
 // Every coefficient of the two media at `p`, in RGB mode and at a few sets of wavelengths,
 // equal to single-precision rounding.
 void expectSameProperties(const std::string& a, const std::string& b, Vec3 p) {
     for (bool spectral : {false, true}) {
-        auto sa = mediumScene(a, spectral), sb = mediumScene(b, spectral);
+        auto sa = sceneInMedium(a, spectral), sb = sceneInMedium(b, spectral);
         ASSERT_TRUE(sa->cameraMedium()->emissive());
         ASSERT_TRUE(sb->cameraMedium()->emissive());
         for (int k = 0; k < (spectral ? 8 : 1); ++k) {
@@ -96,7 +90,7 @@ TEST(MediumEmissionInput, ConstantTemperatureGridEmitsAsHomogeneousBlackbody) {
 TEST(MediumEmissionInput, TemperatureCutoffColdAndOff) {
     const std::string base = "\"string type\" \"nanovdb\" \"string filename\" \"" + kNvdb +
                              "\" \"string gridname\" \"smoke\" \"string temperaturename\" \"smoke\" ";
-    auto medium = [&](const std::string& extra) { return mediumScene(base + extra, false); };
+    auto medium = [&](const std::string& extra) { return sceneInMedium(base + extra, false); };
     auto cutoff = medium("\"float temperaturecutoff\" [ 0.1 ] \"float temperaturescale\" [ 5000 ]");
     auto offset = medium("\"float temperatureoffset\" [ 0.1 ] \"float temperaturescale\" [ 5000 ]");
     const Vec3 p(10, 10, 10);
@@ -108,7 +102,7 @@ TEST(MediumEmissionInput, TemperatureCutoffColdAndOff) {
     EXPECT_FALSE(medium("\"float temperaturescale\" [ 2000 ]")->cameraMedium()->at(p, nullptr).Le.isBlack());
     EXPECT_FALSE(medium("\"float Lescale\" [ 0 ]")->cameraMedium()->emissive());
     // Without a temperature grid in the file (the default name), no emission, as pbrt-v4.
-    EXPECT_FALSE(mediumScene("\"string type\" \"nanovdb\" \"string filename\" \"" + kNvdb + "\"", false)
+    EXPECT_FALSE(sceneInMedium("\"string type\" \"nanovdb\" \"string filename\" \"" + kNvdb + "\"", false)
                      ->cameraMedium()
                      ->emissive());
 }
