@@ -401,7 +401,6 @@ void configureRender(Scene& scene, const RenderArgs& a, RenderSetup& setup) {
         opts.batches = batchCount(opts.spp);
         if (a.checkpoint.empty() && a.resume.empty()) {
             opts.scramblings = scramblingCount(opts.sampler, opts.spp);
-            if (opts.scramblings > 1) opts.sampleSets = scramblingStarts(opts.spp, opts.scramblings);
         }
     }
     // Only what will be shown or written: a quiet render without --stats or --aov variance

@@ -19,9 +19,17 @@ SobolPermutationTable::SobolPermutationTable(int log2N, uint64_t seed) {
     }
 }
 
+uint32_t PaddedSobolSampler::permutationBlock(int samplesPerPixel) {
+    const uint32_t n = uint32_t(samplesPerPixel < 1 ? 1 : samplesPerPixel);
+    if ((n & (n - 1)) == 0 && n <= kLargestBlock) return n;
+    if (n > SobolPermutationTable::kMaxSamples) return SobolPermutationTable::kMaxSamples;
+    uint32_t block = 1;
+    while (block < n) block *= 4;
+    return block;
+}
+
 PaddedSobolSampler::PaddedSobolSampler(uint64_t seed, int samplesPerPixel)
-    : seed_(seed), n_(uint32_t(samplesPerPixel < 1 ? 1 : samplesPerPixel)) {
-    if ((n_ & (n_ - 1)) == 0) log2N_ = __builtin_ctz(n_);
+    : seed_(seed), n_(permutationBlock(samplesPerPixel)), log2N_(__builtin_ctz(n_)) {
     if (SobolPermutationTable::covers(n_)) table_ = std::make_shared<const SobolPermutationTable>(log2N_, seed);
 }
 

@@ -90,16 +90,29 @@ struct SobolPermutationTable {
 class PaddedSobolSampler final : public Sampler {
 public:
     PaddedSobolSampler(uint64_t seed, int samplesPerPixel);
+    // The block of indices each permutation covers: N itself for a power of two up to
+    // kLargestBlock; otherwise the power of four at or above N, and blocks of the table's 256
+    // beyond it. A nested permutation of a power of four keeps every aligned block of 4^k
+    // indices together, so the first 4^k samples of a block are a (0,2k,2)-net: a render that
+    // stops early (`--time` with an unbounded --spp, an interrupt) keeps the stratification of
+    // the samples it took. A permutation of all N indices would give such a prefix samples at
+    // random indices: in each dimension, no better than independent ones (bench/README.md,
+    // "Time-budgeted renders").
+    static constexpr uint32_t kLargestBlock = 1u << 16;
+    static uint32_t permutationBlock(int samplesPerPixel);
     Kind kind() const override { return Kind::PaddedSobol; }
     void startPixelSample(int px, int py, int sampleIndex) override {
         pixelHash_ = pixelHash(px, py, seed_);
-        permutationKey_ = pixelHash_ ^ 0x5851f42d4c957f2dULL;
-        // Indices beyond N (not used by the renderer) continue in blocks of N.
+        // Indices beyond the block continue in further blocks: aligned blocks of a Sobol
+        // sequence make up its power-of-two prefixes, so each 2-D projection stays a net.
+        // Each block pairs the dimensions anew (its own permutation keys and table rows).
         roundBase_ = uint32_t(sampleIndex) / n_ * n_;
         indexInRound_ = uint32_t(sampleIndex) - roundBase_;
+        const uint64_t blockHash = roundBase_ ? mixWithKey(pixelHash_, roundBase_) : pixelHash_;
+        permutationKey_ = blockHash ^ 0x5851f42d4c957f2dULL;
         if (table_) {
             column_ = table_->entries.data() + 2 * indexInRound_;
-            rowOffset_ = uint32_t(pixelHash_ >> 57);
+            rowOffset_ = uint32_t(blockHash >> 57);
             roundDim1_ = sobolDim1Reversed(roundBase_);
         }
         dimension_ = 0;
@@ -136,17 +149,14 @@ private:
         if (!column_ || dim >= SobolPermutationTable::kRows) return nullptr;
         return column_ + (size_t((uint32_t(dim) + rowOffset_) & (SobolPermutationTable::kRows - 1)) << (log2N_ + 1));
     }
-    // Beyond the table: a per-pixel permutation. For N = 2^m a nested permutation of the
-    // index's base-4 digits (as ZSobol's) is cheaper than Kensler's and pairs dimensions as well.
+    // Beyond the table: a per-pixel nested permutation of the index's base-4 digits (as ZSobol's).
     uint32_t permutedIndex(uint64_t dim) const {
-        if (log2N_ >= 0)
-            return roundBase_ + permuteNested(indexInRound_, log2N_, permutationKey_ + dim * 0x9e3779b97f4a7c15ULL);
-        return roundBase_ + permuteIndex(indexInRound_, n_, uint32_t(mixWithKey(permutationKey_, dim)));
+        return roundBase_ + permuteNested(indexInRound_, log2N_, permutationKey_ + dim * 0x9e3779b97f4a7c15ULL);
     }
 
     uint64_t seed_;
-    uint32_t n_;
-    int log2N_ = -1;  // log2(N) when N is a power of two
+    uint32_t n_;  // the permutation block: permutationBlock(N)
+    int log2N_;
     std::shared_ptr<const SobolPermutationTable> table_;  // shared by clones; null if N is not covered
     const uint16_t* column_ = nullptr;                     // this sample's entry in row 0
     uint32_t rowOffset_ = 0;                               // this pixel's o

@@ -54,10 +54,12 @@ struct RenderOptions {
     // pass, tau = shadowRoulette x the image's mean so far; 0: off.
     float shadowRoulette = 0;
     // `--stats`: each technique's figures (Integrator::techniques; uniform renders), and the
-    // number of independently scrambled sample sets the samples form (sampleSets holds their
-    // starts; transport/scrambled_sets.h), whose spread gives the variance (1: the samples' own).
-    // The figures' variance comes from `batches` ranges of sample indices, each covering every
-    // pixel (the scrambled sets when there are some; 1: s^2 / N of the samples).
+    // number K of independently scrambled sample sets the samples form (transport/
+    // scrambled_sets.h), whose spread gives the variance (1: the samples' own). A pixel's
+    // sample i is sample i / K of set i mod K, so that a render stopped early (`--time`) has
+    // every set filled alike; not with sampleSets (resumes). The figures' variance comes from
+    // `batches` batches of samples, each covering every pixel (the scrambled sets when there
+    // are some; 1: s^2 / N of the samples).
     bool techniqueFigures = false;
     int batches = 1;
     int scramblings = 1;

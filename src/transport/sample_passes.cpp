@@ -27,7 +27,7 @@ SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, con
           for (const std::unique_ptr<Sampler>& p : prototypes_) s.samplers.push_back(p->clone());
           if (techniqueCount_ > 0) {
               const PixelBounds& b = scene_.pixelBounds();
-              s.tally = TechniqueTally(techniqueCount_, int(batchStarts_.size()) + 1, Vec2(float(b.x0), float(b.y0)),
+              s.tally = TechniqueTally(techniqueCount_, batchCount_, Vec2(float(b.x0), float(b.y0)),
                                        Vec2(float(b.x1), float(b.y1)));
           }
           return s;
@@ -40,15 +40,25 @@ SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, con
     const int spp = std::max(1, options.spp);
     const int resolution = std::max(scene.camera().params().xRes, scene.camera().params().yRes);
     setStarts_.push_back(0);
-    for (int start : options.sampleSets)
-        if (start > setStarts_.back() && start < spp) setStarts_.push_back(start);
+    if (options.scramblings > 1) {
+        interleave_ = options.scramblings;  // sets i mod K (RenderOptions::scramblings)
+        setStarts_.assign(size_t(interleave_), 0);
+    } else {
+        for (int start : options.sampleSets)
+            if (start > setStarts_.back() && start < spp) setStarts_.push_back(start);
+    }
     if (scene.settings().spectral) spectral_.emplace(scene.settings());
     if (options.techniqueFigures) {
         techniqueCount_ = int(integrator.techniques().size());
         // Batches of whole passes over the image: their means are independent (the scrambled
         // sets, or independent samples) and each respects the pixels' stratification, which
         // s^2 / N over all samples would count as noise.
-        batchStarts_ = options.scramblings > 1 ? options.sampleSets : scramblingStarts(spp, options.batches);
+        // The scrambled sets are the batches; independent samples are dealt to them in turn (so
+        // that a render stopped early fills them evenly); one scrambled sequence is cut into
+        // ranges (every K-th point of it would be a structured subset, far from its mean).
+        batchCount_ = interleave_ > 1 ? interleave_ : std::max(1, options.batches);
+        interleavedBatches_ = interleave_ > 1 || options.sampler == "independent";
+        if (!interleavedBatches_) batchStarts_ = scramblingStarts(spp, batchCount_);
         // Film::image gives a splat the widened film's pixel count over the light paths (the
         // samples over the imaging ratio): over the crop's pixels, this much of the mean.
         const Vec2 r = scene.filter().radius();
@@ -68,7 +78,8 @@ SamplePasses::SamplePasses(const Scene& scene, const Integrator& integrator, con
             const uint64_t seed = stream == 0 && set == 0 ? options.seed
                                   : stream == 1 && set == 0 ? mix64(options.seed ^ 0x5bd1e9955bd1e995ULL)
                                                             : mixWithKey(mix64(options.seed ^ (0x9e3779b97f4a7c15ULL * stream)), set);
-            const int count = (set + 1 < setStarts_.size() ? setStarts_[set + 1] : spp) - setStarts_[set];
+            const int count = interleave_ > 1 ? (spp - int(set) + interleave_ - 1) / interleave_
+                                              : (set + 1 < setStarts_.size() ? setStarts_[set + 1] : spp) - setStarts_[set];
             prototypes_.push_back(createSampler(options.sampler, seed, count, resolution));
             if (!prototypes_.back()) {
                 std::string names;
@@ -107,10 +118,10 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                         if (k < 64 && (span.taken >> k & 1)) continue;
                         if (taken) mine |= uint64_t(1) << k;
                         ++count;
-                        const size_t set = size_t(std::upper_bound(setStarts_.begin(), setStarts_.end(), si) -
-                                                  setStarts_.begin()) - 1;
+                        const SetIndex at = setOf(si);
+                        const size_t set = size_t(at.set);
                         Sampler& sampler = *st.samplers[size_t(stream) * sets + set];
-                        sampler.startPixelSample(px, py, si - setStarts_[set]);
+                        sampler.startPixelSample(px, py, at.index);
                         FilterSample fs = filter.sample(sampler.getPixel2D());
                         CameraSample cs;
                         cs.pFilm = {px + 0.5f + fs.offset.x, py + 0.5f + fs.offset.y};
@@ -138,8 +149,11 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                         if (spectral_) L = spectral_->toRendering(L, lambda);
                         st.scratch.reset();
                         if (techniqueCount_ > 0) {
-                            const int batch = int(std::upper_bound(batchStarts_.begin(), batchStarts_.end(), si) -
-                                                  batchStarts_.begin());
+                            const int batch = interleave_ > 1         ? at.set
+                                              : interleavedBatches_ ? si % batchCount_
+                                                                    : int(std::upper_bound(batchStarts_.begin(),
+                                                                                           batchStarts_.end(), si) -
+                                                                          batchStarts_.begin());
                             st.tally.endSample(batch, double(cameraWeight) * imagingRatio_ * fs.weight, splatScale_,
                                                fs.weight);
                         }
@@ -152,6 +166,12 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
         });
     });
     return !skipped.load();
+}
+
+SamplePasses::SetIndex SamplePasses::setOf(int si) const {
+    if (interleave_ > 1) return {si % interleave_, si / interleave_};
+    const int set = int(std::upper_bound(setStarts_.begin(), setStarts_.end(), si) - setStarts_.begin()) - 1;
+    return {set, si - setStarts_[size_t(set)]};
 }
 
 TechniqueTally SamplePasses::techniqueTally() const {

@@ -63,7 +63,7 @@ public:
     void setShadowTau(float tau) { shadowTau_ = tau; }
     // RenderOptions::techniqueFigures: every thread's technique sums, merged (empty if off).
     TechniqueTally techniqueTally() const;
-    int techniqueBatches() const { return int(batchStarts_.size()) + 1; }
+    int techniqueBatches() const { return batchCount_; }
     // RenderOptions::scramblings > 1 for a film of the pixels' own samples: its error estimate
     // from the sets' spread (transport/scrambled_sets.h); null otherwise.
     const ScrambledPixelVariance* scrambledVariance() const { return scrambled_.get(); }
@@ -94,10 +94,21 @@ private:
     uint64_t rouletteSeed_ = 0;   // the roulette's numbers: a hash of it, the pixel and the sample index
     std::optional<SpectralFilm> spectral_;  // spectral mode's sensor (empty in RGB mode)
     Share share_;
-    std::vector<int> setStarts_;  // 0, then RenderOptions::sampleSets
+    // The sample set of a pixel's sample index, and its index within the set.
+    struct SetIndex {
+        int set, index;
+    };
+    SetIndex setOf(int si) const;
+    std::vector<int> setStarts_;  // 0, then RenderOptions::sampleSets (ranges; one entry a set if interleaved)
+    int interleave_ = 1;          // RenderOptions::scramblings > 1: sample i in set i mod K at index i / K
     double splatScale_ = 0;       // a unit splat's share of the image mean (Film::image's normalisation)
     int techniqueCount_ = 0;      // RenderOptions::techniqueFigures: the integrator's techniques (0: off)
-    std::vector<int> batchStarts_;  // where the technique figures' batches 2..K begin (RenderOptions::batches)
+    // The technique figures' batches (RenderOptions::batches): the scrambled sets, sample i in
+    // batch i mod K (independent samples), or ranges of indices with batches 2..K beginning
+    // at batchStarts_.
+    int batchCount_ = 1;
+    bool interleavedBatches_ = false;
+    std::vector<int> batchStarts_;
     // RenderOptions::scramblings > 1: the sample sets are independent scramblings. A splatting
     // film's two half-images then take the first and the last half of the sets (not even and
     // odd indices, which one scrambled point set correlates); other films keep their sets'

@@ -1,8 +1,9 @@
 // The variance of a stratified or QMC render from independent scramblings (`--stats`;
 // docs/strategy-figures.md). A pixel's s^2 / n treats its samples as independent, which
 // stratified and randomised QMC points are not: it overstates their variance and hides their
-// gain. Rendered as K independently randomised point sets (RenderOptions::sampleSets, each
-// of spp / K points with a seed of its own), the K set means of a pixel are independent and
+// gain. Rendered as K independently randomised point sets (RenderOptions::scramblings: sample
+// i of a pixel is sample i / K of set i mod K, each set with a seed of its own, so that a render
+// stopped early by --time fills them alike), the K set means of a pixel are independent and
 // unbiased, and their spread gives the variance of the pixel's mean honestly (Owen's
 // replicated randomised QMC; thesis §2.6 on stratification's variance).
 #pragma once
@@ -20,7 +21,8 @@ int batchCount(int spp);
 // K for a render of `spp` samples per pixel with `sampler`: batchCount(spp) scrambled sets,
 // or 1 where the samples are independent already (`independent`).
 int scramblingCount(const std::string& sampler, int spp);
-// RenderOptions::sampleSets for K sets over spp: where sets 2..K begin (as even as may be).
+// Where ranges 2..K of `spp` sample indices begin (as even as may be): the technique figures'
+// batches over one scrambled sequence (SamplePasses).
 std::vector<int> scramblingStarts(int spp, int sets);
 
 // Per pixel and set: the sums of a pixel's sample luminances (as the film's moments take

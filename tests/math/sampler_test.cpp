@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <vector>
@@ -102,6 +103,54 @@ TEST(Samplers, PaddedSobolStratifiesEachDimension) {
         }
         EXPECT_EQ(strata.size(), 16u) << "dimension " << dim;
     }
+}
+
+// A render that stops early (`--time` with an unbounded --spp) takes a prefix of each pixel's
+// samples: for N not a power of two or past 2^16, the first 4^k samples of every 2-D request
+// are a (0,2k,2)-net, and so are the first 4^k of a later block (indices past 256 when N is
+// large); N = 64 is one block. A permutation of all N indices would give the prefix random
+// indices: caught here for N = 100, 1000 and 10^8.
+TEST(Samplers, PaddedSobolPrefixesAreNets) {
+    for (int n : {64, 100, 1000, 1 << 20, 100000000})
+        for (int m : {4, 6}) {
+            const int count = 1 << m;
+            for (int first : {0, 1024}) {
+                auto s = createSampler("sobol", 11, n);
+                for (int request = 0; request < 70; ++request) {  // past the table's 64 pairs
+                    std::set<std::pair<int, int>> cells[7];
+                    for (int i = 0; i < count; ++i) {
+                        s->startPixelSample(3, 5, first + i);
+                        for (int r = 0; r < request; ++r) s->get2D();
+                        const Vec2 u = s->get2D();
+                        for (int a = 0; a <= m; ++a) cells[a].insert({int(u.x * (1 << a)), int(u.y * (1 << (m - a)))});
+                    }
+                    for (int a = 0; a <= m; ++a)
+                        ASSERT_EQ(int(cells[a].size()), count)
+                            << "N " << n << ", samples " << first << "+" << count << ", request " << request << ", "
+                            << (1 << a) << " x " << (1 << (m - a)) << " intervals";
+                }
+            }
+        }
+}
+
+// Blocks past the first pair the dimensions anew: the block-to-block pairing of two requests'
+// strata is not the same in every block (it would be with one permutation for all blocks).
+TEST(Samplers, PaddedSobolBlocksPairDimensionsAnew) {
+    auto s = createSampler("sobol", 5, 100000000);
+    auto pairing = [&](int block) {
+        std::vector<std::pair<int, int>> p;
+        for (int i = 0; i < 256; ++i) {
+            s->startPixelSample(1, 1, 256 * block + i);
+            const float a = s->get1D(), b = s->get1D();
+            p.push_back({int(a * 16), int(b * 16)});
+        }
+        std::sort(p.begin(), p.end());
+        return p;
+    };
+    const auto first = pairing(0);
+    int same = 0;
+    for (int block = 1; block < 9; ++block) same += pairing(block) == first;
+    EXPECT_LT(same, 2);
 }
 
 // Stratified sampling: with N samples per pixel every 1-D dimension puts exactly one sample

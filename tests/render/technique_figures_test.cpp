@@ -41,7 +41,6 @@ struct SceneRenders {
         opts.techniqueFigures = true;
         opts.batches = batchCount(spp);
         opts.scramblings = scramblingCount(sampler, spp);
-        if (opts.scramblings > 1) opts.sampleSets = scramblingStarts(spp, opts.scramblings);
         return render(*scene, *integrator, opts);
     }
 };
@@ -163,7 +162,6 @@ TEST(TechniqueFigures, ScramblingVarianceBelowSampleVarianceOnASmoothIntegrand) 
         const double sampleVariance = render(*s.scene, *s.integrator, plain).error.meanVariance;  // s^2 / n
         RenderOptions sets = plain;
         sets.scramblings = 8;
-        sets.sampleSets = scramblingStarts(64, 8);
         const RenderResult r = render(*s.scene, *s.integrator, sets);
         EXPECT_EQ(r.scramblings, 8);
         std::printf("%s: scramblings' variance %.4g, s^2/n %.4g, ratio %.3f\n", sampler.c_str(), r.error.meanVariance,
@@ -174,6 +172,42 @@ TEST(TechniqueFigures, ScramblingVarianceBelowSampleVarianceOnASmoothIntegrand) 
     EXPECT_LT(ratio("halton"), 0.5);
     // 256 pixels of 7 degrees of freedom each: the ratio's relative error is about 6%.
     EXPECT_NEAR(ratio("independent"), 1.0, 0.25);
+}
+
+// A render stopped by its time budget long before its --spp (as `--time` with an unbounded
+// --spp is used) fills every scrambled set and batch alike: its variance estimates equal a
+// finished render's of about the same count, to within their own noise. With sets as ranges
+// of the --spp indices only the first set was filled, and every estimate was 0.
+TEST(TechniqueFigures, TimeBudgetedRenderEstimatesItsVariance) {
+    const SceneRenders s(manyLightsScene(), "path");  // 576 pixels: the pixels' mean variance to ~5%
+    RenderOptions budget;
+    budget.spp = 1 << 24;
+    budget.timeLimit = 0.4;
+    budget.seed = 2;
+    budget.sampler = "sobol";
+    budget.progress = false;
+    budget.techniqueFigures = true;
+    budget.batches = batchCount(budget.spp);
+    budget.scramblings = scramblingCount(budget.sampler, budget.spp);
+    const RenderResult stopped = render(*s.scene, *s.integrator, budget);
+    ASSERT_LT(stopped.meanSpp, budget.spp);
+    ASSERT_GE(stopped.meanSpp, 16) << "too slow a machine for this test's budget";
+    const int spp = int(stopped.meanSpp);
+    const RenderResult finished = s.run("sobol", spp, 3);
+    // Per-sample variances (times the count), pixel and technique figures alike.
+    const double a = stopped.error.meanVariance * stopped.meanSpp, b = finished.error.meanVariance * spp;
+    std::printf("stopped at %.1f spp: variance x spp %.4g, finished: %.4g\n", stopped.meanSpp, a, b);
+    EXPECT_NEAR(a / b, 1.0, 0.3);
+    ASSERT_EQ(stopped.techniqueFigures.size(), finished.techniqueFigures.size());
+    for (size_t t = 0; t < finished.techniqueFigures.size(); ++t) {
+        const double va = stopped.techniqueFigures[t].variance * stopped.meanSpp,
+                     vb = finished.techniqueFigures[t].variance * spp;
+        std::printf("  figure %zu: variance x spp %.4g, finished %.4g\n", t, va, vb);
+        // One image-wide variance from 8 sets each (7 degrees of freedom): a ratio of two
+        // such falls outside [1/12, 12] with a chance of about 1e-3.
+        EXPECT_GT(va, vb / 12) << "figure " << t;
+        EXPECT_LT(va, vb * 12) << "figure " << t;
+    }
 }
 
 }  // namespace
