@@ -48,11 +48,15 @@ def relmse(image, reference):
     return sum((a - b) ** 2 / (b * b + 0.01) for a, b in zip(x, r)) / len(r)
 
 
-def timed(cmd, cwd=None):
-    """Runs cmd; returns its whole-process wall time in seconds. Fails on any error output."""
+def timed(cmd, cwd=None, stdout=None):
+    """Runs cmd; returns its whole-process wall time in seconds. Fails on any error output.
+    stdout: a list that receives the command's standard output (discarded otherwise)."""
     start = time.perf_counter()
-    p = subprocess.run(cmd, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    p = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE if stdout is not None else subprocess.DEVNULL,
+                       stderr=subprocess.PIPE, text=True)
     elapsed = time.perf_counter() - start
+    if stdout is not None:
+        stdout.append(p.stdout or "")
     if p.returncode != 0:
         sys.exit(f"failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr}")
     noise = [l for l in p.stderr.splitlines() if ("Warning" in l or "warning" in l)
@@ -81,12 +85,23 @@ def with_lightsampler(scene, sampler, tmp):
 
 
 def ours(scene, out, seed, threads, spp=None, seconds=None, integrator="path", stats=None, extra=()):
+    """Renders with pathspace; returns the whole-process wall time. `stats`: a file that
+    receives {"spp_mean": ...} from the render's closing summary. Not from --stats, which
+    would change what is measured: it renders a QMC sampler's samples as 8 independently
+    scrambled sets (noisier than one) and tallies every technique's figures."""
     cmd = [PATHSPACE, "render", scene, "--integrator", integrator, "--threads", str(threads), "--seed", str(seed),
-           "--quiet", "-o", out, *extra]
+           "-o", out, *extra]
     cmd += ["--spp", str(spp)] if spp else ["--spp", "100000000", "--time", str(seconds)]
-    if stats:
-        cmd += ["--stats", stats]
-    return timed(cmd)
+    if not stats:
+        return timed(cmd + ["--quiet"])
+    text = []
+    elapsed = timed(cmd, stdout=text)
+    m = re.search(r"\| ([0-9.]+) spp \(target", text[0])
+    if not m:
+        sys.exit(f"no spp in the summary of {' '.join(cmd)}:\n{text[0][-500:]}")
+    with open(stats, "w") as f:
+        json.dump({"spp_mean": float(m.group(1))}, f)
+    return elapsed
 
 
 def pbrt(scene, out, seed, threads, spp):

@@ -2,7 +2,8 @@
 """Time-budgeted renders against fixed sample counts: does `--time` keep the sampler's
 stratification? Per binary (PATHSPACE or --binary, repeatable, to compare builds in the same
 minutes), `path` on a scene at a fixed --spp and with an unbounded --spp stopped by --time,
---seeds seeds each, 2 threads; relMSE against the cached reference of
+--seeds seeds each, 2 threads, as a user renders (no --stats, which would split the samples
+into scrambled sets); relMSE against the cached reference of
 bench/bdpt_light_paths.py and relMSE x spp (the error of one sample per pixel: equal for the
 two when the budgeted render keeps the fixed one's stratification, larger when it does not).
 Run from the repository root, under the lock:
@@ -12,13 +13,13 @@ Run from the repository root, under the lock:
 import argparse
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bdpt_light_paths import SCENES, reference  # noqa: E402
-from many_lights import PATHSPACE, relmse  # noqa: E402
+import many_lights  # noqa: E402
+from many_lights import PATHSPACE, ours, relmse  # noqa: E402
 
 
 def main():
@@ -37,12 +38,14 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         out, st = os.path.join(tmp, "o.pfm"), os.path.join(tmp, "s.json")
         for binary in a.binary or [PATHSPACE]:
-            for label, budget in ((f"--spp {a.spp}", ["--spp", str(a.spp)]),
-                                  (f"--time {a.time:g}", ["--spp", "100000000", "--time", str(a.time)])):
+            for label, budget in ((f"--spp {a.spp}", a.spp), (f"--time {a.time:g}", None)):
                 rows = []
                 for seed in range(1, a.seeds + 1):
-                    subprocess.run([binary, "render", scene, "--integrator", "path", "--threads", str(a.threads),
-                                    "--seed", str(seed), "--quiet", "-o", out, "--stats", st, *budget], check=True)
+                    many_lights.PATHSPACE = binary
+                    if budget:
+                        ours(scene, out, seed, a.threads, spp=budget, stats=st)
+                    else:
+                        ours(scene, out, seed, a.threads, seconds=a.time, stats=st)
                     spp = json.load(open(st))["spp_mean"]
                     rows.append((spp, relmse(out, ref)))
                 spp = sum(r[0] for r in rows) / len(rows)
