@@ -222,30 +222,35 @@ private:
 
 // Lookups: the root's tile of the 4096^3 block, then the upper node's slot of 128^3 voxels,
 // the lower node's slot of 8^3, the leaf's voxel; x is the major index at every level.
-float NanoVDBGrid::fromLower(size_t lower, int i, int j, int k) const {
+NanoVDBGrid::Block NanoVDBGrid::lowerBlock(size_t lower, int i, int j, int k) const {
     const uint32_t n = (uint32_t((i & 127) >> 3) << 8) | (uint32_t((j & 127) >> 3) << 4) | uint32_t((k & 127) >> 3);
     const uint8_t* entry = bytes_.data() + lower + kLowerTable + 8 * n;
-    if (!bitOn(bytes_.data() + lower + kLowerChildMask, n)) return load<float>(entry);
-    const size_t leaf = size_t(int64_t(lower) + load<int64_t>(entry));
-    const uint32_t v = (uint32_t(i & 7) << 6) | (uint32_t(j & 7) << 3) | uint32_t(k & 7);
-    return load<float>(bytes_.data() + leaf + kLeafValues + 4 * v);
+    if (!bitOn(bytes_.data() + lower + kLowerChildMask, n)) return {nullptr, load<float>(entry)};
+    return {bytes_.data() + size_t(int64_t(lower) + load<int64_t>(entry)) + kLeafValues, 0};
 }
 
-float NanoVDBGrid::fromUpper(size_t upper, int i, int j, int k) const {
+NanoVDBGrid::Block NanoVDBGrid::upperBlock(size_t upper, int i, int j, int k) const {
     const uint32_t n = (uint32_t((i & 4095) >> 7) << 10) | (uint32_t((j & 4095) >> 7) << 5) | uint32_t((k & 4095) >> 7);
     const uint8_t* entry = bytes_.data() + upper + kUpperTable + 8 * n;
-    if (!bitOn(bytes_.data() + upper + kUpperChildMask, n)) return load<float>(entry);
-    return fromLower(size_t(int64_t(upper) + load<int64_t>(entry)), i, j, k);
+    if (!bitOn(bytes_.data() + upper + kUpperChildMask, n)) return {nullptr, load<float>(entry)};
+    return lowerBlock(size_t(int64_t(upper) + load<int64_t>(entry)), i, j, k);
 }
 
-float NanoVDBGrid::value(int i, int j, int k) const {
+NanoVDBGrid::Block NanoVDBGrid::block(int i, int j, int k) const {
     // The root's key packs the 4096^3 block's coordinates, 21 bits each, z lowest.
     const uint64_t key = uint64_t(uint32_t(k) >> 12) | (uint64_t(uint32_t(j) >> 12) << 21) | (uint64_t(uint32_t(i) >> 12) << 42);
     auto it = std::lower_bound(tiles_.begin(), tiles_.end(), key, [](const RootTile& t, uint64_t k) { return t.key < k; });
-    if (it == tiles_.end() || it->key != key) return background_;
-    if (it->upper < 0) return it->value;
-    return fromUpper(size_t(it->upper), i, j, k);
+    if (it == tiles_.end() || it->key != key) return {nullptr, background_};
+    if (it->upper < 0) return {nullptr, it->value};
+    return upperBlock(size_t(it->upper), i, j, k);
 }
+
+float NanoVDBGrid::Block::at(int i, int j, int k) const {
+    if (!leafValues) return value;
+    return load<float>(leafValues + 4 * ((uint32_t(i & 7) << 6) | (uint32_t(j & 7) << 3) | uint32_t(k & 7)));
+}
+
+float NanoVDBGrid::value(int i, int j, int k) const { return block(i, j, k).at(i, j, k); }
 
 float NanoVDBGrid::sample(Vec3 p) const {
     // Far outside any grid (or NaN, from a corrupt map): the background, before int overflows.
@@ -255,8 +260,13 @@ float NanoVDBGrid::sample(Vec3 p) const {
     const int i = int(fx), j = int(fy), k = int(fz);
     const float u = p.x - fx, v = p.y - fy, w = p.z - fz;
     auto lerp = [](float a, float b, float t) { return a + t * (b - a); };
+    // The eight corners share one 8^3 block unless the cell straddles a block's face (a
+    // fifth of lookups, spread evenly): one descent of the tree for them all.
+    const bool oneBlock = (i & 7) != 7 && (j & 7) != 7 && (k & 7) != 7;
+    const Block b = oneBlock ? block(i, j, k) : Block{};
+    auto at = [&](int x, int y, int z) { return oneBlock ? b.at(x, y, z) : value(x, y, z); };
     // Along z, then y, then x, as NanoVDB's trilinear sampler (the same rounding).
-    auto alongZ = [&](int di, int dj) { return lerp(value(i + di, j + dj, k), value(i + di, j + dj, k + 1), w); };
+    auto alongZ = [&](int di, int dj) { return lerp(at(i + di, j + dj, k), at(i + di, j + dj, k + 1), w); };
     return lerp(lerp(alongZ(0, 0), alongZ(0, 1), v), lerp(alongZ(1, 0), alongZ(1, 1), v), u);
 }
 

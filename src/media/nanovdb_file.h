@@ -25,6 +25,15 @@ public:
     // The value NanoVDB's accessor gives at voxel (i, j, k): a leaf's value, else the value of
     // the tile that covers it, else the background.
     float value(int i, int j, int k) const;
+    // The aligned 8^3 block of voxels that (i, j, k) lies in: a leaf's 512 values (x major),
+    // or one value for all of them (a tile at any level covers whole blocks, as does the
+    // background). Lookups within a block then skip the tree.
+    struct Block {
+        const uint8_t* leafValues = nullptr;  // null: `value` everywhere in the block
+        float value = 0;
+        float at(int i, int j, int k) const;
+    };
+    Block block(int i, int j, int k) const;
     // Trilinear interpolation of the voxel values, which sit at integer index coordinates
     // (NanoVDB's SampleFromVoxels of order 1).
     float sample(Vec3 pIndex) const;
@@ -48,8 +57,8 @@ private:
         int64_t upper;  // byte offset of the child upper node in bytes_, or -1: a tile value
         float value;
     };
-    float fromLower(size_t lower, int i, int j, int k) const;
-    float fromUpper(size_t upper, int i, int j, int k) const;
+    Block lowerBlock(size_t lower, int i, int j, int k) const;
+    Block upperBlock(size_t upper, int i, int j, int k) const;
 
     std::string name_;
     std::vector<uint8_t> bytes_;

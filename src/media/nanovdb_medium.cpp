@@ -46,9 +46,20 @@ NanoVDBMedium::NanoVDBMedium(const Transform& worldFromMedium, NanoVDBGrid densi
         // the largest value in the grid bounds it without scanning them.
         const double voxels = double(i1[0] - i0[0] + 1) * double(i1[1] - i0[1] + 1) * double(i1[2] - i0[2] + 1);
         if (voxels > double(1 << 18)) return Spectrum(std::max(m, grid_.maxValue()));
-        for (int64_t k = i0[2]; k <= i1[2]; ++k)
-            for (int64_t j = i0[1]; j <= i1[1]; ++j)
-                for (int64_t i = i0[0]; i <= i1[0]; ++i) m = std::max(m, grid_.value(int(i), int(j), int(k)));
+        // Block by 8^3 block: one descent of the tree for each.
+        for (int64_t k0 = i0[2]; k0 <= i1[2]; k0 = (k0 | 7) + 1)
+            for (int64_t j0 = i0[1]; j0 <= i1[1]; j0 = (j0 | 7) + 1)
+                for (int64_t x0 = i0[0]; x0 <= i1[0]; x0 = (x0 | 7) + 1) {
+                    const NanoVDBGrid::Block b = grid_.block(int(x0), int(j0), int(k0));
+                    if (!b.leafValues) {
+                        m = std::max(m, b.value);
+                        continue;
+                    }
+                    for (int64_t k = k0; k <= std::min(i1[2], k0 | 7); ++k)
+                        for (int64_t j = j0; j <= std::min(i1[1], j0 | 7); ++j)
+                            for (int64_t i = x0; i <= std::min(i1[0], x0 | 7); ++i)
+                                m = std::max(m, b.at(int(i), int(j), int(k)));
+                }
         return Spectrum(m);
     });
 }
