@@ -23,7 +23,7 @@ skip='PbrtReference|PbrtColourReference|EstimatorAgreement\.(SmoothNormals|Glass
 # The render tests' spectral instance (NAME/spectral, tests/CMakeLists.txt) repeats them in
 # the other colour mode; the spectral code paths are covered here by the spectral tests.
 skip+='|/spectral$'
-skip+='|Metropolis\.(AgreesWith|ClosedFurnace|PointLight|EachDepth)|VeachMLT\.(AgreesWith|ClosedFurnace|PointLight|Regenerating|DirectLighting)|VeachMutation\.|VeachMLTInfinityMutation\.|MovingCamera\.(PrimarySample|VeachMLT)|BdptStrategies\.|ErrorEstimate\.'
+skip+='|Metropolis\.(AgreesWith|ClosedFurnace|PointLight|EachDepth)|VeachMLT\.(AgreesWith|ClosedFurnace|PointLight|Regenerating|DirectLighting)|VeachMutation\.|VeachMLTInfinityMutation\.|MovingCamera\.(PrimarySample|VeachMLT)|VeachMLTBootstrap\.|BdptStrategies\.|ErrorEstimate\.'
 # The agreement matrix's cells (tests/agreement/) repeat the base cell's code paths on other
 # scenes, at minutes each under the sanitizers: only the base cell (all six integrators) and
 # the statistics run here.

@@ -190,8 +190,8 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
                      "Metropolis (pssmlt, mmlt, mlt) only: number of Markov chains (overrides the scene's \"chains\"; default 1000)")
         ->check(countCheck());
     cmd->add_option("--bootstrap", a.bootstrap,
-                     "Metropolis (pssmlt, mmlt, mlt) only: number of independent BDPT samples that estimate the normalisation b "
-                     "and seed the chains (overrides \"bootstrapsamples\"; default 100000)")
+                     "Metropolis (pssmlt, mmlt, mlt) only: number of BDPT samples (their first numbers stratified over the set) "
+                     "that estimate the normalisation b and seed the chains (overrides \"bootstrapsamples\"; default 100000)")
         ->check(countCheck());
     cmd->add_option("--large-step-probability", a.largeStepProbability,
                      "Metropolis (pssmlt, mmlt) only: probability in [0, 1] that a mutation draws every random number afresh "

@@ -4,8 +4,6 @@
 #include <cmath>
 
 #include "mc/metropolis.h"
-#include "mc/permutation.h"
-#include "mc/sobol.h"
 
 namespace ps {
 
@@ -78,7 +76,7 @@ void PrimarySampleSampler::startIteration(bool largeStep) {
 }
 
 void PrimarySampleSampler::accept() {
-    strata_.count = 0;  // the first iteration's alone
+    strata_ = PaddedStrata();  // the first iteration's alone
     if (largeStep_)
         lastLargeStep_ = iteration_;
     else
@@ -88,7 +86,7 @@ void PrimarySampleSampler::accept() {
 }
 
 void PrimarySampleSampler::reject() {
-    strata_.count = 0;
+    strata_ = PaddedStrata();
     for (const Touched& t : touched_) {
         Value& v = streams_[t.stream][t.index];
         v.value = v.backupValue;
@@ -134,7 +132,7 @@ double PrimarySampleSampler::read(int stream, size_t index) {
     if (largeStep_) {
         // A stratified value still takes its draw: the chain's random stream stays the same.
         const double u = rng_.uniformDouble();
-        x.value = iteration_ == 1 && strata_.count > 0 && index < size_t(kStratifiedValues) ? stratified(stream, index) : u;
+        x.value = iteration_ == 1 && strata_.active() && index < size_t(kStratifiedValues) ? stratified(stream, index) : u;
     } else if (moved_ >> stream & 1u) {
         x.value = small(x.value, stepUnits_);
         x.steps = steps + stepUnits_;
@@ -144,21 +142,10 @@ double PrimarySampleSampler::read(int stream, size_t index) {
     return x.value;
 }
 
-void PrimarySampleSampler::stratifyFirstIteration(uint64_t key, int64_t i, int64_t n) {
-    // Sets of more than 2^32 samples continue as further sets of their own (keyed apart).
-    const int64_t count = std::min<int64_t>(std::max<int64_t>(n, 1), int64_t(UINT32_MAX));
-    strata_.key = mixWithKey(key, uint64_t(i / count));
-    strata_.index = uint32_t(i % count);
-    strata_.count = uint32_t(count);
-}
+void PrimarySampleSampler::stratifyFirstIteration(uint64_t key, int64_t i, int64_t n) { strata_ = PaddedStrata(key, i, n); }
 
 double PrimarySampleSampler::stratified(int stream, size_t index) const {
-    const uint64_t key = mixWithKey(strata_.key, uint64_t(stream) * 64 + index / 2);
-    const uint32_t p = permuteIndex(strata_.index, strata_.count, uint32_t(key));
-    // Reversed Sobol points (sobol.h): dimension 0's is the index itself.
-    const uint32_t v = index % 2 == 0 ? owenScrambleReversed(p, uint32_t(key >> 32))
-                                      : owenScrambleReversed(sobolDim1Reversed(p), uint32_t(mix64(key) >> 32));
-    return double(v) * 0x1p-32;
+    return strata_.value(uint64_t(stream) * 64 + index / 2, index % 2 == 1);
 }
 
 void PrimarySampleSampler::set(int stream, int index, double value) {

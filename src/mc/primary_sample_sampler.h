@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "mc/metropolis.h"
+#include "mc/padded_strata.h"
 #include "mc/rng.h"
 #include "mc/sampler.h"
 #include "util/byte_stream.h"
@@ -81,12 +82,11 @@ public:
     void set(int stream, int index, double value);
     // The first iteration's fresh values as sample i of a set of n (a Markov-chain render's
     // bootstrap, whose mean weight b scales the whole image: thesis §2.7 on stratification):
-    // the first kStratifiedValues values of each stream come, two at a time, from point i of
-    // the first n points of an Owen-scrambled (0,2)-sequence keyed by `key`, each pair through
-    // its own random permutation of the points (padding, as PaddedSobolSampler pairs a
-    // pixel's dimensions). Every value is still uniform on its own, which is all that an
-    // unbiased b and an unbiased start of the chains use; the other values and every later
-    // iteration are drawn as before. Called before the first iteration's values are read.
+    // the first kStratifiedValues values of each stream come, two at a time, from sample i of
+    // n of a PaddedStrata set keyed by `key` (padded_strata.h). Every value is still uniform
+    // on its own, which is all that an unbiased b and an unbiased start of the chains use;
+    // the other values and every later iteration are drawn as before. Called before the
+    // first iteration's values are read.
     static constexpr int kStratifiedValues = 8;
     void stratifyFirstIteration(uint64_t key, int64_t i, int64_t n);
     // A new random stream for the mutations from here on; the stored values stay. A chain
@@ -144,10 +144,7 @@ private:
         uint32_t stream, index;
     };
     std::vector<Touched> touched_;  // the values the proposal under way modified
-    struct Strata {
-        uint64_t key = 0;
-        uint32_t index = 0, count = 0;  // count 0: none
-    } strata_;
+    PaddedStrata strata_;  // the first iteration's set, if any
 };
 
 // The acceptance probability of a proposal with target value fy from a state with fx, for

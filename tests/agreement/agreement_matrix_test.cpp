@@ -54,12 +54,12 @@ verify::VerifyOptions options(const Variant& v, uint64_t seed) {
     o.spp = 32 * k;
     for (const auto& [name, scale] : v.integratorScale) o.sppOf[name] = o.spp * scale;
     // The bootstrap's estimate of b scales a Metropolis image: its error is the image mean's
-    // (pssmlt's and mmlt's bootstraps are stratified: PrimarySampleSampler::
-    // stratifyFirstIteration). pssmlt's samples (whole BDPT samples) spread most; mmlt's are
-    // per depth.
+    // (every Metropolis bootstrap is stratified: PrimarySampleSampler::stratifyFirstIteration,
+    // and mlt's stratifiedStart). pssmlt's samples (whole BDPT samples) spread most; mmlt's
+    // are per depth.
     o.configure = [k, &v](const std::string& name, RenderSettings& st) {
         const auto extra = v.bootstrapScale.find(name);
-        st.mltBootstrapSamples = (name == "pssmlt" ? 20000 : name == "mmlt" ? 10000 : 15000) * k *
+        st.mltBootstrapSamples = (name == "pssmlt" ? 20000 : name == "mmlt" ? 10000 : 5000) * k *
                                  (extra == v.bootstrapScale.end() ? 1 : extra->second);
     };
     return o;

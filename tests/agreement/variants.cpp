@@ -445,7 +445,9 @@ MediumInterface "" "fog"
     v.back().integratorScale = {{"mlt", 2}};  // at 1, mlt resolved 2.1%
     // mmlt resolved 1.5-2.3% with the matrix's bootstrap and 2.0% with twice the mutations,
     // 1.8% with 3 or 5 times the bootstrap alone: twice both.
-    v.back().bootstrapScale = {{"mmlt", 2}};
+    // mlt keeps the bootstrap it had before its stratification (15000): at 5000 it resolved
+    // 1.9% (1.5% at 15000); its samples' variance here is past the stratified first numbers.
+    v.back().bootstrapScale = {{"mmlt", 2}, {"mlt", 3}};
     v.back().integratorScale["mmlt"] = 2;
     // Fog filling the base box (camera outside it, in vacuum: the box's open side is an
     // `interface` face): chromatic scattering and absorption, connections through the medium

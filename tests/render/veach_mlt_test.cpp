@@ -23,6 +23,12 @@ using namespace ps::test;
 
 namespace {
 
+// Bootstraps for mlt's stratified bootstrap (veach_mlt.cpp, stratifiedStart), below the
+// scenes' 50000, which were sized for independent samples: on the diffuse box b's spread is
+// about 0.55 of independent samples' (VeachMLTBootstrap), so 15000 resolve b about as well as
+// 50000 did; the closed scenes keep half (their 4 sigma bound is 1%, not 2%).
+constexpr int kSmallBootstrap = 15000, kStratifiedBootstrap = 25000;
+
 // Mean over the image of (r + g + b) / 3 for `renders` seeds.
 RunningStats greyMeans(const std::string& scene, int mutations, uint64_t seed0, int renders) {
     RunningStats means;
@@ -45,17 +51,20 @@ void expectExact(const char* what, const RunningStats& means, double exact) {
 
 // The closed furnace: every path's vertices are all on one emitting diffuse sphere, so the
 // mutations move through paths of every length; image mean within 4 sigma of exact.
-TEST(VeachMLT, ClosedFurnaceIsExact) { expectExact("furnace", greyMeans(furnace(), 64, 300, 16), kFurnaceExact); }
+TEST(VeachMLT, ClosedFurnaceIsExact) {
+    expectExact("furnace", greyMeans(withBootstrap(furnace(), kStratifiedBootstrap), 64, 300, 16), kFurnaceExact);
+}
 
 // Every path ends on a point light (a delta position), reachable only by a light walk: the
 // mutations must never try to reach it from the camera side.
 TEST(VeachMLT, PointLightInADiffuseSphereIsExact) {
-    expectExact("point light in a sphere", greyMeans(pointLightInASphere(), 64, 400, 16), kPointLightInASphereExact);
+    expectExact("point light in a sphere", greyMeans(withBootstrap(pointLightInASphere(), kStratifiedBootstrap), 64, 400, 16),
+                kPointLightInASphereExact);
 }
 
 TEST(VeachMLT, AgreesWithBDPTOnADiffuseBox) {
-    expectAgreement(AgreementCase{"diffuse box", box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), {"bdpt", "mlt"}, 16, 16,
-                                  {{"mlt", 64}}, 0.02});
+    expectAgreement(AgreementCase{"diffuse box", withBootstrap(box("6 6 6", "0.7 0.1 0.1", "0.1 0.7 0.1"), kSmallBootstrap),
+                                  {"bdpt", "mlt"}, 16, 16, {{"mlt", 64}}, 0.02});
 }
 
 // Two-stage MLT (pilot_importance.h, `--two-stage F`): the target divided by a pilot image's
@@ -104,7 +113,7 @@ TEST(VeachMLT, AgreesWithBDPTSpectrallyOnASaturatedBox) {
     const size_t at = scene.find(from);
     ASSERT_NE(at, std::string::npos);
     scene.replace(at, from.size(), R"("blackbody L" [ 2700 ] "float scale" [ 6 ])");
-    AgreementCase c{"spectral saturated box", scene, {"bdpt", "mlt"}, 16, 16, {{"mlt", 96}}, 0.02};
+    AgreementCase c{"spectral saturated box", withBootstrap(scene, kSmallBootstrap), {"bdpt", "mlt"}, 16, 16, {{"mlt", 96}}, 0.02};
     c.spectral = true;
     expectAgreement(c);
 }
@@ -289,7 +298,8 @@ std::string coatedBox() {
 }
 
 TEST(VeachMLT, AgreesWithBDPTOnCoatedSurfaces) {
-    expectAgreement(AgreementCase{"coated box", coatedBox(), {"bdpt", "mlt"}, 16, 16, {{"mlt", 64}}, 0.02});
+    expectAgreement(AgreementCase{"coated box", withBootstrap(coatedBox(), kSmallBootstrap), {"bdpt", "mlt"}, 16, 16,
+                                  {{"mlt", 64}}, 0.02});
 }
 
 // An area light seen only in a smooth coating over a diffuse base: the mirror role of a

@@ -335,13 +335,17 @@ bool PathSpace::trace(Ray ray, const SampledWavelengths& lambda, ScratchBuffer& 
     return false;
 }
 
-float PathSpace::drawTime(Rng& rng) const {
+float PathSpace::drawTime(Rng& rng, const float* given) const {
     const Camera& camera = scene_.camera();
-    return scene_.hasMotion() ? camera.shutterTime(rng.uniform()) : camera.shutterTime(0);
+    if (!scene_.hasMotion()) return camera.shutterTime(0);
+    const float u = rng.uniform();
+    return camera.shutterTime(given ? *given : u);
 }
 
-SampledWavelengths PathSpace::drawWavelengths(Rng& rng) const {
-    return sensor_ ? SpectralFilm::sampleWavelengths(rng.uniform()) : SampledWavelengths();
+SampledWavelengths PathSpace::drawWavelengths(Rng& rng, const float* given) const {
+    if (!sensor_) return SampledWavelengths();
+    const float u = rng.uniform();
+    return SpectralFilm::sampleWavelengths(given ? *given : u);
 }
 
 SampledWavelengths PathSpace::perturbWavelengths(const SampledWavelengths& lambda, Rng& rng) const {
@@ -354,15 +358,17 @@ SampledWavelengths PathSpace::perturbWavelengths(const SampledWavelengths& lambd
 }
 
 bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode, float time,
-                     const SampledWavelengths& lambda, Rng& rng, ScratchBuffer& arena, PathStats& stats) const {
+                     const SampledWavelengths& lambda, Rng& rng, ScratchBuffer& arena, PathStats& stats,
+                     const WalkStart* start) const {
     if (count <= 0) return true;
     if (!canContinue(int(side.size()), mode)) return false;
     Ray ray;
     if (mode == TransportMode::Importance && side.empty()) {
         // A light chosen as light subpaths choose (Scene::sampleLight), a point and a direction on it.
         ++stats.lightPaths;
-        const float uLight = rng.uniform();
-        const Vec2 uPos(rng.uniform(), rng.uniform()), uDir(rng.uniform(), rng.uniform());
+        float uLight = rng.uniform();
+        Vec2 uPos(rng.uniform(), rng.uniform()), uDir(rng.uniform(), rng.uniform());
+        if (start) uLight = start->choice, uPos = start->point, uDir = start->direction;
         float pmf;
         const Light* light = scene_.sampleLight(uLight, &pmf);
         if (!light || !(pmf > 0)) return false;
@@ -391,8 +397,12 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
         // camera's importance and its direction density live) and a lens point; a kept
         // pinhole is the same point.
         ++stats.cameraPaths;
-        const Vec2 pFilm(-margin_.x + rng.uniform() * filmSize_.x, -margin_.y + rng.uniform() * filmSize_.y);
-        const Vec2 uLens(rng.uniform(), rng.uniform());
+        Vec2 pFilm(-margin_.x + rng.uniform() * filmSize_.x, -margin_.y + rng.uniform() * filmSize_.y);
+        Vec2 uLens(rng.uniform(), rng.uniform());
+        if (start && side.empty()) {
+            pFilm = Vec2(-margin_.x + start->point.x * filmSize_.x, -margin_.y + start->point.y * filmSize_.y);
+            uLens = start->direction;
+        }
         MltVertex lens;
         ray = cameraRay(pFilm, uLens, time, lambda, &lens);
         if (side.empty()) {
@@ -401,6 +411,8 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
         }
     } else if (!scatter(side, mode, rng, ray)) {
         return false;
+    } else {
+        start = nullptr;  // a side that had vertices: none of the walk's numbers is a start's
     }
     while (count > 0) {
         MltVertex next;
@@ -409,7 +421,8 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
                    &rng))
             return false;
         side.push_back(next);
-        if (--count > 0 && !scatter(side, mode, rng, ray)) return false;
+        if (--count > 0 && !scatter(side, mode, rng, ray, start)) return false;
+        start = nullptr;  // the first scattering's alone
     }
     return true;
 }
@@ -428,13 +441,15 @@ Ray PathSpace::cameraRay(Vec2 pFilm, Vec2 uLens, float time, const SampledWavele
     return ray;
 }
 
-bool PathSpace::scatter(std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const {
+bool PathSpace::scatter(std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray,
+                        const WalkStart* start) const {
     MltVertex& v = side.back();
     if (side.size() >= 2 && v.isMedium()) return scatterInMedium(side, rng, ray);
     if (side.size() < 2 || v.kind != MltVertex::Kind::Surface || !v.bxdf) return false;
     const Vec3 woL = v.frame.toLocal(unitTo(v, side[side.size() - 2]));
-    const float uc = rng.uniform();
-    const Vec2 u(rng.uniform(), rng.uniform());
+    float uc = rng.uniform();
+    Vec2 u(rng.uniform(), rng.uniform());
+    if (start) uc = start->lobe, u = start->scatter;
     if (v.mixed) {
         // The coating's mirror with probability R(wo), else a cosine lobe on wo's side.
         v.delta = uc < v.bxdf->coatingMirrorReflectance(woL);

@@ -110,6 +110,17 @@ struct MltVertex {
 
 using MltPath = std::vector<MltVertex>;
 
+// The numbers that start a new walk, given in place of its stream's: a stratified bootstrap
+// sample (veach_mlt.cpp). For a light walk the light's choice, its point's and its direction's;
+// for a camera walk the film's and the lens's (choice unused); then the first scattering's
+// lobe and direction, at a surface (a medium's scattering takes the stream's).
+struct WalkStart {
+    float choice = 0;
+    Vec2 point, direction;
+    float lobe = 0;
+    Vec2 scatter;
+};
+
 class PathSpace {
 public:
     PathSpace(const Scene& scene, int maxDepth);
@@ -158,10 +169,10 @@ public:
     // A new path's scene time: uniform over the shutter when the scene moves (in the
     // shutter's measure normalised to 1, so that no density changes), else the shutter's
     // opening without drawing a number (static scenes keep their random streams).
-    float drawTime(Rng& rng) const;
+    float drawTime(Rng& rng, const float* given = nullptr) const;
     // A new path's wavelengths in spectral mode (the sensor's density); in RGB mode none, and
-    // no number drawn.
-    SampledWavelengths drawWavelengths(Rng& rng) const;
+    // no number drawn. With `given`, that number in place of the stream's (as WalkStart).
+    SampledWavelengths drawWavelengths(Rng& rng, const float* given = nullptr) const;
     // Wavelengths near `lambda` (spectral mode; in RGB mode `lambda` itself, no number
     // drawn): sampleVisible's number moved by an offset of random sign and of length with
     // density proportional to 1 / length in [1e-3, 1/4] (one stratum of the four), wrapping
@@ -176,8 +187,10 @@ public:
     // from its light vertex alone, nor a camera side from a thin lens alone (no density
     // of a direction given a fixed point there); a pinhole's is regenerated. False when a
     // ray escapes or a sample fails.
+    // With `start` (an empty side), the walk's first numbers are its values (the stream still
+    // draws its own, so that the rest of the stream is the same).
     bool walk(std::vector<MltVertex>& side, int count, TransportMode mode, float time, const SampledWavelengths& lambda,
-              Rng& rng, ScratchBuffer& arena, PathStats& stats) const;
+              Rng& rng, ScratchBuffer& arena, PathStats& stats, const WalkStart* start = nullptr) const;
     // Whether walk can extend a side (light or camera, by `mode`) that holds `size` vertices.
     bool canContinue(int size, TransportMode mode) const;
     // Mutual visibility of vertices a and b.
@@ -185,7 +198,9 @@ public:
     // The next ray of a walk: a direction sampled by the BSDF at side's last vertex (which
     // must have a predecessor in side).
     // A mixed vertex's role is chosen here.
-    bool scatter(std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray) const;
+    // With `start`, its lobe and direction numbers in place of the stream's (at a surface).
+    bool scatter(std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray,
+                 const WalkStart* start = nullptr) const;
     // A camera ray through film point pFilm (a pinhole's lens point is fixed; a thin lens
     // takes its point from uLens) at scene time `time`, and the lens vertex it leaves, which
     // carries `lambda`.

@@ -17,6 +17,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "mc/padded_strata.h"
 #include "mc/primary_sample_sampler.h"
 #include "render/distributed.h"
 #include "transport/film_reduction.h"
@@ -92,18 +93,54 @@ constexpr const char* kUnsupportedCoating =
     "0, pbrt-v4's default): its reflection is a sum of mirror paths inside the layer whose weight is only estimated, "
     "and a path-space mutation needs it exactly; give either layer a roughness, or render with mmlt, bdpt or path";
 
+// The first numbers of bootstrap sample i of n, stratified over the n samples (b, their
+// mean weight, scales the whole image; docs/integrators.md, "The bootstrap"): the film point,
+// the lens point, the first directions and lobes from the lens and the light, the light's
+// choice, point and direction, the wavelengths and the time, in pairs of a PaddedStrata set.
+struct StartNumbers {
+    WalkStart light, camera;
+    float wavelengths = 0, time = 0;
+};
+
+StartNumbers stratifiedStart(uint64_t seed, int64_t i, int64_t n) {
+    const PaddedStrata strata(mix64(seed ^ 0x1f83d9abfb41bd6bULL), i, n);
+    auto u = [&](uint64_t pair, bool second) { return std::min(float(strata.value(pair, second)), 0x1.fffffep-1f); };
+    auto u2 = [&](uint64_t pair) { return Vec2(u(pair, false), u(pair, true)); };
+    StartNumbers s;
+    s.camera.point = u2(0);
+    s.camera.direction = u2(1);
+    s.camera.scatter = u2(2);
+    s.wavelengths = u(3, false);
+    s.time = u(3, true);
+    s.light.point = u2(4);
+    s.light.direction = u2(5);
+    s.light.scatter = u2(6);
+    s.light.choice = u(7, false);
+    s.camera.lobe = u(7, true);
+    s.light.lobe = u(8, false);
+    return s;
+}
+
+// `setSize` > 0: sample i is one of the bootstrap's set of that size, its first numbers
+// stratified over the set (each still uniform: b and the chains' start stay unbiased); 0:
+// independent (the pilot's samples and the start-up's probe).
 double bootstrapSample(const VeachMLTIntegrator& integrator, const PilotImportance& importance, uint64_t seed,
-                       int64_t i, PathStats& stats, PathState& out, double pick = -1, double* pilotSums = nullptr) {
+                       int64_t i, int64_t setSize, PathStats& stats, PathState& out, double pick = -1,
+                       double* pilotSums = nullptr) {
     const PathSpace& space = integrator.space();
     Rng rng(bootstrapSeed(seed, i));
     out.arena->reset();
     std::vector<MltVertex> light, camera;
     const int maxV = space.maxVertices();
+    const StartNumbers given = setSize > 0 ? stratifiedStart(seed, i, setSize) : StartNumbers();
+    const bool stratified = setSize > 0;
     // Both subpaths' time and wavelengths, as one path's.
-    const float time = space.drawTime(rng);
-    const SampledWavelengths lambda = space.drawWavelengths(rng);
-    space.walk(light, maxV - 1, TransportMode::Importance, time, lambda, rng, *out.arena, stats);
-    space.walk(camera, maxV, TransportMode::Radiance, time, lambda, rng, *out.arena, stats);
+    const float time = space.drawTime(rng, stratified ? &given.time : nullptr);
+    const SampledWavelengths lambda = space.drawWavelengths(rng, stratified ? &given.wavelengths : nullptr);
+    space.walk(light, maxV - 1, TransportMode::Importance, time, lambda, rng, *out.arena, stats,
+               stratified ? &given.light : nullptr);
+    space.walk(camera, maxV, TransportMode::Radiance, time, lambda, rng, *out.arena, stats,
+               stratified ? &given.camera : nullptr);
     MltPath y;
     double total = 0;
     for (int n = integrator.minChainVertices(); n <= maxV; ++n)
@@ -326,7 +363,8 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                 PathStats unused;
                 const int64_t end = std::min(count, (block + 1) * kBlock);
                 for (int64_t i = block * kBlock; i < end; ++i) {
-                    const double w = bootstrapSample(integrator, importance, seed, i, weights ? threadStats.local() : unused, s);
+                    const double w = bootstrapSample(integrator, importance, seed, i, weights ? count : 0,
+                                                     weights ? threadStats.local() : unused, s);
                     if (weights) (*weights)[size_t(i)] = w;
                 }
                 if (weights) startupDone.fetch_add(end - block * kBlock, std::memory_order_relaxed);
@@ -358,7 +396,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
         // Two-stage MLT (pilot_importance.h): the pilot's own samples, past the bootstrap's
         // indices (a resumed render takes the map from its checkpoint).
         importance.learn(arena, nPilot, [&](int64_t j, double* sums) {
-            bootstrapSample(integrator, importance, options.seed, nBoot + j, threadStats.local(),
+            bootstrapSample(integrator, importance, options.seed, nBoot + j, 0, threadStats.local(),
                             scratchStates.local(), -1, sums);
             startupDone.fetch_add(1, std::memory_order_relaxed);
         }, options.cancel);
@@ -432,7 +470,7 @@ RenderResult renderVeachMLT(const Scene& scene, const VeachMLTIntegrator& integr
                 while (i > 0 && weights[size_t(i)] == 0) --i;
                 // Then one of its paths in proportion to their weights.
                 const double within = ch.rng.uniformDouble() * weights[size_t(i)];
-                if (bootstrapSample(integrator, importance, options.seed, i, threadStats.local(), ch.x, within) !=
+                if (bootstrapSample(integrator, importance, options.seed, i, nBoot, threadStats.local(), ch.x, within) !=
                         weights[size_t(i)] ||
                     !(ch.x.f > 0))
                     replayMismatch = true;
