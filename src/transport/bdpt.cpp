@@ -293,8 +293,8 @@ auto withHeuristic(MisHeuristic h, F&& f) {
 
 BDPTIntegrator::BDPTIntegrator(const Scene& scene, int maxDepth, MisWeighting mis)
     : paths_(scene, maxDepth), mis_(mis), heuristic_(mis.heuristic) {
-    // Light walks reach a thin lens (not through media: their walks do not look for it).
-    lensHits_ = scene.camera().hasLensDisk() && !scene.hasMedia();
+    // Light walks reach a thin lens, in media too (their flights must pass it: subpaths_media.cpp).
+    lensHits_ = scene.camera().hasLensDisk();
     paths_.setLensHits(lensHits_);
     // The default (power, beta 2), balance and uniform keep the prefix sums' O(1) weights.
     general_ = !(mis.isDefault() || mis.heuristic == MisHeuristic::Balance || mis.heuristic == MisHeuristic::Uniform);

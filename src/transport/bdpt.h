@@ -119,7 +119,7 @@ public:
                               SampledWavelengths* lambda = nullptr) const;
     void setRoulette(bool on) { paths_.setRoulette(on); }
     // Whether the t = 0 strategy is used (thesis §10.2: light subpaths that reach the lens by
-    // themselves, lens_hits.h): on by default through a thin lens in a scene without media.
+    // themselves, lens_hits.h): on by default through a thin lens, with or without media.
     // Multiplexed Metropolis, which samples one strategy (s, t >= 1) at a time, turns it off.
     bool lensHits() const { return lensHits_; }
     void disableLensHits();
