@@ -493,7 +493,7 @@ void BDPTIntegrator::recordStrategies(int maxDepth) {
     const Camera::Params& cp = scene.camera().params();
     strategies_ = std::make_unique<StrategyImages>(scene.pixelBounds(), cp.xRes, cp.yRes, scene.filter(),
                                                    std::min(maxDepth, paths_.maxDepth()),
-                                                   scene.settings().imagingRatio);
+                                                   scene.settings().imagingRatio, lensHits_);
 }
 
 Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
@@ -598,6 +598,8 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
     }
     produce(ray, sampler, scratch, ctx.stats, &ctx, [&](int s, int t, const Connection& c) {
         Spectrum contribution = c.L * c.weight;
+        if (strategies_ && t == 0)  // the t = 0 strategy lands where the lens maps its ray
+            strategies_->splatLens(s, c.pRaster, ctx.toFilm(contribution), ctx.toFilm(c.L), ctx.sampleIndex);
         if (strategies_ && t >= 1) {  // the strategy images hold t >= 1
             if (t == 1) {
                 strategies_->splat(s, c.pRaster, ctx.toFilm(contribution), ctx.toFilm(c.L), ctx.sampleIndex);

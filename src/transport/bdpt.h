@@ -140,7 +140,7 @@ public:
     // join, not those its BSDF evaluations produced, into Connection::recomputedWeight.
     void recomputeWeights(bool on) { recomputeWeights_ = on; }
     // Also record each strategy's contribution up to path depth maxDepth (memory: about
-    // 12 bytes per pixel per strategy image).
+    // 12 bytes per pixel per strategy image); with lens hits, the t = 0 strategies' too.
     void recordStrategies(int maxDepth);
     const StrategyImages* strategyImages() const { return strategies_.get(); }
     StrategyImages* strategyImages() { return strategies_.get(); }
