@@ -293,8 +293,8 @@ auto withHeuristic(MisHeuristic h, F&& f) {
 
 BDPTIntegrator::BDPTIntegrator(const Scene& scene, int maxDepth, MisWeighting mis)
     : paths_(scene, maxDepth), mis_(mis), heuristic_(mis.heuristic) {
-    // Light walks reach a thin lens (not through media: their walks do not look for it).
-    lensHits_ = scene.camera().hasLensDisk() && !scene.hasMedia();
+    // Light walks reach a thin lens, in media too (their flights must pass it: subpaths_media.cpp).
+    lensHits_ = scene.camera().hasLensDisk();
     paths_.setLensHits(lensHits_);
     // The default (power, beta 2), balance and uniform keep the prefix sums' O(1) weights.
     general_ = !(mis.isDefault() || mis.heuristic == MisHeuristic::Balance || mis.heuristic == MisHeuristic::Uniform);
@@ -493,7 +493,7 @@ void BDPTIntegrator::recordStrategies(int maxDepth) {
     const Camera::Params& cp = scene.camera().params();
     strategies_ = std::make_unique<StrategyImages>(scene.pixelBounds(), cp.xRes, cp.yRes, scene.filter(),
                                                    std::min(maxDepth, paths_.maxDepth()),
-                                                   scene.settings().imagingRatio);
+                                                   scene.settings().imagingRatio, lensHits_);
 }
 
 Spectrum BDPTIntegrator::Li(const Ray& ray, SampleContext& ctx) const {
@@ -598,6 +598,8 @@ Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx
     }
     produce(ray, sampler, scratch, ctx.stats, &ctx, [&](int s, int t, const Connection& c) {
         Spectrum contribution = c.L * c.weight;
+        if (strategies_ && t == 0)  // the t = 0 strategy lands where the lens maps its ray
+            strategies_->splatLens(s, c.pRaster, ctx.toFilm(contribution), ctx.toFilm(c.L), ctx.sampleIndex);
         if (strategies_ && t >= 1) {  // the strategy images hold t >= 1
             if (t == 1) {
                 strategies_->splat(s, c.pRaster, ctx.toFilm(contribution), ctx.toFilm(c.L), ctx.sampleIndex);

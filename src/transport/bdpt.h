@@ -119,7 +119,7 @@ public:
                               SampledWavelengths* lambda = nullptr) const;
     void setRoulette(bool on) { paths_.setRoulette(on); }
     // Whether the t = 0 strategy is used (thesis §10.2: light subpaths that reach the lens by
-    // themselves, lens_hits.h): on by default through a thin lens in a scene without media.
+    // themselves, lens_hits.h): on by default through a thin lens, with or without media.
     // Multiplexed Metropolis, which samples one strategy (s, t >= 1) at a time, turns it off.
     bool lensHits() const { return lensHits_; }
     void disableLensHits();
@@ -140,7 +140,7 @@ public:
     // join, not those its BSDF evaluations produced, into Connection::recomputedWeight.
     void recomputeWeights(bool on) { recomputeWeights_ = on; }
     // Also record each strategy's contribution up to path depth maxDepth (memory: about
-    // 12 bytes per pixel per strategy image).
+    // 12 bytes per pixel per strategy image); with lens hits, the t = 0 strategies' too.
     void recordStrategies(int maxDepth);
     const StrategyImages* strategyImages() const { return strategies_.get(); }
     StrategyImages* strategyImages() { return strategies_.get(); }

@@ -141,8 +141,8 @@ std::optional<UnsampledPaths> mediumEmission(const Scene& scene, const std::stri
 bool samplesLensHits(const Scene& scene, const std::string& integrator) {
     // pssmlt mutates BDPT's samples, all strategies at once, t = 0 included (BDPTIntegrator::
     // lensHits); mmlt samples one strategy with t >= 1 at a time, Veach's mlt its own paths.
-    return (integrator == "bdpt" || integrator == "light" || integrator == "pssmlt") &&
-           scene.camera().hasLensDisk() && !scene.hasMedia();
+    // In media too: the light walks' free flights reach the lens (subpaths_media.cpp).
+    return (integrator == "bdpt" || integrator == "light" || integrator == "pssmlt") && scene.camera().hasLensDisk();
 }
 
 std::vector<UnsampledPaths> unsampledPaths(const Scene& scene, const std::string& integrator) {

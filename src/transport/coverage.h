@@ -35,7 +35,8 @@ struct UnsampledPaths {
 std::vector<UnsampledPaths> unsampledPaths(const Scene& scene, const std::string& integrator);
 
 // Whether `integrator` has the t = 0 strategy in this scene (a light subpath reaching the lens
-// by itself, thesis §10.2): BDPT and light tracing through a thin lens (lensradius > 0).
+// by itself, thesis §10.2): BDPT, light tracing and pssmlt through a thin lens (lensradius > 0),
+// with or without participating media.
 bool samplesLensHits(const Scene& scene, const std::string& integrator);
 
 // Why `integrator` cannot render all of the scene's light that another integrator renders, or

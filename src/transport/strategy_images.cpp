@@ -13,30 +13,37 @@ namespace ps {
 namespace {
 // Strategies with t >= 2 (camera samples) up to maxDepth: depth d has d + 1 of them.
 size_t cameraStrategies(int maxDepth) { return size_t(maxDepth + 1) * size_t(maxDepth + 2) / 2; }
-// Output images: each camera strategy and each t = 1 strategy (s >= 2), weighted and unweighted.
-size_t outputImages(int maxDepth) { return 2 * (cameraStrategies(maxDepth) + size_t(maxDepth)); }
+// Strategies with t = 0 (a thin lens) up to maxDepth: one at each depth from 1 (s >= 3).
+size_t lensStrategies(int maxDepth, bool lens) { return lens ? size_t(maxDepth) : 0; }
+// Output images: each camera strategy, each t = 1 strategy (s >= 2) and each t = 0 strategy,
+// weighted and unweighted.
+size_t outputImages(int maxDepth, bool lens) {
+    return 2 * (cameraStrategies(maxDepth) + size_t(maxDepth) + lensStrategies(maxDepth, lens));
+}
 }  // namespace
 
-double StrategyImages::estimateBytes(double pixels, int maxDepth, int threads) {
+double StrategyImages::estimateBytes(double pixels, int maxDepth, int threads, bool lensStrategy) {
     const double sums = double(cameraStrategies(maxDepth)) * 2 * 3 * sizeof(Fixed) + sizeof(Fixed);  // + weights_
-    const double images = double(outputImages(maxDepth)) * 3 * sizeof(float);
-    const double splatFilms = 2.0 * (maxDepth + 1);
+    const double images = double(outputImages(maxDepth, lensStrategy)) * 3 * sizeof(float);
+    const double splatFilms = 2.0 * (maxDepth + 1) + 2.0 * double(lensStrategies(maxDepth, lensStrategy));
     return pixels * (sums + images) + splatFilms * Film::estimateBytes(pixels, true, threads);
 }
 
 StrategyImages::StrategyImages(PixelBounds bounds, int xRes, int yRes, const Filter& filter, int maxDepth,
-                               float imagingRatio)
+                               float imagingRatio, bool lensStrategy)
     : bounds_(bounds), maxDepth_(maxDepth), imagingRatio_(imagingRatio) {
     // The splat films decide on per-thread copies with the same concurrency (see Film's constructor).
-    requireMemory("--bdpt-strategies (" + std::to_string(outputImages(maxDepth)) + " strategy images of " +
+    requireMemory("--bdpt-strategies (" + std::to_string(outputImages(maxDepth, lensStrategy)) + " strategy images of " +
                       std::to_string(bounds.width()) + "x" + std::to_string(bounds.height()) + ")",
-                  estimateBytes(double(bounds.area()), maxDepth, tbb::this_task_arena::max_concurrency()));
+                  estimateBytes(double(bounds.area()), maxDepth, tbb::this_task_arena::max_concurrency(), lensStrategy));
     for (int depth = 0; depth <= maxDepth; ++depth)
         for (int t = 2; t <= depth + 2; ++t) strategies_.push_back({depth + 2 - t, t});
     sums_.assign(strategies_.size() * 2 * size_t(bounds.area()) * 3, 0);
     weights_.assign(size_t(bounds.area()), 0);
     for (int depth = 0; depth <= maxDepth; ++depth)
         for (int k = 0; k < 2; ++k) splatFilms_.push_back(std::make_unique<Film>(xRes, yRes, bounds, &filter));
+    for (size_t i = 0; i < 2 * lensStrategies(maxDepth, lensStrategy); ++i)
+        lensFilms_.push_back(std::make_unique<Film>(xRes, yRes, bounds, &filter));
 }
 
 int StrategyImages::slot(int s, int t) const {
@@ -68,12 +75,20 @@ void StrategyImages::splat(int s, Vec2 pRaster, Spectrum weighted, Spectrum unwe
     splatFilms_[size_t(depth) * 2 + 1]->addSplat(pRaster, unweighted, sampleIndex);
 }
 
+void StrategyImages::splatLens(int s, Vec2 pRaster, Spectrum weighted, Spectrum unweighted, int sampleIndex) {
+    const int depth = s - 2;
+    if (lensFilms_.empty() || depth < 1 || depth > maxDepth_) return;
+    lensFilms_[size_t(depth - 1) * 2]->addSplat(pRaster, weighted, sampleIndex);
+    lensFilms_[size_t(depth - 1) * 2 + 1]->addSplat(pRaster, unweighted, sampleIndex);
+}
+
 void StrategyImages::sumToRoot() {
     if (distributed::size() == 1) return;
     distributed::Purpose purpose("strategy images");
     distributed::sumToRoot(sums_);
     distributed::sumToRoot(weights_);
     for (const auto& f : splatFilms_) sumFilmInto(*f, *f);
+    for (const auto& f : lensFilms_) sumFilmInto(*f, *f);
 }
 
 std::vector<std::pair<std::string, Image>> StrategyImages::images(double lightPaths) const {
@@ -101,6 +116,8 @@ std::vector<std::pair<std::string, Image>> StrategyImages::images(double lightPa
     for (int depth = 1; depth <= maxDepth_; ++depth)  // (1, 1) is not a BDPT strategy
         for (int k = 0; k < 2; ++k)
             out.push_back({name(depth + 1, 1, k), splatFilms_[size_t(depth) * 2 + size_t(k)]->image(lightPaths)});
+    for (size_t i = 0; i < lensFilms_.size(); ++i)
+        out.push_back({name(int(i / 2) + 3, 0, int(i % 2)), lensFilms_[i]->image(lightPaths)});
     return out;
 }
 

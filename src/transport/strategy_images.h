@@ -2,6 +2,8 @@
 // contribution of that strategy alone, weighted by its MIS weight and unweighted. Each
 // unweighted image estimates the whole image of paths of its depth (when the strategy can
 // sample them all); the weighted ones sum to the BDPT image. Users debug scenes with them.
+// Through a thin lens the t = 0 strategies (light subpaths that reach the lens, thesis §10.2)
+// have images too, splatted as the t = 1 ones are.
 #pragma once
 #include <memory>
 #include <string>
@@ -17,10 +19,13 @@ namespace ps {
 class StrategyImages {
 public:
     // Throws InputError if the buffers would exceed the memory limit (util/memory_limit.h).
-    StrategyImages(PixelBounds bounds, int xRes, int yRes, const Filter& filter, int maxDepth, float imagingRatio);
+    // `lensStrategy`: also the t = 0 strategies' images (BDPTIntegrator::lensHits).
+    StrategyImages(PixelBounds bounds, int xRes, int yRes, const Filter& filter, int maxDepth, float imagingRatio,
+                   bool lensStrategy = false);
     // Bytes at the peak, for images of `pixels` pixels up to maxDepth: the per-strategy sums,
-    // the splat films of the t = 1 strategies (splatted by `threads` threads) and the output images.
-    static double estimateBytes(double pixels, int maxDepth, int threads);
+    // the splat films of the t = 1 (and t = 0) strategies (splatted by `threads` threads) and
+    // the output images.
+    static double estimateBytes(double pixels, int maxDepth, int threads, bool lensStrategy = false);
     int maxDepth() const { return maxDepth_; }
     // Slots index strategies (s, t >= 2); -1 for strategies not recorded.
     int slotCount() const { return int(strategies_.size()); }
@@ -30,10 +35,12 @@ public:
     void addCameraSample(int px, int py, float filterWeight, const Spectrum* contributions);
     // Light-tracing strategies (t = 1) land anywhere; thread-safe.
     void splat(int s, Vec2 pRaster, Spectrum weighted, Spectrum unweighted, int sampleIndex);
+    // The t = 0 strategy (s, 0), s >= 3, likewise; ignored without lensStrategy.
+    void splatLens(int s, Vec2 pRaster, Spectrum weighted, Spectrum unweighted, int sampleIndex);
     // Over several processes (render/distributed.h): every process's sums added into rank
     // 0's (exact: fixed point), as the film's are; every process calls it.
     void sumToRoot();
-    // Images named "s<S>_t<T>" and "s<S>_t<T>_unweighted".
+    // Images named "s<S>_t<T>" and "s<S>_t<T>_unweighted" (T = 0 with lensStrategy).
     std::vector<std::pair<std::string, Image>> images(double lightPaths) const;
 
 private:
@@ -46,6 +53,8 @@ private:
     std::vector<Fixed> sums_;     // [slot][weighted/unweighted][pixel][rgb]
     std::vector<Fixed> weights_;  // per pixel: sum of filter weights of camera samples
     std::vector<std::unique_ptr<Film>> splatFilms_;  // per depth: (s = depth + 1, t = 1) weighted, unweighted
+    // lensStrategy: per depth from 1: (s = depth + 2, t = 0) weighted, unweighted.
+    std::vector<std::unique_ptr<Film>> lensFilms_;
 };
 
 }  // namespace ps

@@ -109,7 +109,7 @@ int Subpaths::continueLightSubpath(const LightOrigin& o, S& sampler, ScratchBuff
     PathVertex& v = path[0];
     int limit = maxVertices > 0 ? std::min(maxVertices, maxLightVertices()) : maxLightVertices();
     int n = media ? randomWalkInMedia(o.ray, o.medium, o.beta, o.pdfDir, sampler, stats, scratch, path + 1, limit - 1,
-                                      TransportMode::Importance, kLightStartDimensions, lambda, *media)
+                                      TransportMode::Importance, kLightStartDimensions, lambda, *media, lens)
                   : randomWalk(o.ray, o.beta, o.pdfDir, sampler, scratch, stats, path + 1, limit - 1,
                                TransportMode::Importance, kLightStartDimensions, lambda, lens);
     // From a disk at infinity the second vertex's density is the disk's area density

@@ -75,8 +75,8 @@ public:
     // Vertex 0 on a light chosen as light subpaths choose (Scene::sampleLight), then the walk;
     // returns the number of vertices.
     // `time`: the scene time of the whole path (the camera sample's, for BDPT).
-    // `lens` (non-null, thin lens, no media): the rays that cross the lens are recorded there
-    // (lens_hits.h, the t = 0 strategy).
+    // `lens` (non-null, thin lens): the rays that cross the lens are recorded there (lens_hits.h,
+    // the t = 0 strategy); in media, those whose free flight passes the lens.
     template <typename S>
     int lightSubpath(S& sampler, float time, ScratchBuffer& scratch, PathStats& stats, PathVertex* path,
                      SampledWavelengths* lambda = nullptr, const MediaSample* media = nullptr,
@@ -150,11 +150,13 @@ private:
                    PathVertex* path, int maxVertices, TransportMode mode, int firstDimension,
                    SampledWavelengths* lambda, LensHits* lens = nullptr) const;
     // randomWalk in a scene with media (subpaths_media.cpp): free flights by delta tracking
-    // from `medium`, medium vertices, medium changes at boundaries.
+    // from `medium`, medium vertices, medium changes at boundaries; lens crossings that the
+    // flights pass (light walks, `lens` non-null).
     template <typename S>
     int randomWalkInMedia(Ray ray, const Medium* medium, Spectrum beta, float pdfDir, S& sampler, PathStats& stats,
                           ScratchBuffer& scratch, PathVertex* path, int maxVertices, TransportMode mode,
-                          int firstDimension, SampledWavelengths* lambda, const MediaSample& media) const;
+                          int firstDimension, SampledWavelengths* lambda, const MediaSample& media,
+                          LensHits* lens = nullptr) const;
 
     const Scene& scene_;
     int maxDepth_;

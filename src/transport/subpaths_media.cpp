@@ -14,6 +14,14 @@
 // divides by the channel mean of its whole path's ratios (both subpaths' and the connection's
 // tracking: Subpaths::connectThrough), which with a uniformly drawn hero is the balance
 // heuristic over channels (Wilkie et al. 2014) for every strategy.
+//
+// The t = 0 strategy (lens_hits.h, thesis §10.2): a light walk's segment that crosses a thin
+// lens records the crossing if its free flight passes the lens before it collides. The flight
+// is tracked to the lens and, past it, on to the segment's end afresh: the majorant's Poisson
+// process is memoryless, so the split leaves the walk's distribution as it was (sampleMajorant
+// restarts at its segments' ends likewise), and the part before the lens is the estimate of
+// the transmittance to it that the walk's flights to surfaces make (deltaTrack's Passed:
+// T_maj / pdf and the null collisions' ratios, in beta and rU alike).
 #include <limits>
 
 #include "mc/primary_sample_sampler.h"
@@ -26,7 +34,7 @@ template <typename S>
 int Subpaths::randomWalkInMedia(Ray ray, const Medium* medium, Spectrum beta0, float pdfFwd, S& sampler,
                                 PathStats& stats, ScratchBuffer& scratch, PathVertex* path, int maxVertices,
                                 TransportMode mode, int firstDimension, SampledWavelengths* lambda,
-                                const MediaSample& media) const {
+                                const MediaSample& media, LensHits* lens) const {
     if (maxVertices <= 0) return 0;
     const uint64_t stream = mode == TransportMode::Radiance ? MediaSample::kCameraWalk : MediaSample::kLightWalk;
     Rng rng(hashCombine(media.seed, stream));
@@ -53,8 +61,15 @@ int Subpaths::randomWalkInMedia(Ray ray, const Medium* medium, Spectrum beta0, f
         PathVertex& v = path[bounces];
         const bool hit = scene_.intersect(ray, si);
         bool scattered = false;
+        const float tEnd = hit ? si.t : std::numeric_limits<float>::infinity();
+        // The lens vertex would be walk vertex `bounces`, light subpath vertex bounces + 1.
+        const auto crossing = lens ? lensCrossing(scene_.camera(), ray, tEnd, bounces + 1, *lens) : std::nullopt;
+        const auto recordCrossing = [&] {
+            const float mean = channelMean(rU, media.spectral);
+            if (mean > 0) recordLensHit(*crossing, bounces + 1, beta0 * scatter / mean, pdfFwd, *lens);
+        };
+        if (crossing && !medium) recordCrossing();
         if (medium) {
-            const float tEnd = hit ? si.t : std::numeric_limits<float>::infinity();
             float uFlight = rng.uniform(), uEvent = -1;
             if (flightBlock != block) {
                 flightBlock = block;
@@ -63,8 +78,24 @@ int Subpaths::randomWalkInMedia(Ray ray, const Medium* medium, Spectrum beta0, f
                 uEvent = sampler.get1D();
             }
             from = camera && bounces < maxDepth_ && medium->emissive() ? &prev : nullptr;
-            const Flight fl = deltaTrack(*medium, ray, tEnd, uFlight, rng, lambda, media.hero, scatter, rU, nullptr,
-                                         emission, uEvent);
+            Flight fl;
+            Ray flightRay = ray;
+            float flightEnd = tEnd;
+            if (crossing) {
+                // To the lens first, then (having passed it) on from the lens point afresh.
+                fl = deltaTrack(*medium, ray, crossing->t, uFlight, rng, lambda, media.hero, scatter, rU, nullptr,
+                                emission, uEvent);
+                if (fl.end == FlightEnd::Passed && scatter.isFinite()) {
+                    recordCrossing();
+                    flightRay = Ray{crossing->p, ray.d, std::numeric_limits<float>::infinity(), ray.time};
+                    flightEnd = tEnd - crossing->t;
+                    uFlight = rng.uniform();
+                    uEvent = -1;
+                }
+            }
+            if (fl.end == FlightEnd::Passed && scatter.isFinite())
+                fl = deltaTrack(*medium, flightRay, flightEnd, uFlight, rng, lambda, media.hero, scatter, rU, nullptr,
+                                emission, uEvent);
             if (fl.end == FlightEnd::Absorbed || !scatter.isFinite()) break;
             if (fl.end == FlightEnd::Scattered) {
                 scattered = true;
@@ -155,7 +186,7 @@ int Subpaths::randomWalkInMedia(Ray ray, const Medium* medium, Spectrum beta0, f
 #define PS_MEDIA_WALK(S)                                                                                       \
     template int Subpaths::randomWalkInMedia<S>(Ray, const Medium*, Spectrum, float, S&, PathStats&,           \
                                                 ScratchBuffer&, PathVertex*, int, TransportMode, int,          \
-                                                SampledWavelengths*, const MediaSample&) const;
+                                                SampledWavelengths*, const MediaSample&, LensHits*) const;
 PS_MEDIA_WALK(Sampler)
 PS_MEDIA_WALK(PaddedSobolSampler)
 PS_MEDIA_WALK(IndependentSampler)

@@ -178,6 +178,18 @@ TEST_F(Cli, BdptStrategyImagesAndIntegratorChecks) {
               0);
     for (const char* name : {"s0_t8", "s3_t5", "s7_t1"}) EXPECT_TRUE(fs::exists(deep / (std::string(name) + ".exr"))) << name;
     EXPECT_FALSE(fs::exists(deep / "s0_t9.exr"));
+    // Through a thin lens also the t = 0 strategies (light subpaths that cross the lens), from depth 1.
+    std::string lensScene = kSmallScene;
+    lensScene.insert(lensScene.find("[ 30 ]") + 6, " \"float lensradius\" [ 0.1 ] \"float focaldistance\" [ 5 ]");
+    const fs::path lens = dir / "lens";
+    ASSERT_EQ(run("render --quiet --integrator bdpt --spp 1 --maxdepth 2 --bdpt-strategies " + lens.string() + " " +
+                  write("lens.pbrt", lensScene) + " -o " + (dir / "lens.exr").string())
+                  .status,
+              0);
+    for (const char* name : {"s3_t0", "s3_t0_unweighted", "s4_t0", "s4_t0_unweighted", "s2_t1"})
+        EXPECT_TRUE(fs::exists(lens / (std::string(name) + ".exr"))) << name;
+    EXPECT_FALSE(fs::exists(lens / "s2_t0.exr"));
+    EXPECT_FALSE(fs::exists(strategies / "s3_t0.exr"));  // a pinhole has none
     // Strategy images only come from BDPT; light tracing needs a perspective camera.
     Result wrong = run("render --quiet --integrator path --bdpt-strategies " + strategies.string() + " " + scene);
     EXPECT_EQ(wrong.status, 2);

@@ -108,3 +108,43 @@ TEST(BdptStrategies, WeightedSumIsTheImageAndUnweightedAgree) {
     for (int depth = 0; depth <= maxDepth; ++depth)
         EXPECT_EQ(strategiesOfDepth[depth], depth == 0 ? 1 : depth + 2) << "depth " << depth;
 }
+
+// Through a thin lens the t = 0 strategies (light subpaths that cross the lens, thesis §10.2)
+// have images of their own, s<S>_t0 for S = 3 .. maxdepth + 2, and the weighted images,
+// those included, sum to the render again. In this diffuse scene t = 0 carries little (its
+// weight against the lens connection is about its density over 1 / lens area), but some.
+TEST(BdptStrategies, ThinLensTZeroImagesCompleteTheSum) {
+    setWarningsQuiet(true);
+    const int maxDepth = 3;
+    // The camera nearer the centre, so that a wide lens fits in the sphere: t = 0's weight
+    // grows with the lens area (its density is 1 / area for the camera's strategies).
+    std::string text = kScene;
+    const std::string eye = "LookAt 0 0 -0.9", camera = "Camera \"perspective\" \"float fov\" [ 60 ]";
+    text.replace(text.find(eye), eye.size(), "LookAt 0 0 -0.3");
+    text.insert(text.find(camera) + camera.size(), " \"float lensradius\" [ 0.4 ] \"float focaldistance\" [ 1 ]");
+    auto scene = buildScene(parseSceneString(text, ".", "<test>"));
+    BDPTIntegrator bdpt(*scene, maxDepth);
+    ASSERT_TRUE(bdpt.lensHits());
+    bdpt.recordStrategies(maxDepth);
+    RenderOptions o;
+    o.spp = 64;
+    o.seed = 3;
+    o.progress = false;
+    RenderResult r = render(*scene, bdpt, o);
+    Image sum(r.image.width, r.image.height);
+    double lensShare = 0;
+    int lensImages = 0;
+    for (const auto& [name, img] : bdpt.strategyImages()->images(r.lightPaths)) {
+        const bool lens = name.find("_t0") != std::string::npos;
+        if (lens) ++lensImages;
+        if (name.find("_unweighted") != std::string::npos) continue;
+        if (lens) lensShare += luminanceMean(img);
+        for (size_t i = 0; i < sum.rgb.size(); ++i) sum.rgb[i] += img.rgb[i];
+    }
+    EXPECT_EQ(lensImages, 2 * maxDepth);
+    for (size_t i = 0; i < sum.rgb.size(); ++i)
+        ASSERT_NEAR(sum.rgb[i], r.image.rgb[i], 1e-4 * (1 + std::fabs(r.image.rgb[i]))) << "pixel value " << i / 3;
+    const double share = lensShare / luminanceMean(r.image);
+    std::printf("  t = 0's weighted images: %.2g of the image\n", share);
+    EXPECT_GT(share, 0.0);
+}
