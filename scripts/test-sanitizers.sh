@@ -33,7 +33,7 @@ skip+='|AgreementMatrix\.EveryIntegratorAgrees/[a-z]+_'
 # the matrix's base cell, the checkpoint and stop tests and one case of each agreement family.
 # Measured on 2 cores: 986 of the 1,704 test-seconds under the sanitizers (about 8 minutes of
 # the suite's wall time), run in the Release suite all the same.
-skip+='|All/(Sampling|Deterministic|Smooth)\.|SpectralDepths/|Variants/Metropolis|Heuristics/BdptMis|VeachPerturbationChiSquare|VeachMLTInfinity\.|PbrtShapesReference|PbrtMediaReference|LightAgreement|EstimatorAgreement\.(EnvironmentLit|GlossyConductor|PointAndSpot)|SpectralMode\.WhiteFurnace|VeachMLT\.(TwoStage|EmittersThatDoNot|DirectPart)|VeachTransition\.|LensHitsInMedia\.'
+skip+='|All/(Sampling|Deterministic|Smooth)\.|SpectralDepths/|Variants/Metropolis|Heuristics/BdptMis|VeachPerturbationChiSquare|VeachMLTInfinity\.|PbrtShapesReference|PbrtMediaReference|LightAgreement|EstimatorAgreement\.(EnvironmentLit|GlossyConductor|PointAndSpot)|SpectralMode\.WhiteFurnace|VeachMLT\.(TwoStage|EmittersThatDoNot|DirectPart)|VeachTransition\.|LensHitsInMedia\.(PointLight|AreaLight)'
 exclude=()
 [ "${PS_SANITIZE_ALL:-0}" = 1 ] || exclude=(-E "$skip")
 cd build-asan

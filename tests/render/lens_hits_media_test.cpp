@@ -187,3 +187,18 @@ TEST(LensHitsInMedia, AreaLightInScatteringFogWithAndWithoutTZero) {
     expectAgree(without, path, "bdpt without t = 0 against path", 0.04);
     expectAgree(with, without, "bdpt with t = 0 against bdpt without", 0.04);
 }
+
+// A few samples of both scenes, for the sanitizer suite (which skips the two agreements above
+// for their cost): the lens crossings in absorbing and scattering fog run, and give a finite,
+// positive image.
+TEST(LensHitsInMedia, FewSamplesRunUnderTheSanitizers) {
+    for (const auto& [text, integrator] : {std::pair<std::string, const char*>{absorbingFogScene("bdpt"), "bdpt"},
+                                           {absorbingFogScene("light"), "light"},
+                                           {kScatteringFog, "bdpt"}}) {
+        const ChannelMeans m = measure(text, integrator, 2, 2, 7);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_TRUE(std::isfinite(m.mean[c])) << integrator;
+            EXPECT_GT(m.mean[c], 0) << integrator;
+        }
+    }
+}
