@@ -149,11 +149,11 @@ bool SamplePasses::run(Film& film, const std::function<SampleSpan(size_t)>& span
                         if (spectral_) L = spectral_->toRendering(L, lambda);
                         st.scratch.reset();
                         if (techniqueCount_ > 0) {
-                            const int batch = interleave_ > 1         ? at.set
-                                              : interleavedBatches_ ? si % batchCount_
-                                                                    : int(std::upper_bound(batchStarts_.begin(),
-                                                                                           batchStarts_.end(), si) -
-                                                                          batchStarts_.begin());
+                            // Interleaved batches are the scrambled sets when there are some.
+                            const int batch = interleavedBatches_ ? si % batchCount_
+                                                                  : int(std::upper_bound(batchStarts_.begin(),
+                                                                                         batchStarts_.end(), si) -
+                                                                        batchStarts_.begin());
                             st.tally.endSample(batch, double(cameraWeight) * imagingRatio_ * fs.weight, splatScale_,
                                                fs.weight);
                         }
