@@ -111,9 +111,9 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
         });
     cmd->add_option("--light-paths", a.lightPaths,
                     "With --integrator bdpt: light subpaths per camera sample, in (0, 1] (default 1). Below 1, "
-                    "a sample traces its light subpath with this probability and the strategies that use it "
-                    "count as fewer samples in the MIS weights (docs/integrators.md): cheaper samples where "
-                    "light subpaths add little, as in directly lit scenes")
+                    "a sample is a BDPT sample with this probability and a path tracer's otherwise "
+                    "(docs/integrators.md): path tracing's cost where light subpaths add little, as in "
+                    "directly lit scenes")
         ->check([](const std::string& v) {
             char* end = nullptr;
             const float f = std::strtof(v.c_str(), &end);
@@ -361,6 +361,10 @@ void configureRender(Scene& scene, const RenderArgs& a, RenderSetup& setup) {
         bdpt = dynamic_cast<BDPTIntegrator*>(integrator.get());
         if (!bdpt) throw InputError("--bdpt-strategies needs --integrator bdpt (the scene asks for \"" +
                                     settings.integrator + "\")");
+        // Below 1 most samples are the path tracer's, which has no strategies (s, t) to record.
+        if (bdpt->lightPathShare() < 1)
+            throw InputError("--bdpt-strategies needs every sample to be a BDPT sample: drop --light-paths " +
+                             std::to_string(bdpt->lightPathShare()) + " (the other samples are path tracing's)");
         // Every depth the render makes, so that the weighted images sum to it; their memory grows
         // with the square of maxdepth and is checked (use --crop or a smaller --maxdepth if too much).
         bdpt->recordStrategies(settings.maxDepth);

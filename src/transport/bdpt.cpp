@@ -58,10 +58,10 @@ BDPTIntegrator::Connection BDPTIntegrator::connect(PathVertex* light, PathVertex
     if (recomputeWeights_) c.recomputedWeight = misWeight(light, camera, sampled, s, t, nullptr);
     if (j.from) {
         // Shadow-ray roulette on the contribution as the film will take it (produce divides
-        // strategies s >= 2 by the light path share).
+        // the paths only light subpaths sample by the light path share).
         float scale;
-        const float share = s >= 2 ? 1 / lightPathShare_ : 1.0f;
-        if (!roulette->trace(c.L * (c.weight * share), uint64_t(connectionDimension(s, t)), &scale)) {
+        if (!roulette->trace(c.L * (c.weight * lightSubpathScale(light, s, t)), uint64_t(connectionDimension(s, t)),
+                             &scale)) {
             ++stats.shadowRaysSkipped;
             c.L = Spectrum();
             return c;
@@ -249,23 +249,18 @@ double cameraPrefixStep(const PathVertex* camera, int m, double before) {
     return misTerm<H>(camera[m].pdfRev, camera[m].pdfFwd) * ((valid ? 1 : 0) + before);
 }
 // The term of a factor k of a density ratio: the s = 1 strategy's light choice
-// (Subpaths::lightChoiceRatio), which its density ratio to any other strategy carries, or a
-// ratio of sample counts: strategies that use the light subpath (s >= 2) take `share`
-// samples per camera sample, the others one (BDPTIntegrator::setLightPathShare), so a ratio
-// between the two kinds carries share or 1 / share (thesis §9.2, n_i p_i).
+// (Subpaths::lightChoiceRatio), which its density ratio to any other strategy carries.
 template <MisHeuristic H>
 double choiceTerm(float k) {
     if constexpr (H == MisHeuristic::Uniform) return k > 0 ? 1.0 : 0.0;
     if constexpr (H == MisHeuristic::Power) return double(k) * k;
     return k;
 }
-// At m = 1 the strategy counted is s = 1, whose term carries its light choice (choice). The
-// sums are used from strategies s >= 3, so the terms of s' = 0 and 1 carry their count
-// relative to a light subpath's (fewer: 1 / share).
+// At m = 1 the strategy counted is s = 1, whose term carries its light choice (choice).
 template <MisHeuristic H>
-double lightPrefixStep(const PathVertex* light, int m, double before, float choice, double fewer) {
+double lightPrefixStep(const PathVertex* light, int m, double before, float choice) {
     bool valid = !light[m].delta && !(m > 0 ? light[m - 1].delta : light[0].isDeltaLight());
-    const double own = m == 1 ? choiceTerm<H>(choice) * fewer : m == 0 ? fewer : 1.0;
+    const double own = m == 1 ? choiceTerm<H>(choice) : 1.0;
     return misTerm<H>(light[m].pdfRev, light[m].pdfFwd) * ((valid ? own : 0) + before);
 }
 
@@ -313,9 +308,7 @@ BDPTIntegrator::MisPrefixes BDPTIntegrator::misPrefixes(const PathVertex* light,
         // The t = 0 strategy (the light subpath reaching the lens) ends every camera-side sum.
         cam[0] = nCamera >= 2 ? lensTerm<H>(lensRatio(camera[0].pdfRev, camera[0], camera[1])) : 0.0;
         for (int m = 1; m <= nCamera - 2; ++m) cam[m] = cameraPrefixStep<H>(camera, m, cam[m - 1]);
-        const double fewer = choiceTerm<H>(1 / lightPathShare_);
-        for (int m = 0; m <= nLight - 2; ++m)
-            lig[m] = lightPrefixStep<H>(light, m, m > 0 ? lig[m - 1] : 0.0, choice, fewer);
+        for (int m = 0; m <= nLight - 2; ++m) lig[m] = lightPrefixStep<H>(light, m, m > 0 ? lig[m - 1] : 0.0, choice);
     });
     return {cam, lig, choice};
 }
@@ -366,9 +359,6 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
     if (general_) return weightFromEveryRatio(light, camera, qs, pt, s, t, rev, choice);
     double sum = withHeuristic(heuristic_, [&](auto h) {
         constexpr MisHeuristic H = decltype(h)::value;
-        // Sample counts (setLightPathShare): from s <= 1, the strategies s' >= 2 count
-        // `more`; from s >= 2, s' <= 1 count `fewer`.
-        const double more = choiceTerm<H>(lightPathShare_), fewer = choiceTerm<H>(1 / lightPathShare_);
         // Beyond the two vertices at each side of the join, each side contributes its
         // running sum: from the prefixes, or walked here.
         double cameraTail = 0, lightTail = 0;
@@ -379,7 +369,7 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
             for (int m = 1; m <= t - 3; ++m) cameraTail = cameraPrefixStep<H>(camera, m, cameraTail);
         if (s >= 3 && prefixes) lightTail = prefixes->light[s - 3];
         if (s >= 3 && !prefixes)
-            for (int m = 0; m <= s - 3; ++m) lightTail = lightPrefixStep<H>(light, m, lightTail, choice, fewer);
+            for (int m = 0; m <= s - 3; ++m) lightTail = lightPrefixStep<H>(light, m, lightTail, choice);
         // The join's own vertices take this connection's densities, and were reached by a
         // deterministic connection, not a specular bounce. Where a term counts the s = 1
         // strategy (s' = 1 from s = 0, 2 or 3), it carries that strategy's light choice.
@@ -392,10 +382,9 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
             } else if (lensHits_) {
                 inner = lensTerm<H>(lensRatio(rev.ptMinus, camera[0], *pt));  // (s + 2, 0)
             }
-            if (s == 0) inner *= more;  // s' >= 2
             const double sOne = s == 0 ? choiceTerm<H>(choice) : 1.0;
             const double side = misTerm<H>(rev.pt, pt->pdfFwd) * ((camera[t - 2].delta ? 0 : sOne) + inner);
-            total += s == 1 ? side * more : side;
+            total += side;
         } else if (t == 1 && lensHits_) {
             total += lensTerm<H>(lensRatio(rev.pt, *pt, *qs));  // (s + 1, 0)
         }
@@ -403,11 +392,11 @@ float BDPTIntegrator::misWeight(const PathVertex* light, const PathVertex* camer
             double inner = 0;
             if (s >= 2) {
                 bool valid = !light[s - 2].delta && !(s >= 3 ? light[s - 3].delta : light[0].isDeltaLight());
-                const double sOne = s == 3 ? choiceTerm<H>(choice) * fewer : s == 2 ? fewer : 1.0;
+                const double sOne = s == 3 ? choiceTerm<H>(choice) : 1.0;
                 inner = misTerm<H>(rev.qsMinus, light[s - 2].pdfFwd) * ((valid ? sOne : 0) + lightTail);
             }
             bool valid = s >= 2 ? !light[s - 2].delta : !qs->isDeltaLight();
-            const double sOne = s == 2 ? choiceTerm<H>(choice) * fewer : 1.0;
+            const double sOne = s == 2 ? choiceTerm<H>(choice) : 1.0;
             total += misTerm<H>(rev.qs, qs->pdfFwd) * ((valid ? sOne : 0) + inner);
         }
         // From s = 1 itself, every other strategy's ratio divides by its light choice.
@@ -436,42 +425,38 @@ float BDPTIntegrator::weightFromEveryRatio(const PathVertex* light, const PathVe
         r = heap.data();
     }
     int n = 0;
-    // Each ratio carries the sample counts' ratio (setLightPathShare): strategy s' takes
-    // `share` samples if it uses the light subpath (s' >= 2), else one.
-    const auto count = [&](int sPrime) { return sPrime >= 2 ? double(lightPathShare_) : 1.0; };
-    const double own = count(s);
-    const auto keep = [&](double R, int sPrime) { r[n++] = R * (count(sPrime) / own); };
+    const auto keep = [&](double R) { r[n++] = R; };
     // Towards the camera: strategies (s + 1, t - 1), (s + 2, t - 2), ..., t' = 1.
     if (t >= 2) {
         double R = term(rev.pt, pt->pdfFwd);
-        if (!camera[t - 2].delta) keep(R * (s == 0 ? choice : 1.0), s + 1);  // s' = 1 carries its light choice
+        if (!camera[t - 2].delta) keep(R * (s == 0 ? choice : 1.0));  // s' = 1 carries its light choice
         if (t >= 3) {
             R *= term(rev.ptMinus, camera[t - 2].pdfFwd);
-            if (!camera[t - 2].delta && !camera[t - 3].delta) keep(R, s + 2);
+            if (!camera[t - 2].delta && !camera[t - 3].delta) keep(R);
             for (int m = t - 3; m >= 1; --m) {
                 R *= term(camera[m].pdfRev, camera[m].pdfFwd);
-                if (!camera[m].delta && !camera[m - 1].delta) keep(R, s + t - m);
+                if (!camera[m].delta && !camera[m - 1].delta) keep(R);
             }
         }
         // The t = 0 strategy: the light subpath reaches the lens camera[0] itself.
         const float lens = lensRatio(t >= 3 ? camera[0].pdfRev : rev.ptMinus, camera[0], camera[1]);
-        if (lens > 0) keep(R * lens, s + t);
+        if (lens > 0) keep(R * lens);
     } else if (t == 1) {
         const float lens = lensRatio(rev.pt, *pt, *qs);
-        if (lens > 0) keep(lens, s + 1);
+        if (lens > 0) keep(lens);
     }
     // Towards the light: strategies (s - 1, t + 1), ..., s' = 0.
     if (s >= 1) {
         double R = term(rev.qs, qs->pdfFwd);
-        if (s >= 2 ? !light[s - 2].delta : !qs->isDeltaLight()) keep(R * (s == 2 ? choice : 1.0), s - 1);
+        if (s >= 2 ? !light[s - 2].delta : !qs->isDeltaLight()) keep(R * (s == 2 ? choice : 1.0));
         if (s >= 2) {
             R *= term(rev.qsMinus, light[s - 2].pdfFwd);
             if (!light[s - 2].delta && !(s >= 3 ? light[s - 3].delta : light[0].isDeltaLight()))
-                keep(R * (s == 3 ? choice : 1.0), s - 2);
+                keep(R * (s == 3 ? choice : 1.0));
             for (int m = s - 3; m >= 0; --m) {
                 R *= term(light[m].pdfRev, light[m].pdfFwd);
                 if (!light[m].delta && !(m > 0 ? light[m - 1].delta : light[0].isDeltaLight()))
-                    keep(R * (m == 1 ? choice : 1.0), m);
+                    keep(R * (m == 1 ? choice : 1.0));
             }
         }
     }
@@ -486,6 +471,22 @@ float BDPTIntegrator::weightFromEveryRatio(const PathVertex* light, const PathVe
 void BDPTIntegrator::setLightPathShare(float share) {
     if (!(share > 0 && share <= 1)) throw std::invalid_argument("the light path share must be in (0, 1]");
     lightPathShare_ = share;
+    pathTracer_.reset();
+    if (share < 1) pathTracer_ = std::make_unique<PathTracer>(paths_.scene(), paths_.maxDepth(), mis_);
+}
+
+// A path the path tracer samples too (its strategies s' = 0 and 1 of BDPT's: the camera walk
+// hitting a light that is not delta, or next-event estimation from the path's vertex next to
+// the light when that one is not specular) is estimated by the samples without a light
+// subpath as well: at weight 1 in samples with one, the two kinds of sample average to it. A
+// path only light subpaths reach (a delta light seen through a specular vertex) comes from the
+// share that has one alone, and counts 1 / share.
+float BDPTIntegrator::lightSubpathScale(const PathVertex* light, int s, int t) const {
+    // t >= 1: s <= 1 are the path tracer's own strategies, and at s = 2 the vertex next to
+    // the light is the connection's, never specular. t = 0: the light subpath ends on the lens.
+    if (lightPathShare_ >= 1 || (t >= 1 && s <= 2)) return 1;
+    const bool pathTracerSamples = !light[0].isDeltaLight() || (s >= 2 && !light[1].delta);
+    return pathTracerSamples ? 1 : 1 / lightPathShare_;
 }
 
 void BDPTIntegrator::recordStrategies(int maxDepth) {
@@ -517,11 +518,10 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
     // The light subpath's origin first: its sampling then overlaps the camera walk.
     if (splatTo) lambda = splatTo->lambda;
     sampler.startStream(kLightStream);
-    // With a light path share below 1, this sample traces its light subpath with that
-    // probability (setLightPathShare); the decision takes the light stream's first dimension.
-    const bool traceLight = lightPathShare_ >= 1 || sampler.get1D() < lightPathShare_;
-    Subpaths::LightOrigin origin;
-    if (traceLight) origin = paths_.lightOrigin(sampler, ray.time, stats, light, lambda);
+    // With a light path share below 1, estimate() decided on the light stream's first
+    // dimension that this sample traces a light subpath (setLightPathShare).
+    if (lightPathShare_ < 1) sampler.get1D();
+    const Subpaths::LightOrigin origin = paths_.lightOrigin(sampler, ray.time, stats, light, lambda);
     sampler.startStream(kCameraStream);
     std::optional<MediaSample> media;
     if (paths_.scene().hasMedia()) media = paths_.mediaSample(sampler, lambda);
@@ -529,18 +529,16 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
     int nCamera = paths_.cameraSubpath(ray, sampler, scratch, stats, camera, cameraVertices, lambda, ms);
     sampler.startStream(kLightStream);
     LensHits lensHits;
-    if (lensHits_ && traceLight) {
+    if (lensHits_) {
         lensHits.capacity = lightVertices;
         lensHits.hits = static_cast<LensHit*>(scratch.allocBytes(sizeof(LensHit) * size_t(lightVertices), alignof(LensHit)));
     }
-    const int nLight = traceLight ? paths_.continueLightSubpath(origin, sampler, scratch, stats, light, lightVertices,
-                                                                lambda, ms, lensHits_ ? &lensHits : nullptr)
-                                  : 0;
+    const int nLight = paths_.continueLightSubpath(origin, sampler, scratch, stats, light, lightVertices, lambda, ms,
+                                                   lensHits_ ? &lensHits : nullptr);
     sampler.startStream(kConnectionStream);
     const MisPrefixes prefixes = misPrefixes(light, nLight, camera, nCamera, scratch);
 
     const int maxDepth = paths_.maxDepth();
-    const float invShare = 1 / lightPathShare_;
     // s = 1 samples its own light vertex (joinLight), so it runs even when the light subpath
     // is empty: its origin can fail where light sampling succeeds (a cut-out point of an
     // emitter with alpha), and skipping s = 1 then would bias it by the chance of that failure.
@@ -556,7 +554,7 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
             sampler.seekDimension(connectionDimension(s, t));
             Connection c = connect(light, camera, s, t, sampler, stats, true, &prefixes, splatTo, lambda, ms);
             if (c.L.isBlack()) continue;
-            if (s >= 2) c.L *= invShare;  // traced with probability share: unbiased in expectation
+            c.L *= lightSubpathScale(light, s, t);
             c.dispersive = lambda && usesDispersiveVertex(light, camera, s, t);
             deposit(s, t, c);
         }
@@ -580,7 +578,7 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
         if (depth > maxDepth || (onlyDepth >= 0 && depth != onlyDepth)) continue;
         Connection c = connectLens(light, hit, scratch, &prefixes);
         if (c.L.isBlack()) continue;
-        c.L *= invShare;
+        c.L *= lightSubpathScale(light, s, 0);
         c.dispersive = lambda && usesDispersiveVertex(light, nullptr, hit.index, 0);
         deposit(s, 0, c);
     }
@@ -588,6 +586,19 @@ void BDPTIntegrator::produce(const Ray& ray, S& sampler, ScratchBuffer& scratch,
 
 template <typename S>
 Spectrum BDPTIntegrator::estimate(const Ray& ray, S& sampler, SampleContext& ctx) const {
+    if (pathTracer_) {
+        // A light subpath for a share of the samples; the others are the path tracer's, whose
+        // strategies are BDPT's s = 0 and 1 without the light subpath's cost (lightSubpathScale).
+        sampler.startStream(kLightStream);
+        if (!(sampler.get1D() < lightPathShare_)) {
+            sampler.startStream(kCameraStream);
+            SampleContext alone = ctx;
+            alone.tally = nullptr;  // its own techniques' indices are not BDPT's
+            const Spectrum L = pathTracer_->Li(ray, alone);
+            if (ctx.tally) ctx.tally->addCamera(pathTechniqueIndex(), ctx.toFilm(L));
+            return L;
+        }
+    }
     ScratchBuffer& scratch = ctx.scratch;
     Spectrum L;
     Spectrum* perStrategy = nullptr;

@@ -9,6 +9,7 @@
 #include "mc/mis.h"
 #include "mc/primary_sample_sampler.h"
 #include "transport/integrator.h"
+#include "transport/path_tracer.h"
 #include "transport/strategy_images.h"
 #include "transport/subpaths.h"
 
@@ -21,7 +22,8 @@ public:
     Spectrum Li(const Ray& ray, SampleContext& ctx) const override;
     bool splats() const override { return true; }
     bool supportsSpectral() const override { return true; }
-    // Every strategy (s, t) up to maxdepth, at techniqueIndex(s, t) (--stats' figures).
+    // Every strategy (s, t) up to maxdepth, at techniqueIndex(s, t) (--stats' figures); with a
+    // light path share below 1, then the samples without a light subpath ("path").
     std::vector<RenderTechnique> techniques() const override;
     // Depth d = s + t - 2 holds t = 0 .. d + 2 after the d (d + 5) / 2 slots of smaller depths.
     static int techniqueIndex(int s, int t) {
@@ -129,13 +131,16 @@ public:
     Connection connectLens(const PathVertex* light, const LensHit& hit, ScratchBuffer& scratch,
                            const MisPrefixes* prefixes = nullptr) const;
     // The expected number of light subpaths per camera subpath, in (0, 1] (1: one each, the
-    // classic pairing). Below 1 each camera sample traces its light subpath with this
-    // probability: the strategies that use it (s >= 2) become techniques with sample count
-    // `share` in the multi-sample model (thesis §9.2, n_i), their weights and contributions
-    // scaled to match, while s = 0 and s = 1 keep one sample each. Where light subpaths add
-    // little (mostly direct light), this buys camera samples with their time. Rendering only:
-    // Metropolis keeps the pairing.
+    // classic pairing). Below 1 a camera sample is a whole BDPT sample with this probability
+    // and a path tracer's sample otherwise: an unbiased mix of two estimators wherever both
+    // sample a path, while the paths only light subpaths reach count 1 / share
+    // (lightSubpathScale). Where light subpaths add little (mostly direct light), small
+    // shares cost what path tracing costs. Rendering only: Metropolis keeps the pairing.
     void setLightPathShare(float share);
+    float lightPathShare() const { return lightPathShare_; }
+    // The factor of a strategy's contribution at the light path share: 1 / share for a path
+    // that no sample without a light subpath could make, else 1. Exposed for tests.
+    float lightSubpathScale(const PathVertex* light, int s, int t) const;
     // For tests: connect() also computes each weight from densities evaluated afresh at the
     // join, not those its BSDF evaluations produced, into Connection::recomputedWeight.
     void recomputeWeights(bool on) { recomputeWeights_ = on; }
@@ -211,7 +216,13 @@ private:
     std::unique_ptr<StrategyImages> strategies_;
     bool recomputeWeights_ = false;
     float lightPathShare_ = 1;
+    std::unique_ptr<PathTracer> pathTracer_;  // the samples without a light subpath (share < 1)
     bool lensHits_ = false;
+    // The technique after every strategy up to maxdepth: the path tracer's samples.
+    int pathTechniqueIndex() const {
+        const int d = paths_.maxDepth() + 1;
+        return d * (d + 5) / 2;
+    }
 };
 
 }  // namespace ps

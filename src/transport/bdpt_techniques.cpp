@@ -1,5 +1,6 @@
 // BDPT's strategies as --stats' techniques (transport/technique_tally.h): every (s, t) up to
-// maxdepth, at BDPTIntegrator::techniqueIndex(s, t).
+// maxdepth, at BDPTIntegrator::techniqueIndex(s, t), then the path tracer's samples at a light
+// path share below 1.
 #include "transport/bdpt.h"
 
 namespace ps {
@@ -21,6 +22,7 @@ std::vector<RenderTechnique> BDPTIntegrator::techniques() const {
             k.possible = !(s == 1 && t == 1) && (t > 0 || lensHits_);
             out.push_back(k);
         }
+    if (pathTracer_) out.push_back(RenderTechnique{"path"});
     return out;
 }
 

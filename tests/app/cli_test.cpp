@@ -355,7 +355,8 @@ TEST_F(Cli, MisOption) {
     EXPECT_EQ(run("render --quiet --integrator bdpt --mis nope " + scene + " -o " + out).status, 2);
 }
 
-// --light-paths F: BDPT traces a light subpath for a share F of its camera samples. Exact on
+// --light-paths F: a share F of BDPT's camera samples are BDPT samples, the rest path
+// tracing's. Exact on
 // the sky scene at 0.25 (its unbiasedness against path tracing: render/estimator_agreement_test),
 // a different image from the default, the share in --stats; outside (0, 1] or with another
 // integrator it exits with 2 and says why.
@@ -380,6 +381,14 @@ TEST_F(Cli, LightPathsOption) {
     Result path = run(base + " --integrator path --spp 1 --light-paths 0.5");
     EXPECT_EQ(path.status, 2);
     EXPECT_NE(path.out.find("needs --integrator bdpt"), std::string::npos) << path.out;
+    // The path tracer's samples have no strategies (s, t) to draw.
+    Result images = run(base + " --integrator bdpt --spp 1 --light-paths 0.5 --bdpt-strategies " + (dir / "st").string());
+    EXPECT_EQ(images.status, 2);
+    EXPECT_NE(images.out.find("--bdpt-strategies needs every sample to be a BDPT sample"), std::string::npos) << images.out;
+    // --stats names them as a technique of their own.
+    bool pathTechnique = false;
+    for (const auto& k : j.at("techniques").at("list")) pathTechnique = pathTechnique || k.at("name") == "path";
+    EXPECT_TRUE(pathTechnique) << j.at("techniques").dump();
 }
 
 // Shadow-ray roulette through the real binary: the exact sky image with most shadow rays

@@ -92,10 +92,10 @@ TEST(EstimatorAgreement, GlassSphereCaustic) {
     expectAgreement(AgreementCase{"glass caustic", scene, {"bdpt", "light", "path"}, 384, 16, {{"light", 768}, {"path", 832}}});
 }
 
-// BDPT tracing a light subpath for a quarter of its camera samples (--light-paths 0.25): the
-// strategies that use one count as a quarter sample each in the weights and their
-// contributions are scaled by 4. Unbiased both where light subpaths add little (the box)
-// and where they carry the image (the caustic, which path tracing samples poorly).
+// BDPT with a light subpath for a quarter of its camera samples (--light-paths 0.25), the
+// others path tracing's. Unbiased where light subpaths add little (the box), where they carry
+// the image (the caustic, which path tracing samples poorly), and where only they can (the
+// caustic of a point light, which path tracing cannot sample: those paths count 4 times).
 TEST(EstimatorAgreement, BdptWithFewerLightPaths) {
     expectAgreement(AgreementCase{"fewer light paths, box", box(R"(
         Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.8 ]
@@ -103,6 +103,15 @@ TEST(EstimatorAgreement, BdptWithFewerLightPaths) {
     )"), {"path", "bdpt:light-paths=0.25"}, 16});
     expectAgreement(AgreementCase{"fewer light paths, caustic", glassSphereCaustic(R"("float eta" [ 1.5 ])"),
                                   {"bdpt", "bdpt:light-paths=0.25"}, 384, 16, {{"bdpt:light-paths=0.25", 768}}});
+    std::string pointLit = glassSphereCaustic(R"("float eta" [ 1.5 ])");
+    const std::string area = R"(AreaLightSource "diffuse" "rgb L" [ 8 8 8 ]
+          Shape "bilinearmesh" "point3 P" [ -0.4 3 -0.4   0.4 3 -0.4   -0.4 3 0.4   0.4 3 0.4 ])";
+    ASSERT_NE(pointLit.find(area), std::string::npos);
+    pointLit.replace(pointLit.find(area), area.size(), R"(LightSource "point" "rgb I" [ 2 2 2 ] "point3 from" [ 0 3 0 ])");
+    // 2%: the caustic is a large part of the image, and without the 1 / share its three
+    // quarters would be missing.
+    expectAgreement(AgreementCase{"fewer light paths, point-lit caustic", pointLit, {"bdpt", "bdpt:light-paths=0.25"},
+                                  384, 16, {{"bdpt:light-paths=0.25", 768}}, 0.02});
 }
 
 TEST(EstimatorAgreement, GlossyConductor) {

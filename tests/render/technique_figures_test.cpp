@@ -197,7 +197,9 @@ TEST(TechniqueFigures, TimeBudgetedRenderEstimatesItsVariance) {
     // Per-sample variances (times the count), pixel and technique figures alike.
     const double a = stopped.error.meanVariance * stopped.meanSpp, b = finished.error.meanVariance * spp;
     std::printf("stopped at %.1f spp: variance x spp %.4g, finished: %.4g\n", stopped.meanSpp, a, b);
-    EXPECT_NEAR(a / b, 1.0, 0.3);
+    // Loose: 8 sets per pixel, and the two renders' points differ (a 2^24 sequence stopped
+    // against a finished one of spp); measured 0.74-0.98 under load. Broken, a is 0.
+    EXPECT_NEAR(a / b, 1.0, 0.5);
     ASSERT_EQ(stopped.techniqueFigures.size(), finished.techniqueFigures.size());
     for (size_t t = 0; t < finished.techniqueFigures.size(); ++t) {
         const double va = stopped.techniqueFigures[t].variance * stopped.meanSpp,
