@@ -7,7 +7,7 @@ path-traced reference (cached in build/bench-cache/; the many-light scenes share
 bench/many_lights.py's), mean over the seeds, and each configuration's relMSE over the path
 tracer's. Run from the repository root, under the lock for the whole measurement:
 
-  flock /tmp/ps-build.lock python3 bench/bdpt_light_paths.py [--time 3] [--seeds 2] [--shares 1,0.5,0.25,0.125]
+  flock /tmp/ps-build.lock python3 bench/bdpt_light_paths.py [--time 3] [--seeds 2] [--shares 1,0.1,0.01]
 """
 import argparse
 import os
