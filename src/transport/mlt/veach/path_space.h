@@ -255,8 +255,11 @@ public:
 private:
     // The BSDF at surface vertex v for light arriving from direction wi and leaving along wo
     // (unit, world), in `mode`, with the density of sampling wi from wo; specular lobes
-    // matched to the direction pair.
-    void bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, Spectrum* f, float* pdf) const;
+    // matched to the direction pair. At a specular vertex, `jacobian` receives
+    // d(omega_wo) / d(omega_wi) along its lobe's map from wo to wi (1 for a reflection; for a
+    // refraction eta'^2 |cos wi| / |cos wo|, eta' the ratio of wi's index to wo's), else 1.
+    void bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, Spectrum* f, float* pdf,
+              float* jacobian = nullptr) const;
     // A free flight along ray (in `medium`, up to tEnd) by the majorant's Poisson process:
     // the first tentative collision, if before tEnd (path_space_media.cpp).
     static bool sampleFlight(const Medium& medium, const Ray& ray, float tEnd, const SampledWavelengths& lambda,
