@@ -249,7 +249,19 @@ bool PathSpace::visible(const MltVertex& a, const MltVertex& b, PathStats& stats
         const MltVertex& from = atInfinity(a) ? b : a;
         return !scene_.occluded(spawnRay(from.p, offsetNormal(from), directionTo(from, atInfinity(a) ? a : b), from.time));
     }
-    return !scene_.occluded(spawnRayTo(a.p, offsetNormal(a), b.p, a.time));
+    const Ray ray = shadowRay(a.p, offsetNormal(a), b, a.time);
+    return !(ray.tMax > 0) || !scene_.occluded(ray);
+}
+
+Ray PathSpace::shadowRay(Vec3 from, Vec3 fromNg, const MltVertex& to, float time) {
+    Ray ray = spawnRayTo(from, fromNg, to.p, time);
+    if (to.kind != MltVertex::Kind::Lens) {
+        // The offset a ray leaving `to` towards `from` would get (zero at a point: a medium
+        // vertex, a point light).
+        const float margin = length(offsetRayOrigin(to.p, to.ng, -ray.d) - to.p), len = length(ray.d);
+        ray.tMax = len > margin ? std::min(ray.tMax, 1 - margin / len) : 0.0f;
+    }
+    return ray;
 }
 
 double PathSpace::areaFactor(const MltPath& x, int from, int to) { return toArea(1.0, x[size_t(from)], x[size_t(to)]); }

@@ -270,6 +270,14 @@ private:
     // scatter at a medium vertex: the phase function's direction.
     bool scatterInMedium(std::vector<MltVertex>& side, Rng& rng, Ray& ray) const;
     bool visibleThroughMedia(const MltVertex& a, const MltVertex& b, PathStats& stats) const;
+    // A shadow ray from `from` (offset off its surface along fromNg, if not zero) to vertex
+    // `to`, stopped short of `to` by the offset a ray leaving `to` would get (tMax <= 0: too
+    // short for anything to block). spawnRayTo's relative margin alone is below the
+    // intersection's rounding on edges shorter than about 1e-3, which media make common (a
+    // free flight stops anywhere): a ray from a medium vertex, which has no offset, then hit
+    // the surface of the vertex it went to, and the edge counted as blocked from that end
+    // alone (a zero density from one side, a path weight of 1e10 in the bootstrap).
+    static Ray shadowRay(Vec3 from, Vec3 fromNg, const MltVertex& to, float time);
     // Walks the edge a-b (from its finite end, the optical depth being the same either way)
     // through `interface` shapes: calls part(medium, origin, unit direction, length) for each
     // piece in a medium, which may end the walk (false); false if a surface that is not an
