@@ -97,7 +97,7 @@ void PathSpace::bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, S
             if (f) *f = s->f;
             if (pdf) *pdf = s->pdf;
             // Étendue, eta^2 |cos| d(omega), is the same on both sides of a refraction (thesis
-            // §5.2); the sampled directions', so that a reflection's is exactly 1.
+            // §5.2); from the sampled directions.
             if (jacobian && s->isTransmission()) *jacobian = s->eta * s->eta * std::fabs(s->wi.z) / std::fabs(woL.z);
             return;
         }

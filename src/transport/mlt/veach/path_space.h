@@ -10,7 +10,9 @@
 //    shading-normal correction of the path tracer (thesis §5.3), so its f / p equals the
 //    path tracer's, BDPT's and light tracing's estimates;
 //  - a specular vertex stands for its lobe's weight per unit solid angle, and its
-//    "density" for the discrete probability of choosing that lobe (both times one delta);
+//    "density" for the discrete probability of choosing that lobe (both times one delta, in
+//    the light-side direction: a density from the light side, whose delta is in the
+//    camera-side direction, carries the refraction's Jacobian, lightDensity);
 //  - the pinhole's position and a point light's are deltas of unit weight;
 //  - the lens has the viewing direction as its normal, so the geometry term of the last
 //    edge carries the lens cosine that the importance We expects;
