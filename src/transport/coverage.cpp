@@ -208,16 +208,4 @@ std::string unsupportedMedia(const Scene& scene, const std::string& integrator) 
     return "";
 }
 
-std::string knownMediaBias(const Scene& scene, const std::string& integrator) {
-    if (integrator != "mlt" || !scene.hasMedia()) return "";
-    std::set<const Material*> seen;  // each material's BxDF built once
-    for (const Shape* shape : scene.shapes())
-        if (shape->mediumTransition && shape->material && seen.insert(shape->material).second &&
-            mayScatterSpecularly(*shape->material))
-            return "mlt renders a medium behind a smooth dielectric boundary (here " +
-                   materialNames({shape->material}) + ") about 1% too bright, a known bias not yet found "
-                   "(docs/integrators.md, \"Media in mlt\"); bdpt, pssmlt and mmlt render it unbiased";
-    return "";
-}
-
 }  // namespace ps

@@ -59,11 +59,6 @@ std::string inconsistentSurfaces(const Scene& scene, const std::string& integrat
 // the scene (createIntegrator) rather than render it without.
 std::string unsupportedMedia(const Scene& scene, const std::string& integrator);
 
-// A warning for Veach's mlt in a scene where a shape that bounds a medium may scatter
-// specularly (smooth glass, a `subsurface` shape's default boundary): mlt renders such media
-// about 1% too bright (docs/integrators.md, "Media in mlt"); "" elsewhere and for the others.
-std::string knownMediaBias(const Scene& scene, const std::string& integrator);
-
 // Why "light" or "mlt" cannot render through a camera without importance (orthographic,
 // spherical, realistic): a phrase that follows the integrator's name.
 std::string lensRequirement(const std::string& integrator);

@@ -47,7 +47,6 @@ std::unique_ptr<Integrator> createIntegrator(const std::string& name, const Scen
         // Emission inside media has no strategy in light tracing and mlt: rendered, such a scene
         // would be silently dark (coverage.h, unsupportedMedia).
         if (const std::string why = unsupportedMedia(scene, name); !why.empty()) throw InputError(why);
-        if (const std::string bias = knownMediaBias(scene, name); !bias.empty()) warning(bias);
         // Light tracing and Veach's lens mutations need the camera's importance; BDPT and the
         // primary-sample chains do without its t = 1 strategies.
         if ((name == "light" || name == "mlt") && !scene.camera().hasImportance())

@@ -62,8 +62,10 @@ PathSpace::PathSpace(const Scene& scene, int maxDepth) : scene_(scene), maxDepth
     if (scene.settings().spectral) sensor_.emplace(scene.settings());
 }
 
-void PathSpace::bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, Spectrum* f, float* pdf) const {
+void PathSpace::bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, Spectrum* f, float* pdf,
+                     float* jacobian) const {
     const Vec3 woL = v.frame.toLocal(wo), wiL = v.frame.toLocal(wi);
+    if (jacobian) *jacobian = 1;
     if (v.mixed) {
         // PathSpace's own sampling of a layered BxDF (MltVertex::mixed): its density is exact.
         const float R = v.bxdf->coatingMirrorReflectance(woL);
@@ -94,6 +96,9 @@ void PathSpace::bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, S
         if (s && dot(s->wi, wiL) > 1 - 1e-4f) {
             if (f) *f = s->f;
             if (pdf) *pdf = s->pdf;
+            // Étendue, eta^2 |cos| d(omega), is the same on both sides of a refraction (thesis
+            // §5.2); from the sampled directions.
+            if (jacobian && s->isTransmission()) *jacobian = s->eta * s->eta * std::fabs(s->wi.z) / std::fabs(woL.z);
             return;
         }
     }
@@ -172,8 +177,16 @@ double PathSpace::lightDensity(const MltPath& x, int i, Lobes lobes) const {
         pdfDir = u.mediumAbove->phase().pdf(unitTo(u, x[size_t(i - 2)]), w);
     } else {
         if (u.kind != MltVertex::Kind::Surface || !u.bxdf) return 0;
-        bsdf(u, unitTo(u, x[size_t(i - 2)]), w, TransportMode::Importance, nullptr, &pdfDir);
+        float jacobian;
+        bsdf(u, unitTo(u, x[size_t(i - 2)]), w, TransportMode::Importance, nullptr, &pdfDir, &jacobian);
         if (u.delta && lobes == Lobes::Forced && pdfDir > 0) pdfDir = 1;
+        // A specular lobe's delta: f's and cameraDensity's are in the light-side direction
+        // (sampled from the camera side), this one in the camera-side direction w. Through
+        // a refraction the two measures differ by the Jacobian of the lobe's map (thesis
+        // §5.2: eta^2 |cos| d(omega) is conserved), so the delta is carried over to f's.
+        // Without it a path through refractions whose angles do not cancel (a medium or a
+        // surface inside a dielectric) had other densities from each side: mlt 1-8% too bright.
+        pdfDir *= jacobian;
     }
     const double flight = scene_.hasMedia() && lobes == Lobes::Sampled ? flightDensity(u, v) : 1.0;
     return toArea(pdfDir, u, v) * flight;
@@ -236,7 +249,19 @@ bool PathSpace::visible(const MltVertex& a, const MltVertex& b, PathStats& stats
         const MltVertex& from = atInfinity(a) ? b : a;
         return !scene_.occluded(spawnRay(from.p, offsetNormal(from), directionTo(from, atInfinity(a) ? a : b), from.time));
     }
-    return !scene_.occluded(spawnRayTo(a.p, offsetNormal(a), b.p, a.time));
+    const Ray ray = shadowRay(a.p, offsetNormal(a), b, a.time);
+    return !(ray.tMax > 0) || !scene_.occluded(ray);
+}
+
+Ray PathSpace::shadowRay(Vec3 from, Vec3 fromNg, const MltVertex& to, float time) {
+    Ray ray = spawnRayTo(from, fromNg, to.p, time);
+    if (to.kind != MltVertex::Kind::Lens) {
+        // The offset a ray leaving `to` towards `from` would get (zero at a point: a medium
+        // vertex, a point light).
+        const float margin = length(offsetRayOrigin(to.p, to.ng, -ray.d) - to.p), len = length(ray.d);
+        ray.tMax = len > margin ? std::min(ray.tMax, 1 - margin / len) : 0.0f;
+    }
+    return ray;
 }
 
 double PathSpace::areaFactor(const MltPath& x, int from, int to) { return toArea(1.0, x[size_t(from)], x[size_t(to)]); }

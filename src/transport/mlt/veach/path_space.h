@@ -10,7 +10,9 @@
 //    shading-normal correction of the path tracer (thesis §5.3), so its f / p equals the
 //    path tracer's, BDPT's and light tracing's estimates;
 //  - a specular vertex stands for its lobe's weight per unit solid angle, and its
-//    "density" for the discrete probability of choosing that lobe (both times one delta);
+//    "density" for the discrete probability of choosing that lobe (both times one delta, in
+//    the light-side direction: a density from the light side, whose delta is in the
+//    camera-side direction, carries the refraction's Jacobian, lightDensity);
 //  - the pinhole's position and a point light's are deltas of unit weight;
 //  - the lens has the viewing direction as its normal, so the geometry term of the last
 //    edge carries the lens cosine that the importance We expects;
@@ -255,8 +257,11 @@ public:
 private:
     // The BSDF at surface vertex v for light arriving from direction wi and leaving along wo
     // (unit, world), in `mode`, with the density of sampling wi from wo; specular lobes
-    // matched to the direction pair.
-    void bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, Spectrum* f, float* pdf) const;
+    // matched to the direction pair. At a specular vertex, `jacobian` receives
+    // d(omega_wo) / d(omega_wi) along its lobe's map from wo to wi (1 for a reflection; for a
+    // refraction eta'^2 |cos wi| / |cos wo|, eta' the ratio of wi's index to wo's), else 1.
+    void bsdf(const MltVertex& v, Vec3 wo, Vec3 wi, TransportMode mode, Spectrum* f, float* pdf,
+              float* jacobian = nullptr) const;
     // A free flight along ray (in `medium`, up to tEnd) by the majorant's Poisson process:
     // the first tentative collision, if before tEnd (path_space_media.cpp).
     static bool sampleFlight(const Medium& medium, const Ray& ray, float tEnd, const SampledWavelengths& lambda,
@@ -267,6 +272,14 @@ private:
     // scatter at a medium vertex: the phase function's direction.
     bool scatterInMedium(std::vector<MltVertex>& side, Rng& rng, Ray& ray) const;
     bool visibleThroughMedia(const MltVertex& a, const MltVertex& b, PathStats& stats) const;
+    // A shadow ray from `from` (offset off its surface along fromNg, if not zero) to vertex
+    // `to`, stopped short of `to` by the offset a ray leaving `to` would get (tMax <= 0: too
+    // short for anything to block). spawnRayTo's relative margin alone is below the
+    // intersection's rounding on edges shorter than about 1e-3, which media make common (a
+    // free flight stops anywhere): a ray from a medium vertex, which has no offset, then hit
+    // the surface of the vertex it went to, and the edge counted as blocked from that end
+    // alone (a zero density from one side, a path weight of 1e10 in the bootstrap).
+    static Ray shadowRay(Vec3 from, Vec3 fromNg, const MltVertex& to, float time);
     // Walks the edge a-b (from its finite end, the optical depth being the same either way)
     // through `interface` shapes: calls part(medium, origin, unit direction, length) for each
     // piece in a medium, which may end the walk (false); false if a surface that is not an

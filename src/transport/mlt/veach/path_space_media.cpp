@@ -48,10 +48,10 @@ bool PathSpace::alongEdge(const MltVertex& a, const MltVertex& b, PathStats* sta
     const Medium* medium = mediumFrom(start, w);
     Vec3 from = start.p, fromNg = start.kind == MltVertex::Kind::Lens ? Vec3() : start.ng;
     for (int crossings = 0; crossings < 1024; ++crossings) {
-        const Ray ray = finite ? spawnRayTo(from, fromNg, target, start.time) : spawnRay(from, fromNg, w, start.time);
+        const Ray ray = finite ? shadowRay(from, fromNg, end, start.time) : spawnRay(from, fromNg, w, start.time);
         SurfaceInteraction si;
         if (stats) ++stats->rays;
-        const bool hit = scene_.intersect(ray, si);
+        const bool hit = ray.tMax > 0 && scene_.intersect(ray, si);
         if (hit && si.material && !si.material->isInterface()) return false;
         if (medium) {
             const float len = hit ? si.t * length(ray.d)
