@@ -41,11 +41,15 @@ PBRT = os.path.join(os.environ.get("PEERS", os.path.expanduser("~/peers")), "pbr
 SCENES = [os.path.join(HERE, "scenes", "many-lights", n + ".pbrt") for n in ("corridor", "street", "emissive-mesh")]
 
 
-def relmse(image, reference):
+def relmse(image, reference, variance=None):
+    """Mean over pixels and channels of (x - r)^2 / (r^2 + 0.01). With the reference's
+    variance image (--aov variance, PFM), its per-pixel variance is subtracted from each
+    squared difference, as equal_time_bench does: E[(x - r)^2] = MSE(x) + Var(r)."""
     w, h, x = read_pfm(image)
     rw, rh, r = read_pfm(reference)
     assert (w, h) == (rw, rh), f"{image}: {w}x{h}, reference {rw}x{rh}"
-    return sum((a - b) ** 2 / (b * b + 0.01) for a, b in zip(x, r)) / len(r)
+    v = read_pfm(variance)[2] if variance else [0.0] * len(r)
+    return sum(((a - b) ** 2 - s) / (b * b + 0.01) for a, b, s in zip(x, r, v)) / len(r)
 
 
 def timed(cmd, cwd=None, stdout=None):
@@ -123,13 +127,19 @@ def pbrt_spp_for(scene, seconds, threads, tmp):
     return spp, a, b
 
 
-def main():
-    global PBRT
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("scenes", nargs="*", default=SCENES)
-    ap.add_argument("--time", type=float, default=3.0, help="whole-process wall time of each run, seconds")
+def equal_time_parser(doc, scenes, seconds, time_help):
+    """The command line the equal-time benches share: scenes, --time, --seeds, --threads."""
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("scenes", nargs="*", default=scenes)
+    ap.add_argument("--time", type=float, default=seconds, help=time_help)
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--threads", type=int, default=2)
+    return ap
+
+
+def main():
+    global PBRT
+    ap = equal_time_parser(__doc__, SCENES, 3.0, "whole-process wall time of each run, seconds")
     ap.add_argument("--ref-spp", type=int, default=2048, help="pathspace reference, samples per pixel")
     ap.add_argument("--pbrt-ref-spp", type=int, default=256, help="pbrt-v4's long render for the image-mean check")
     ap.add_argument("--pbrt", default=PBRT)
