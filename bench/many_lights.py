@@ -100,12 +100,18 @@ def ours(scene, out, seed, threads, spp=None, seconds=None, integrator="path", s
         return timed(cmd + ["--quiet"])
     text = []
     elapsed = timed(cmd, stdout=text)
-    m = re.search(r"\| ([0-9.]+) spp \(target", text[0])
-    if not m:
-        sys.exit(f"no spp in the summary of {' '.join(cmd)}:\n{text[0][-500:]}")
     with open(stats, "w") as f:
-        json.dump({"spp_mean": float(m.group(1))}, f)
+        json.dump({"spp_mean": summary(text[0], cmd)[1]}, f)
     return elapsed
+
+
+def summary(text, cmd):
+    """(the render's own seconds, samples or mutations per pixel) from pathspace's closing
+    summary line ("time T s | N spp ..."), or exit naming the command."""
+    m = re.search(r"time ([0-9.]+) s \| ([0-9.]+) spp", text)
+    if not m:
+        sys.exit(f"no summary from {' '.join(cmd)}:\n{text[-500:]}")
+    return float(m.group(1)), float(m.group(2))
 
 
 def pbrt(scene, out, seed, threads, spp):

@@ -32,7 +32,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from image_means import pfm_mean_luminance, read_pfm  # noqa: E402
-from many_lights import HERE, PATHSPACE, PBRT, ROOT, equal_time_parser, relmse, timed  # noqa: E402
+from many_lights import HERE, PATHSPACE, PBRT, ROOT, equal_time_parser, relmse, summary, timed  # noqa: E402
 
 SET = os.path.join(HERE, "scenes", "metropolis-set")
 # The set, and what kind of light each scene has: the goals (mmlt <= 1/3 and mlt <= 1/5 of
@@ -59,10 +59,7 @@ def ours(scene, out, seed, args, integrator, seconds, extra=()):
            "--seed", str(seed), "--spp", "1000000000", "--time", str(seconds), "-o", out, *extra]
     text = []
     timed(cmd, stdout=text)
-    m = re.search(r"time ([0-9.]+) s \| ([0-9.]+) spp", text[0])
-    if not m:
-        sys.exit(f"no summary from {' '.join(cmd)}:\n{text[0][-500:]}")
-    return float(m.group(1)), float(m.group(2))
+    return summary(text[0], cmd)
 
 
 def pbrt_scene(scene, tmp, mutations):

@@ -363,8 +363,8 @@ void configureRender(Scene& scene, const RenderArgs& a, RenderSetup& setup) {
                                     settings.integrator + "\")");
         // Below 1 most samples are the path tracer's, which has no strategies (s, t) to record.
         if (bdpt->lightPathShare() < 1)
-            throw InputError("--bdpt-strategies needs every sample to be a BDPT sample: drop --light-paths " +
-                             std::to_string(bdpt->lightPathShare()) + " (the other samples are path tracing's)");
+            throw InputError("--bdpt-strategies needs every sample to be a BDPT sample: drop --light-paths "
+                             "(below 1 the other samples are path tracing's)");
         // Every depth the render makes, so that the weighted images sum to it; their memory grows
         // with the square of maxdepth and is checked (use --crop or a smaller --maxdepth if too much).
         bdpt->recordStrategies(settings.maxDepth);

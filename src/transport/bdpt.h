@@ -218,11 +218,9 @@ private:
     float lightPathShare_ = 1;
     std::unique_ptr<PathTracer> pathTracer_;  // the samples without a light subpath (share < 1)
     bool lensHits_ = false;
-    // The technique after every strategy up to maxdepth: the path tracer's samples.
-    int pathTechniqueIndex() const {
-        const int d = paths_.maxDepth() + 1;
-        return d * (d + 5) / 2;
-    }
+    // The technique after every strategy up to maxdepth (the first slot of depth maxdepth + 1):
+    // the path tracer's samples.
+    int pathTechniqueIndex() const { return techniqueIndex(paths_.maxDepth() + 3, 0); }
 };
 
 }  // namespace ps

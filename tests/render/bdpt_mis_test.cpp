@@ -255,7 +255,7 @@ INSTANTIATE_TEST_SUITE_P(Heuristics, BdptMis,
                          [](const ::testing::TestParamInfo<const char*>& i) {
                              std::string name = i.param;
                              for (char& c : name)
-                                 if (c == ':' || c == '.' || c == '@' || c == '#') c = '_';
+                                 if (c == ':' || c == '.' || c == '#') c = '_';
                              return name == "none" ? std::string("uniform") : name;
                          });
 
