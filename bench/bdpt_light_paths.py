@@ -7,7 +7,7 @@ path-traced reference (cached in build/bench-cache/; the many-light scenes share
 bench/many_lights.py's), mean over the seeds, and each configuration's relMSE over the path
 tracer's. Run from the repository root, under the lock for the whole measurement:
 
-  flock /tmp/ps-build.lock python3 bench/bdpt_light_paths.py [--time 3] [--seeds 2] [--shares 1,0.1,0.01]
+  flock /tmp/ps-build.lock python3 bench/bdpt_light_paths.py [--time 3] [--seeds 2] [--shares 1,0.1,0.01,auto]
 """
 import argparse
 import os
@@ -46,8 +46,8 @@ def main():
     ap.add_argument("--cache", default=os.path.join(ROOT, "build", "bench-cache"))
     a = ap.parse_args()
     os.makedirs(a.cache, exist_ok=True)
-    shares = [float(x) for x in a.shares.split(",")]
-    configs = [("path", [])] + [(f"bdpt {f:g}", ["--light-paths", f"{f:g}"]) for f in shares]
+    shares = [x if x == "auto" else f"{float(x):g}" for x in a.shares.split(",")]
+    configs = [("path", [])] + [(f"bdpt {f}", ["--light-paths", f]) for f in shares]
     print("| scene | " + " | ".join(c for c, _ in configs) + " |")
     print("|---|" + "---|" * len(configs))
     with tempfile.TemporaryDirectory() as tmp:

@@ -84,6 +84,11 @@ std::string summaryLine(const RenderSettings& s, int threads) {
     line += ")";
     // The Metropolis integrators draw their own primary samples; the pixel sampler is unused.
     if (s.integrator == "path" || s.integrator == "light" || s.integrator == "bdpt") line += " | sampler " + s.sampler;
+    if (s.integrator == "bdpt" && (s.bdptLightPaths != 1 || s.bdptLightPathsAuto)) {
+        char share[64];
+        std::snprintf(share, sizeof share, " | light paths %g%s", s.bdptLightPaths, s.bdptLightPathsAuto ? " (auto)" : "");
+        line += share;
+    }
     line += std::string(" | ") + (s.spectral ? "spectral" : "rgb") + " colour | " + std::to_string(threads) +
             (threads == 1 ? " thread" : " threads");
     return line;

@@ -14,6 +14,7 @@
 #include "transport/bdpt.h"
 #include "transport/coverage.h"
 #include "transport/integrator.h"
+#include "transport/light_path_choice.h"
 #include "transport/scrambled_sets.h"
 #include "util/error.h"
 #include "util/memory_limit.h"
@@ -109,16 +110,22 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
                 return std::string(e.what());
             }
         });
-    cmd->add_option("--light-paths", a.lightPaths,
-                    "With --integrator bdpt: light subpaths per camera sample, in (0, 1] (default 1). Below 1, "
-                    "a sample is a BDPT sample with this probability and a path tracer's otherwise "
-                    "(docs/integrators.md): path tracing's cost where light subpaths add little, as in "
-                    "directly lit scenes")
+    cmd->add_option_function<std::string>(
+           "--light-paths",
+           [&a](const std::string& v) {
+               a.lightPathsAuto = v == "auto";
+               if (!a.lightPathsAuto) a.lightPaths = std::strtof(v.c_str(), nullptr);
+           },
+           "With --integrator bdpt: light subpaths per camera sample, in (0, 1] (default 1), or auto. Below 1, "
+           "a sample is a BDPT sample with this probability and a path tracer's otherwise "
+           "(docs/integrators.md): path tracing's cost where light subpaths add little, as in "
+           "directly lit scenes. auto: 1 or a small share, whichever a pilot of each finds more efficient")
         ->check([](const std::string& v) {
+            if (v == "auto") return std::string();
             char* end = nullptr;
             const float f = std::strtof(v.c_str(), &end);
             return !v.empty() && *end == '\0' && f > 0 && f <= 1 ? std::string()
-                                                                 : "expected a share in (0, 1], got \"" + v + "\"";
+                                                                 : "expected a share in (0, 1] or auto, got \"" + v + "\"";
         });
     cmd->add_option("--shadow-roulette", a.shadowRoulette,
                     "Russian roulette on shadow rays (thesis 10.3.4; path, light, bdpt): a connection whose "
@@ -332,10 +339,10 @@ void configureRender(Scene& scene, const RenderArgs& a, RenderSetup& setup) {
     // pbrt-v4 warns too: a scene without emitters renders black.
     if (scene.lights().empty()) warning("the scene has no light source or emitting shape: the image will be black");
     std::unique_ptr<Integrator>& integrator = setup.integrator;
-    if (a.lightPaths > 0) {
+    if (a.lightPaths > 0 || a.lightPathsAuto) {
         if (settings.integrator != "bdpt")
             throw InputError("--light-paths needs --integrator bdpt (the render uses \"" + settings.integrator + "\")");
-        settings.bdptLightPaths = a.lightPaths;
+        if (a.lightPaths > 0) settings.bdptLightPaths = a.lightPaths;
     }
     if (a.lightSamples > 0) settings.lightSamples = a.lightSamples;
     integrator = createIntegrator(settings.integrator, scene, a.mis);
@@ -406,6 +413,19 @@ void configureRender(Scene& scene, const RenderArgs& a, RenderSetup& setup) {
         if (a.checkpoint.empty() && a.resume.empty()) {
             opts.scramblings = scramblingCount(opts.sampler, opts.spp);
         }
+    }
+    // --light-paths auto: a pilot of path tracing's and BDPT's samples chooses the share
+    // (strategy images need every sample to be BDPT's: then 1).
+    if (a.lightPathsAuto && !a.resume.empty())
+        throw InputError("--light-paths auto cannot resume: its pilot is timed and may choose another share; give "
+                         "the share the first run chose (its summary line, or --stats' light_paths_per_sample)");
+    if (a.lightPathsAuto && !a.strategyImages()) {
+        auto* b = dynamic_cast<BDPTIntegrator*>(integrator.get());
+        const LightPathChoice c = chooseLightPathShare(scene, *b, opts.threads, opts.seed);
+        settings.bdptLightPaths = c.share;
+        settings.bdptLightPathsAuto = true;
+        settings.bdptPilotPath = c.pathVarianceTime;
+        settings.bdptPilotBdpt = c.bdptVarianceTime;
     }
     // Only what will be shown or written: a quiet render without --stats or --aov variance
     // leaves the film's luminance moments out (bench/README.md, scene loading).
@@ -530,6 +550,9 @@ nlohmann::json renderStatistics(const Scene& scene, const RenderArgs& a, const R
         {"memory_limit_bytes", memoryLimit()},
     };
     if (settings.integrator == "bdpt") stats["light_paths_per_sample"] = settings.bdptLightPaths;
+    if (settings.bdptLightPathsAuto)
+        stats["light_paths_auto"] = {{"path_variance_time", settings.bdptPilotPath},
+                                     {"bdpt_variance_time", settings.bdptPilotBdpt}};
     stats["shadow_roulette"] = a.shadowRoulette;
     if (settings.integrator == "path") stats["light_samples"] = settings.lightSamples;
     // How the variances were estimated (docs/strategy-figures.md).

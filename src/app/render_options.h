@@ -26,6 +26,7 @@ struct RenderArgs {
     std::string integrator;
     std::string mis;  // empty: the default (power, beta 2)
     float lightPaths = 0;  // --light-paths (bdpt): 0 = not given (one light subpath per sample)
+    bool lightPathsAuto = false;  // --light-paths auto: chosen by a pilot (transport/light_path_choice.h)
     float shadowRoulette = 0;  // --shadow-roulette: 0 = off
     int lightSamples = 0;      // --light-samples (path): 0 = not given (one light sample per vertex)
     std::string strategiesDir;

@@ -46,6 +46,8 @@ struct RenderSettings {
                                            // (below 0: the integrator's default, metropolisTwoStage)
     float mltTwoStageBlackLevel = 0.1f;    // --two-stage-black-level: pixel luminance
     float bdptLightPaths = 1;  // --light-paths: BDPT's light subpaths per camera sample, in (0, 1]
+    bool bdptLightPathsAuto = false;  // --light-paths auto: bdptLightPaths is the pilot's choice, in [0, 1]
+    double bdptPilotPath = 0, bdptPilotBdpt = 0;  // its figures (LightPathChoice)
     int lightSamples = 1;      // --light-samples: the path tracer's light samples per vertex
     std::string mltMutations;              // mlt: the mutations' weights, "KEY=VALUE,..." (--mlt-mutations)
     SourceLoc filmLoc;       // the Film directive, for errors found when the film is made

@@ -469,7 +469,9 @@ float BDPTIntegrator::weightFromEveryRatio(const PathVertex* light, const PathVe
 }
 
 void BDPTIntegrator::setLightPathShare(float share) {
-    if (!(share > 0 && share <= 1)) throw std::invalid_argument("the light path share must be in (0, 1]");
+    // 0: every sample the path tracer's, for scenes without delta lights, where light subpaths
+    // reach no path that it misses (light_path_choice.h).
+    if (!(share >= 0 && share <= 1)) throw std::invalid_argument("the light path share must be in [0, 1]");
     lightPathShare_ = share;
     pathTracer_.reset();
     if (share < 1) pathTracer_ = std::make_unique<PathTracer>(paths_.scene(), paths_.maxDepth(), mis_);

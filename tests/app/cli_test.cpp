@@ -391,6 +391,33 @@ TEST_F(Cli, LightPathsOption) {
     EXPECT_TRUE(pathTechnique) << j.at("techniques").dump();
 }
 
+// --light-paths auto: a pilot of each kind of sample chooses the share, which the summary line
+// and --stats report; the exact sky image either way. It cannot resume (its choice is timed)
+// and applies to BDPT alone.
+TEST_F(Cli, LightPathsAuto) {
+    const std::string scene = write("sky.pbrt", ps::test::kSkyScene);
+    const std::string out = (dir / "x.pfm").string(), stats = (dir / "s.json").string();
+    const std::string base = "render --seed 1 " + scene + " -o " + out;
+    Result r = run(base + " --integrator bdpt --spp 1024 --light-paths auto --stats " + stats);
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("(auto)"), std::string::npos) << r.out;
+    ps::test::expectExactSkyImage(ps::readImage(out), "--light-paths auto");
+    std::ifstream in(stats);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    const float share = j.at("light_paths_per_sample").get<float>();
+    EXPECT_TRUE(share == 0 || share == 1) << share;  // no delta lights: 0 where path tracing wins
+    EXPECT_GT(j.at("light_paths_auto").at("path_variance_time").get<double>(), 0);
+    EXPECT_GT(j.at("light_paths_auto").at("bdpt_variance_time").get<double>(), 0);
+    const std::string checkpoint = (dir / "c.ckpt").string();
+    ASSERT_EQ(run(base + " --quiet --integrator bdpt --spp 2 --checkpoint " + checkpoint).status, 0);
+    Result resume = run(base + " --integrator bdpt --spp 4 --light-paths auto --resume " + checkpoint);
+    EXPECT_EQ(resume.status, 2);
+    EXPECT_NE(resume.out.find("--light-paths auto cannot resume"), std::string::npos) << resume.out;
+    Result path = run(base + " --integrator path --spp 1 --light-paths auto");
+    EXPECT_EQ(path.status, 2);
+    EXPECT_NE(path.out.find("needs --integrator bdpt"), std::string::npos) << path.out;
+}
+
 // Shadow-ray roulette through the real binary: the exact sky image with most shadow rays
 // left out (counted in --stats), and refusals where it has no meaning.
 TEST_F(Cli, ShadowRouletteOption) {
