@@ -16,7 +16,8 @@ class Scene;
 struct LightPathChoice {
     float share = 1;
     int pilotSpp = 0;
-    // Each pilot's mean pixel variance times its seconds (1 / efficiency). Timed: BDPT's cost
+    // Each pilot's mean relative pixel variance (over the squared luminance + 0.01, as the
+    // benches' relMSE) times its seconds (1 / efficiency). Timed: BDPT's cost
     // per ray is not the path tracer's, so a count would misjudge it; the choice may then
     // differ between machines where the two are close (the first process decides for all).
     double pathVarianceTime = 0, bdptVarianceTime = 0;
