@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <span>
 
 #include "app/command_line.h"
@@ -24,6 +25,7 @@
 #include "transport/bdpt.h"
 #include "transport/checkpoint.h"
 #include "transport/integrator.h"
+#include "transport/light_path_choice.h"
 #include "transport/renderer.h"
 #include "util/error.h"
 #include "util/input_files.h"
@@ -277,6 +279,18 @@ int RenderCommand::run() {
     if (!args_.checkpoint.empty()) {
         opts.checkpointEvery = args_.checkpointEvery >= 0 ? args_.checkpointEvery : 60;
         opts.checkpoint = [&](const CheckpointState& s) { writeCheckpoint(args_.checkpoint, checkpointSettings, s); };
+    }
+    // --light-paths auto: the pilot chooses the share (transport/light_path_choice.h), within
+    // --time.
+    std::optional<LightPathChoice> pilot;
+    if (job.setup.choosesLightPaths) {
+        pilot = chooseLightPathShare(*scene, dynamic_cast<BDPTIntegrator&>(*integrator), opts);
+        settings.bdptLightPaths = pilot->share;
+        settings.bdptLightPathsAuto = true;
+        settings.bdptPilotPath = pilot->pathVarianceTime;
+        settings.bdptPilotBdpt = pilot->bdptVarianceTime;
+        if (pilot->share != 1) job.checkpointSettings["light_paths"] = pilot->share;
+        if (opts.timeLimit > 0) opts.timeLimit = std::max(opts.timeLimit - pilot->seconds, 1e-3);
     }
     RenderResult r = render(*scene, *integrator, opts);
     // A signal to any process interrupted them all (each stops at the same pass boundary).

@@ -14,7 +14,6 @@
 #include "transport/bdpt.h"
 #include "transport/coverage.h"
 #include "transport/integrator.h"
-#include "transport/light_path_choice.h"
 #include "transport/scrambled_sets.h"
 #include "util/error.h"
 #include "util/memory_limit.h"
@@ -419,14 +418,8 @@ void configureRender(Scene& scene, const RenderArgs& a, RenderSetup& setup) {
     if (a.lightPathsAuto && !a.resume.empty())
         throw InputError("--light-paths auto cannot resume: its pilot is timed and may choose another share; give "
                          "the share the first run chose (its summary line, or --stats' light_paths_per_sample)");
-    if (a.lightPathsAuto && !a.strategyImages()) {
-        auto* b = dynamic_cast<BDPTIntegrator*>(integrator.get());
-        const LightPathChoice c = chooseLightPathShare(scene, *b, opts.threads, opts.seed);
-        settings.bdptLightPaths = c.share;
-        settings.bdptLightPathsAuto = true;
-        settings.bdptPilotPath = c.pathVarianceTime;
-        settings.bdptPilotBdpt = c.bdptVarianceTime;
-    }
+    // Strategy images need every sample to be BDPT's: then the share stays 1.
+    setup.choosesLightPaths = a.lightPathsAuto && !a.strategyImages();
     // Only what will be shown or written: a quiet render without --stats or --aov variance
     // leaves the film's luminance moments out (bench/README.md, scene loading).
     opts.errorEstimate = !a.quiet || !a.statsFile.empty();

@@ -71,6 +71,7 @@ struct RenderSetup {
     std::unique_ptr<Integrator> integrator;
     RenderOptions opts;  // all but the checkpoints'
     BDPTIntegrator* bdpt = nullptr;  // the integrator, when it records strategy images
+    bool choosesLightPaths = false;  // --light-paths auto: a pilot chooses before the render
 };
 
 // Applies the options to a scene built in their colour mode (its settings and pixels), makes
