@@ -145,6 +145,19 @@ TEST(VeachMLT, AgreesWithBDPTOnALightSeenOnlyInAMirror) {
                                   32, 16, {{"mlt", k * 128}}, 0.02});
 }
 
+// A spot light seen in a mirror through a thin lens (mlt_scenes.h): the bokeh's L S E paths
+// come only from light walks whose ray crosses the lens (t = 0, thesis §10.2), in the
+// bootstrap and in the bidirectional mutation (PathSpace::reachLens); mlt rendered them
+// black before. The bokeh fills one block and carries 97% of the image: its block and the
+// image mean are b's test (a t = 0 weight off by a factor moves b), the wall's blocks the
+// chains' share between bokeh and wall. More chains than the scene's: a chain leaves a bokeh
+// path only by regenerating it whole (no perturbation moves L S E paths through a lens), so
+// the blocks' spread across renders is set by the chains' starts.
+TEST(VeachMLT, AgreesWithBDPTOnASpotSeenInAMirrorThroughALens) {
+    expectAgreement(AgreementCase{"spot in a mirror through a lens", withChainsTimes(spotInAMirrorThroughALens(), 4),
+                                  {"bdpt", "mlt"}, 64, 16, {{"mlt", 256}}, 0.02});
+}
+
 namespace {
 
 // A sphere that emits and does not scatter (black: pbrt-v4's usual pure emitter), with the
