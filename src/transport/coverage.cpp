@@ -113,7 +113,8 @@ std::optional<UnsampledPaths> deltaSpecularEye(const Scene& scene, const SceneTr
         "delta-specular-eye",
         "no technique of \"" + integrator + "\" samples the light of " + lightNames(t.delta) + " seen through " +
             materialNames(t.specular) + " by " + cameraName(scene.camera()) + " (L S+ E paths, thesis sec. 1.1): " +
-            (every ? "every integrator renders them black" : "bdpt, light, pssmlt and mlt sample them through this lens (t = 0)") +
+            (every ? "every integrator renders them black"
+                   : "bdpt, light, pssmlt and mlt sample them through this lens (t = 0)") +
             ". " + kRemedies,
         every};
 }
