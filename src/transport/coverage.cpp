@@ -102,7 +102,7 @@ std::string cameraName(const Camera& camera) {
 constexpr const char* kRemedies =
     "Veach's remedies: a small area light instead of the delta light, a roughness floor on the specular materials "
     "(e.g. \"float roughness\" 0.01), or a finite aperture (Camera \"float lensradius\" > 0) rendered with bdpt, "
-    "light or pssmlt, whose t = 0 strategy samples these paths";
+    "light, pssmlt or mlt, whose t = 0 strategy samples these paths";
 
 // Class (a): L S+ E from a delta light, through a camera that no light subpath can hit
 // (thesis §1.1: no unbiased technique samples them).
@@ -113,7 +113,8 @@ std::optional<UnsampledPaths> deltaSpecularEye(const Scene& scene, const SceneTr
         "delta-specular-eye",
         "no technique of \"" + integrator + "\" samples the light of " + lightNames(t.delta) + " seen through " +
             materialNames(t.specular) + " by " + cameraName(scene.camera()) + " (L S+ E paths, thesis sec. 1.1): " +
-            (every ? "every integrator renders them black" : "bdpt and light sample them through this lens (t = 0)") +
+            (every ? "every integrator renders them black"
+                   : "bdpt, light, pssmlt and mlt sample them through this lens (t = 0)") +
             ". " + kRemedies,
         every};
 }
@@ -140,9 +141,12 @@ std::optional<UnsampledPaths> mediumEmission(const Scene& scene, const std::stri
 
 bool samplesLensHits(const Scene& scene, const std::string& integrator) {
     // pssmlt mutates BDPT's samples, all strategies at once, t = 0 included (BDPTIntegrator::
-    // lensHits); mmlt samples one strategy with t >= 1 at a time, Veach's mlt its own paths.
-    // In media too: the light walks' free flights reach the lens (subpaths_media.cpp).
-    return (integrator == "bdpt" || integrator == "light" || integrator == "pssmlt") && scene.camera().hasLensDisk();
+    // lensHits); Veach's mlt generates the lens vertex from the light side in its bootstrap
+    // and its bidirectional mutation (PathSpace::reachLens); mmlt samples one strategy with
+    // t >= 1 at a time. In media too: the light walks' free flights reach the lens
+    // (subpaths_media.cpp, PathSpace::trace).
+    return (integrator == "bdpt" || integrator == "light" || integrator == "pssmlt" || integrator == "mlt") &&
+           scene.camera().hasLensDisk();
 }
 
 std::vector<UnsampledPaths> unsampledPaths(const Scene& scene, const std::string& integrator) {

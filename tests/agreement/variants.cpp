@@ -396,8 +396,8 @@ AttributeEnd)";
 Camera "perspective" "float fov" [ 30 ] "float lensradius" [ 0.05 ] "float focaldistance" [ 2.2 ])";
     });
     // A delta light seen in a mirror through a thin lens: its L S E paths are sampled only
-    // by light subpaths that cross the lens (the t = 0 strategy of bdpt, light and pssmlt;
-    // thesis §1.1, §10.2; docs/unsampled-paths.md) and show as a bokeh disk, about two
+    // by light subpaths that cross the lens (the t = 0 strategy of bdpt, light, pssmlt and
+    // mlt; thesis §1.1, §10.2; docs/unsampled-paths.md) and show as a bokeh disk, about two
     // thirds of the image. The box's only light is a spot aimed at the mirror image of the
     // lens, so that a sixth of the light subpaths cross the lens (from an isotropic point
     // light a few in a thousand would); the rest of its cone lights the back wall around the
@@ -411,7 +411,7 @@ Camera "perspective" "float fov" [ 30 ] "float lensradius" [ 0.3 ] "float focald
   Material "conductor" "rgb reflectance" [ 0.95 0.85 0.6 ] "float roughness" [ 0 ]
   Shape "bilinearmesh" "point3 P" [ 0.1 0.64 -0.49   0.3 0.64 -0.49   0.1 0.84 -0.49   0.3 0.84 -0.49 ]
 AttributeEnd)";
-    }, {"path", "mmlt", "mlt"});
+    }, {"path", "mmlt"});
     // The box through cameras that no connection reaches: BDPT and the chains without their
     // t = 1 strategies against the path tracer.
     box("camera/orthographic", [](Box& b) {

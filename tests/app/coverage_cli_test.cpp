@@ -84,7 +84,7 @@ TEST(CoverageCli, NamesPathsNoTechniqueSamples) {
     EXPECT_EQ(r.out.find("will render part"), std::string::npos) << r.out;
     r = ps::test::runPathspace(render(thinLens, "--integrator path --spp 1"));
     EXPECT_NE(r.out.find("no technique of \"path\" samples the light of LightSource \"point\""), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("bdpt and light sample them through this lens (t = 0)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("bdpt, light, pssmlt and mlt sample them through this lens (t = 0)"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("the thin-lens camera (lensradius 0.05)"), std::string::npos) << r.out;
 }
 

@@ -134,6 +134,30 @@ inline std::string lightSeenInAMirror() {
     )";
 }
 
+// A spot light seen in a mirror patch on a diffuse wall through a thin lens (radius 0.25,
+// focused at 4, nearer than the light's mirror image at 7.1): a bokeh disk of L S E paths,
+// which only light walks whose ray crosses the lens sample (t = 0, thesis §10.2: a delta
+// light, no join at the mirror), about 2.5 pixels wide inside the 4 x 4 block at pixels
+// 4-7 (97% of the image), beside the wall that the cone's edge lights around the patch
+// (L D E: every strategy). The spot aims at the mirror image of the lens.
+inline std::string spotInAMirrorThroughALens() {
+    return std::string(R"(
+        LookAt 0 1 3  0 1 0  0 1 0
+        Camera "perspective" "float fov" [ 35 ] "float lensradius" [ 0.25 ] "float focaldistance" [ 4 ]
+        Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+        PixelFilter "box"
+        )") + mltIntegrator(20000) + R"(
+        WorldBegin
+        LightSource "spot" "rgb I" [ 4 4 4 ] "point3 from" [ 0.55 1.55 2 ] "point3 to" [ 0 1 -5 ]
+          "float coneangle" [ 12 ] "float conedeltaangle" [ 6 ]
+        Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]
+        Shape "bilinearmesh" "point3 P" [ -2 0 4   2 0 4   -2 0 -1   2 0 -1 ]
+        Shape "bilinearmesh" "point3 P" [ -2 0 -1.001   2 0 -1.001   -2 2.5 -1.001   2 2.5 -1.001 ]
+        Material "conductor" "rgb reflectance" [ 0.9 0.9 0.9 ] "float roughness" [ 0 ]
+        Shape "bilinearmesh" "point3 P" [ 0.014 1.014 -1   0.614 1.014 -1   0.014 1.614 -1   0.614 1.614 -1 ]
+    )";
+}
+
 // A point light of intensity pi at the centre of a closed diffuse sphere of radius 1 and
 // albedo 0.5 (maxdepth 5): every pixel sees sum_{k=1..5} 0.5^k.
 inline std::string pointLightInASphere() {

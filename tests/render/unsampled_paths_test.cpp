@@ -89,9 +89,10 @@ TEST(UnsampledPaths, DeltaLightThroughAMirrorToAPinhole) {
               std::string::npos);
 }
 
-// Through a thin lens BDPT, light tracing and pssmlt sample class (a) with t = 0; the others
-// still miss it, and now it is a difference between integrators (verify leaves them out).
-// Also in fog: the light walks' free flights reach the lens (subpaths_media.cpp).
+// Through a thin lens BDPT, light tracing, pssmlt and Veach's mlt sample class (a) with t = 0;
+// the others still miss it, and now it is a difference between integrators (verify leaves
+// them out). Also in fog: the light walks' free flights reach the lens (subpaths_media.cpp,
+// mlt's PathSpace::trace).
 TEST(UnsampledPaths, AThinLensLetsTZeroSampleIt) {
   for (const bool fog : {false, true}) {
     SCOPED_TRACE(fog ? "in fog" : "in a vacuum");
@@ -100,13 +101,13 @@ TEST(UnsampledPaths, AThinLensLetsTZeroSampleIt) {
                         "\"rgb sigma_s\" [ 0.1 0.1 0.1 ]\nMediumInterface \"fog\" \"fog\"\n" + text
                       : text);
     ASSERT_EQ(s->hasMedia(), fog);
-    for (const char* integrator : {"bdpt", "light", "pssmlt"}) {
+    for (const char* integrator : {"bdpt", "light", "pssmlt", "mlt"}) {
         EXPECT_TRUE(samplesLensHits(*s, integrator)) << integrator;
         const std::vector<UnsampledPaths> classes = unsampledPaths(*s, integrator);
         EXPECT_EQ(find(classes, "delta-specular-eye"), nullptr) << integrator;
         if (!fog || std::string(integrator) != "light") EXPECT_EQ(missingPaths(*s, integrator), "") << integrator;
     }
-    for (const char* integrator : {"path", "mmlt", "mlt"}) {
+    for (const char* integrator : {"path", "mmlt"}) {
         EXPECT_FALSE(samplesLensHits(*s, integrator)) << integrator;
         const std::vector<UnsampledPaths> classes = unsampledPaths(*s, integrator);  // outlives `a`
         const UnsampledPaths* a = find(classes, "delta-specular-eye");

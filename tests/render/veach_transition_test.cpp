@@ -383,3 +383,97 @@ TEST(VeachTransition, BidirectionalMutationProposesAVertexLitFromInfinityWithIts
                    [&](const MltPath& z) { return bd.transition(s.x, z, 0, 2, 2) + bd.transition(s.x, z, 1, 1, 1); }, e, v);
     expectFit("bidirectional, floor vertex lit from infinity", observed, e, v);
 }
+
+namespace {
+
+// The scene through a wide thin lens (radius 0.8) close over the floor, focused on the floor
+// point it looks at (so that every lens point sees it; the lens cosine falls to 0.85 at the
+// rim).
+std::string lensScene() {
+    std::string text = kScene;
+    const std::string camera = R"(LookAt 0 1 -3  0 0.6 2  0 1 0
+    Camera "perspective" "float fov" [ 60 ])";
+    return text.replace(text.find(camera), camera.size(), R"(LookAt 0 0.8 0  0 0 1  0 1 0
+    Camera "perspective" "float fov" [ 60 ] "float lensradius" [ 0.8 ] "float focaldistance" [ 1.28062 ])");
+}
+
+}  // namespace
+
+// The t = 0 strategy (thesis §10.2) on x = light, floor, lens through a thin lens: the lens
+// points that rays scattered at the floor cross (PathSpace::reachLens), histogrammed over the
+// disk against the light-side density lightDensity(y, 2) integrated over each bin; and the
+// bidirectional mutation replacing the lens alone, from the camera side (a uniform lens point)
+// or from the light side (t = 0), against T, which must sum both splits.
+TEST(VeachTransition, LensVertexFromTheLightSideHasItsDensity) {
+    setWarningsQuiet(true);
+    auto scene = buildScene(parseSceneString(lensScene(), ".", "<test>"));
+    VeachMLTIntegrator integrator(*scene, 5, MetropolisParams{});
+    const PathSpace& space = integrator.space();
+    const BidirectionalMutation& bd = integrator.bidirectional();
+    ASSERT_TRUE(space.lensReachable());
+    ScratchBuffer arena;
+    PathStats stats;
+    Rng rng(3);
+    std::vector<MltVertex> light;
+    ASSERT_TRUE(space.walk(light, 1, TransportMode::Importance, 0.0f, {}, rng, arena, stats));
+    MltVertex lens, floor;
+    const Ray ray = space.cameraRay(Vec2(16, 16), Vec2(0.5f, 0.5f), 0.0f, {}, &lens);
+    ASSERT_TRUE(space.trace(ray, {}, arena, stats, floor));
+    ASSERT_NEAR(floor.p.z, 1.0f, 1e-3f);
+    const MltPath x = {light[0], floor, lens};
+    Vec2 raster;
+    ASSERT_GT(space.contribution(x, &raster).luminance(), 0.0f);
+
+    // Bins over the square around the disk, in the lens plane's frame.
+    const float r = 0.8f;
+    const Vec3 f = scene->camera().forward(0), e1 = normalize(cross(f, Vec3(0, 1, 0))), e2 = cross(f, e1);
+    auto binOfLens = [&](Vec3 p) {
+        const Vec3 d = p - lens.p;
+        const float a = dot(d, e1), b = dot(d, e2);
+        EXPECT_LT(std::fabs(dot(d, f)), 1e-4f) << "off the lens plane";
+        return std::min(kBins - 1, int((a + r) / (2 * r) * kBins)) * kBins + std::min(kBins - 1, int((b + r) / (2 * r) * kBins));
+    };
+    // (1024 points a bin: the bins the rim cuts need them.)
+    auto expected = [&](double proposals, const std::function<double(const MltPath&)>& density, std::vector<double>& e,
+                        std::vector<double>& v) {
+        Rng urng(17);
+        const double binArea = (2 * r / kBins) * (2 * r / kBins);
+        e.assign(kBins * kBins, 0);
+        v.assign(kBins * kBins, 0);
+        for (int ba = 0; ba < kBins; ++ba)
+            for (int bb = 0; bb < kBins; ++bb) {
+                RunningStats t;
+                for (int k = 0; k < 1024; ++k) {
+                    const float a = -r + 2 * r * (ba + urng.uniform()) / kBins, b = -r + 2 * r * (bb + urng.uniform()) / kBins;
+                    MltPath y = x;
+                    y[2].p = lens.p + e1 * a + e2 * b;
+                    t.add(a * a + b * b <= r * r ? density(y) * binArea * proposals : 0.0);
+                }
+                e[size_t(ba * kBins + bb)] = t.mean();
+                v[size_t(ba * kBins + bb)] = t.standardError() * t.standardError();
+            }
+    };
+
+    const int n = 200000;
+    std::vector<double> observed(kBins * kBins, 0), e, v;
+    for (int k = 0; k < n; ++k) {
+        arena.reset();
+        std::vector<MltVertex> side = {x[0], x[1]};
+        PathSpace::rebind(side[1], arena);
+        if (space.reachLens(side, rng, arena, stats)) observed[size_t(binOfLens(side[2].p))] += 1;
+    }
+    expected(n, [&](const MltPath& y) { return space.lightDensity(y, 2); }, e, v);
+    expectFit("t = 0: lens vertex from the light side", observed, e, v);
+
+    const int m = 400000;
+    observed.assign(kBins * kBins, 0);
+    MltPath y;
+    for (int k = 0; k < m; ++k) {
+        double txy = 0, tyx = 0;
+        if (!bd.propose(x, rng, arena, stats, y, &txy, &tyx)) continue;
+        if (y.size() != 3 || !same(y[0].p, x[0].p) || !same(y[1].p, x[1].p)) continue;
+        observed[size_t(binOfLens(y[2].p))] += 1;
+    }
+    expected(m, [&](const MltPath& z) { return bd.transition(x, z, 2, 1, 1); }, e, v);
+    expectFit("bidirectional, lens vertex from either side", observed, e, v);
+}

@@ -35,9 +35,17 @@ bool BidirectionalMutation::splitAllowed(int c, int a, int lo, int n) const {
     if (c < 0 || e < 0 || suffix < 0) return false;
     if (c >= 1 && !space_.canContinue(lo, TransportMode::Importance)) return false;
     if (e >= 1 && !space_.canContinue(suffix, TransportMode::Radiance)) return false;
-    if (suffix == 0 && e == 0) return false;  // the lens is never reached by a light walk
+    // No camera-side vertex: the light walk's last ray crosses a thin lens (t = 0, thesis
+    // §10.2), scattered at a vertex with a predecessor (PathSpace::reachLens).
+    if (suffix == 0 && e == 0) return c >= 1 && n >= 3 && space_.lensReachable();
     if (lo == 0 && a == 0) return false;
     return true;
+}
+
+int BidirectionalMutation::splits(int a, int lo, int n) const {
+    int allowed = 0;
+    for (int c = 0; c <= a; ++c) allowed += splitAllowed(c, a, lo, n);
+    return allowed;
 }
 
 double BidirectionalMutation::insertionWeights(int d, int lo, int n, double* weights) const {
@@ -70,17 +78,17 @@ double BidirectionalMutation::insertedDensity(const MltPath& z, int lo, int a) c
     camera[a] = 1;
     for (int j = a - 1; j >= 0; --j) camera[j] = camera[j + 1] * space_.cameraDensity(z, lo + j);
     light[0] = 1;
-    int splits = 0;
+    int allowed = 0;
     double sum = 0;
     for (int c = 0; c <= a; ++c) {
         if (c > 0) light[c] = light[c - 1] * space_.lightDensity(z, lo + c - 1);
         if (!splitAllowed(c, a, lo, n)) continue;
-        ++splits;
+        ++allowed;
         const int jl = lo + c - 1, jr = lo + c;
-        if (jl >= 0 && !(space_.connectible(z, jl) && space_.connectible(z, jr))) continue;
+        if (jl >= 0 && jr < n && !(space_.connectible(z, jl) && space_.connectible(z, jr))) continue;
         sum += light[c] * camera[c];
     }
-    return splits > 0 ? sum / splits : 0.0;
+    return allowed > 0 ? sum / allowed : 0.0;
 }
 
 double BidirectionalMutation::transition(const MltPath& x, const MltPath& y, int lo, int d, int a) const {
@@ -101,13 +109,17 @@ bool BidirectionalMutation::insert(const MltPath& x, int lo, int d, int a, int c
     const MltVertex* kept = !light.empty() ? &light[0] : !camera.empty() ? &camera[0] : nullptr;
     const float time = kept ? kept->time : space_.drawTime(rng);
     const SampledWavelengths lambda = kept ? kept->lambda : space_.drawWavelengths(rng);
-    if (!space_.walk(light, c, TransportMode::Importance, time, lambda, rng, arena, stats) ||
+    // No camera side (t = 0): the light walk's last vertex is where its ray crosses the lens.
+    const bool toLens = lo + c == n2;
+    if (!space_.walk(light, toLens ? c - 1 : c, TransportMode::Importance, time, lambda, rng, arena, stats) ||
+        (toLens && !space_.reachLens(light, rng, arena, stats)) ||
         !space_.walk(camera, a - c, TransportMode::Radiance, time, lambda, rng, arena, stats))
         return false;
     if (int(light.size()) != lo + c || int(camera.size()) != n2 - lo - c) return false;
     y.assign(light.begin(), light.end());
     y.insert(y.end(), camera.rbegin(), camera.rend());
     if (light.empty()) return y[0].light != nullptr;  // the camera walk ended on an emitter
+    if (camera.empty()) return true;                  // the light walk crossed the lens
     const int jl = lo + c - 1, jr = lo + c;
     y[size_t(jl)].takeJoinRole();
     y[size_t(jr)].takeJoinRole();
@@ -137,9 +149,7 @@ bool BidirectionalMutation::propose(const MltPath& x, Rng& rng, ScratchBuffer& a
     }
     if (a < 0) return false;
     const int n2 = n - d + a;
-    int allowed = 0;
-    for (int c = 0; c <= a; ++c) allowed += splitAllowed(c, a, lo, n2);
-    int pick = int(rng.uniformInt(uint32_t(allowed))), c = 0;
+    int pick = int(rng.uniformInt(uint32_t(splits(a, lo, n2)))), c = 0;
     for (;; ++c)
         if (splitAllowed(c, a, lo, n2) && pick-- == 0) break;
     if (!insert(x, lo, d, a, c, rng, arena, stats, y)) return false;
@@ -151,9 +161,7 @@ bool BidirectionalMutation::propose(const MltPath& x, Rng& rng, ScratchBuffer& a
 bool BidirectionalMutation::generate(Rng& rng, ScratchBuffer& arena, PathStats& stats, MltPath& y,
                                      double* density) const {
     const int n = 2 + int(rng.uniformInt(uint32_t(space_.maxVertices() - 1)));
-    int allowed = 0;
-    for (int c = 0; c <= n; ++c) allowed += splitAllowed(c, n, 0, n);
-    int pick = int(rng.uniformInt(uint32_t(allowed))), c = 0;
+    int pick = int(rng.uniformInt(uint32_t(splits(n, 0, n)))), c = 0;
     for (;; ++c)
         if (splitAllowed(c, n, 0, n) && pick-- == 0) break;
     if (!insert(MltPath(), 0, 0, n, c, rng, arena, stats, y)) return false;

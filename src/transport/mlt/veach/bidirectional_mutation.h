@@ -9,10 +9,16 @@
 // probability). Deleting the whole path regenerates it from nothing: the same sum is then
 // BDPT's density with the balance heuristic over its strategies, which the bootstrap uses.
 //
+// With a thin lens, the split with no camera-side vertex is one of them (t = 0, thesis
+// §10.2): the light walk's last ray crosses the lens, which it may when it is scattered at a
+// vertex with a predecessor (paths of three vertices or more). Deleting a suffix with the
+// lens may so regenerate it from the light side alone, the only way to reach L S+ E paths
+// from a delta light (thesis §1.1).
+//
 // Which splits are possible depends only on indices (a walk cannot continue from a kept
-// light vertex alone, nor from a kept thin lens), never on the vertices themselves, so the
-// choice probabilities are the same functions of the path in both directions; a split whose
-// join would end at a specular vertex has density zero.
+// light vertex alone, nor from a kept thin lens) and on the camera, never on the vertices
+// themselves, so the choice probabilities are the same functions of the path in both
+// directions; a split whose join would end at a specular vertex has density zero.
 #pragma once
 #include "transport/mlt/veach/path_space.h"
 
@@ -43,6 +49,9 @@ public:
     // The density of z's vertices [lo, lo + a) summed over the possible splits, each with
     // its probability of being chosen.
     double insertedDensity(const MltPath& z, int lo, int a) const;
+    // The number of splits of a vertices inserted at lo into a path of n vertices that are
+    // possible (splitAllowed), each chosen with probability 1 / splits.
+    int splits(int a, int lo, int n) const;
     // Whether the split that generates `c` of the a inserted vertices at lo from the light
     // side is possible in a path of n vertices.
     bool splitAllowed(int c, int a, int lo, int n) const;

@@ -57,6 +57,7 @@ double toArea(double pdfDir, const MltVertex& from, const MltVertex& to) {
 PathSpace::PathSpace(const Scene& scene, int maxDepth) : scene_(scene), maxDepth_(maxDepth) {
     const Camera::Params& c = scene.camera().params();
     pinhole_ = !(c.lensRadius > 0);
+    lensReachable_ = scene.camera().hasLensDisk();
     margin_ = scene.filter().radius();
     filmSize_ = Vec2(float(c.xRes) + 2 * margin_.x, float(c.yRes) + 2 * margin_.y);
     if (scene.settings().spectral) sensor_.emplace(scene.settings());
@@ -153,8 +154,10 @@ Spectrum PathSpace::contribution(const MltPath& x, Vec2* pRaster, Rng* rng) cons
 
 double PathSpace::lightDensity(const MltPath& x, int i, Lobes lobes) const {
     const int k = int(x.size()) - 1;
-    if (i < 0 || i > k || x[size_t(i)].kind == MltVertex::Kind::Lens) return 0;
+    if (i < 0 || i > k) return 0;
     const MltVertex& v = x[size_t(i)];
+    // The lens from the light side: a ray scattered at x_{k-1} that crosses a thin lens.
+    if (v.kind == MltVertex::Kind::Lens && !(i == k && i >= 2 && lensReachable_)) return 0;
     if (i == 0) {
         if (!v.light || k < 1) return 0;
         if (atInfinity(v)) return infinityDensity(v);
@@ -305,14 +308,23 @@ void PathSpace::copyAt(const MltPath& x, const SampledWavelengths& lambda, Scrat
 }
 
 bool PathSpace::trace(Ray ray, const SampledWavelengths& lambda, ScratchBuffer& arena, PathStats& stats, MltVertex& out,
-                      bool escape, const Medium* medium, Rng* flights) const {
+                      bool escape, const Medium* medium, Rng* flights, MltVertex* lens) const {
+    // The lens is crossed if the ray reaches it before tMax (Camera::intersectLens: from its
+    // front, where its importance is not zero).
+    auto crossLens = [&](float tMax) {
+        if (!lens || !lensReachable_) return;
+        if (const auto c = scene_.camera().intersectLens(ray, tMax)) *lens = lensVertex(c->p, ray.time, lambda);
+    };
     for (int passThroughs = 0; passThroughs <= 1024; ++passThroughs) {
         SurfaceInteraction si;
         ++stats.rays;
         const bool hit = scene_.intersect(ray, si);
-        if (medium && flights &&
-            traceInMedium(ray, hit ? si.t : std::numeric_limits<float>::infinity(), *medium, lambda, *flights, out))
+        const float tHit = hit ? si.t : std::numeric_limits<float>::infinity();
+        if (medium && flights && traceInMedium(ray, tHit, *medium, lambda, *flights, out)) {
+            crossLens(length(out.p - ray.o) / length(ray.d));  // before the flight's collision
             return true;
+        }
+        crossLens(tHit);
         if (!hit) {
             if (!escape || scene_.infiniteLights().empty()) return false;
             // The vertex at infinity of every infinite light (path_space.h): any of them names it.
@@ -384,7 +396,7 @@ SampledWavelengths PathSpace::perturbWavelengths(const SampledWavelengths& lambd
 
 bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode, float time,
                      const SampledWavelengths& lambda, Rng& rng, ScratchBuffer& arena, PathStats& stats,
-                     const WalkStart* start) const {
+                     const WalkStart* start, std::vector<MltLensHit>* lensHits) const {
     if (count <= 0) return true;
     if (!canContinue(int(side.size()), mode)) return false;
     Ray ray;
@@ -441,10 +453,15 @@ bool PathSpace::walk(std::vector<MltVertex>& side, int count, TransportMode mode
     }
     while (count > 0) {
         MltVertex next;
+        // Lens crossings from a scattering vertex alone: a light seen directly through the
+        // lens is the camera side's (lightDensity).
+        MltLensHit hit{int(side.size()), MltVertex()};
+        const bool record = lensHits && mode == TransportMode::Importance && side.size() >= 2;
         // A camera walk may end at infinity (scatter cannot continue from there).
-        if (!trace(ray, lambda, arena, stats, next, mode == TransportMode::Radiance, mediumFrom(side.back(), ray.d),
-                   &rng))
-            return false;
+        const bool traced = trace(ray, lambda, arena, stats, next, mode == TransportMode::Radiance,
+                                  mediumFrom(side.back(), ray.d), &rng, record ? &hit.lens : nullptr);
+        if (hit.lens.kind == MltVertex::Kind::Lens) lensHits->push_back(hit);
+        if (!traced) return false;
         side.push_back(next);
         if (--count > 0 && !scatter(side, mode, rng, ray, start)) return false;
         start = nullptr;  // the first scattering's alone
@@ -457,13 +474,28 @@ Ray PathSpace::cameraRay(Vec2 pFilm, Vec2 uLens, float time, const SampledWavele
     cs.pFilm = pFilm;
     cs.pLens = pinhole_ ? Vec2(0.5f, 0.5f) : uLens;
     const Ray ray = scene_.camera().generateRayAt(cs, time);
-    *lens = MltVertex();
-    lens->kind = MltVertex::Kind::Lens;
-    lens->p = ray.o;
-    lens->time = time;
-    lens->lambda = lambda;
-    lens->ng = scene_.camera().forward(time);
+    *lens = lensVertex(ray.o, time, lambda);
     return ray;
+}
+
+MltVertex PathSpace::lensVertex(Vec3 p, float time, const SampledWavelengths& lambda) const {
+    MltVertex lens;
+    lens.kind = MltVertex::Kind::Lens;
+    lens.p = p;
+    lens.time = time;
+    lens.lambda = lambda;
+    lens.ng = scene_.camera().forward(time);
+    return lens;
+}
+
+bool PathSpace::reachLens(std::vector<MltVertex>& side, Rng& rng, ScratchBuffer& arena, PathStats& stats) const {
+    Ray ray;
+    if (!lensReachable_ || side.size() < 2 || !scatter(side, TransportMode::Importance, rng, ray)) return false;
+    MltVertex next, lens;
+    trace(ray, side.back().lambda, arena, stats, next, false, mediumFrom(side.back(), ray.d), &rng, &lens);
+    if (lens.kind != MltVertex::Kind::Lens) return false;
+    side.push_back(lens);
+    return true;
 }
 
 bool PathSpace::scatter(std::vector<MltVertex>& side, TransportMode mode, Rng& rng, Ray& ray,

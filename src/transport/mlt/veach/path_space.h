@@ -16,6 +16,10 @@
 //  - the pinhole's position and a point light's are deltas of unit weight;
 //  - the lens has the viewing direction as its normal, so the geometry term of the last
 //    edge carries the lens cosine that the importance We expects;
+//  - a thin lens is a disk of the scene that a light walk's ray may cross (Veach's t = 0
+//    paths, thesis §10.2): the lens vertex's density from the light side is then the
+//    scattering's direction density at x_{k-1} times |cos at the lens| / d^2, as for any
+//    surface; a pinhole is a delta no ray hits (density 0 from the light side);
 //  - a light vertex at infinity (an infinite or a distant light: atInfinity) is a direction,
 //    not a point. The thesis' path space (ch. 8) takes each vertex in the area measure of
 //    the scene's surfaces; a vertex at infinity takes the solid-angle measure of the sphere
@@ -112,6 +116,13 @@ struct MltVertex {
 
 using MltPath = std::vector<MltVertex>;
 
+// A light walk's ray that crossed a thin lens: the lens vertex that ends the t = 0 path of the
+// walk's first `index` vertices (thesis §10.2).
+struct MltLensHit {
+    int index = 0;
+    MltVertex lens;
+};
+
 // The numbers that start a new walk, given in place of its stream's: a stratified bootstrap
 // sample (veach_mlt.cpp). For a light walk the light's choice, its point's and its direction's;
 // for a camera walk the film's and the lens's (choice unused); then the first scattering's
@@ -145,7 +156,9 @@ public:
     // Area density (solid angle for a light vertex at infinity) of vertex i when
     // generated from the light side, given vertices i - 1 and i - 2, and from the camera side,
     // given i + 1 and i + 2. Vertex 0 from the light side: the light's choice and position;
-    // the last from the camera side: the lens position.
+    // the last from the camera side: the lens position; the last from the light side: a ray
+    // from x_{k-1} crossing a thin lens (reachLens; zero for a pinhole, and for k < 2: a
+    // light seen directly is the camera side's, as in BDPT, transport/lens_hits.h).
     // `Density` says what a specular vertex's lobe counts for: its probability of being
     // chosen (Sampled: a walk chose it), or 1 (Forced: a perturbation keeps the path's own
     // lobes, and only the geometry of the retraced chain changes the density).
@@ -191,10 +204,21 @@ public:
     // ray escapes or a sample fails.
     // With `start` (an empty side), the walk's first numbers are its values (the stream still
     // draws its own, so that the rest of the stream is the same).
+    // With `lensHits` (a light walk through a thin lens), every lens crossing of a ray
+    // scattered at a vertex with a predecessor is recorded as the lens vertex that the t = 0
+    // path of the vertices before it would end with (the walk goes on: the lens is no
+    // obstacle), as BDPT's light subpaths record theirs.
     bool walk(std::vector<MltVertex>& side, int count, TransportMode mode, float time, const SampledWavelengths& lambda,
-              Rng& rng, ScratchBuffer& arena, PathStats& stats, const WalkStart* start = nullptr) const;
+              Rng& rng, ScratchBuffer& arena, PathStats& stats, const WalkStart* start = nullptr,
+              std::vector<MltLensHit>* lensHits = nullptr) const;
     // Whether walk can extend a side (light or camera, by `mode`) that holds `size` vertices.
     bool canContinue(int size, TransportMode mode) const;
+    // Whether light walks can reach the lens: a thin lens (Camera::hasLensDisk).
+    bool lensReachable() const { return lensReachable_; }
+    // The t = 0 step (thesis §10.2): appends to a light side of at least two vertices the lens
+    // vertex where the ray scattered at its last vertex crosses the lens disk, if nothing
+    // stops the ray before (a surface, a free flight's collision). False otherwise.
+    bool reachLens(std::vector<MltVertex>& side, Rng& rng, ScratchBuffer& arena, PathStats& stats) const;
     // Mutual visibility of vertices a and b.
     bool visible(const MltVertex& a, const MltVertex& b, PathStats& stats) const;
     // The next ray of a walk: a direction sampled by the BSDF at side's last vertex (which
@@ -227,8 +251,11 @@ public:
     // In a scene with media, `medium` is the ray's (updated at each boundary it crosses) and,
     // given `flights`, the ray may stop at a medium vertex, drawn from the majorants' Poisson
     // process (flightDensity); without, it passes through the media (a perturbation's retrace).
+    // With `lens` (a thin lens), a crossing of the lens disk before the ray stops (or escapes)
+    // is written there as a lens vertex (kind Lens; left alone otherwise), whatever the return.
     bool trace(Ray ray, const SampledWavelengths& lambda, ScratchBuffer& arena, PathStats& stats, MltVertex& out,
-               bool escape = false, const Medium* medium = nullptr, Rng* flights = nullptr) const;
+               bool escape = false, const Medium* medium = nullptr, Rng* flights = nullptr,
+               MltVertex* lens = nullptr) const;
     // The medium a ray leaving v along w starts in (the camera's at the lens, a light's side).
     const Medium* mediumFrom(const MltVertex& v, Vec3 w) const;
 
@@ -287,9 +314,12 @@ private:
     template <typename Part>
     bool alongEdge(const MltVertex& a, const MltVertex& b, PathStats* stats, Part&& part) const;
 
+    // The lens vertex at world point p (on the lens) at scene time `time`.
+    MltVertex lensVertex(Vec3 p, float time, const SampledWavelengths& lambda) const;
+
     const Scene& scene_;
     int maxDepth_;
-    bool pinhole_;
+    bool pinhole_, lensReachable_;
     Vec2 margin_, filmSize_;
     mutable std::atomic<bool> unsupportedSurface_{false};
     std::optional<SpectralFilm> sensor_;  // spectral mode's sensor (empty in RGB mode)

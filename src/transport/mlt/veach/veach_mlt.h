@@ -4,7 +4,8 @@
 //
 // With the chain machinery of the primary-sample-space variants:
 //  - bootstrap: N BDPT samples (a light and a camera subpath, every path their joins make,
-//    each weighted by f over the sum of its strategies' densities: the balance heuristic)
+//    and through a thin lens the light subpath's lens crossings (t = 0), each weighted by f
+//    over the sum of its strategies' densities: the balance heuristic)
 //    estimate b = the integral of the target, and each chain starts from one of their paths
 //    drawn in proportion to its weight (no start-up bias); the drawn sample is generated
 //    again from its own random stream and must give the same weights, bit for bit;
