@@ -8,6 +8,8 @@
 #include "geometry/curve.h"
 #include "materials/bxdf.h"
 #include "materials/hair_material.h"
+#include "transport/mlt/veach/mutator.h"
+#include "util/error.h"
 
 namespace ps {
 
@@ -99,6 +101,16 @@ std::string cameraName(const Camera& camera) {
     return "the camera";
 }
 
+// --mlt-direct's samples per pixel (0: the chains render every path); a spec the integrator
+// will refuse counts as 0.
+double mltDirectSamples(const Scene& scene) {
+    try {
+        return parseMutationWeights(scene.settings().mltMutations).direct;
+    } catch (const InputError&) {
+        return 0;
+    }
+}
+
 constexpr const char* kRemedies =
     "Veach's remedies: a small area light instead of the delta light, a roughness floor on the specular materials "
     "(e.g. \"float roughness\" 0.01), or a finite aperture (Camera \"float lensradius\" > 0) rendered with bdpt, "
@@ -109,12 +121,17 @@ constexpr const char* kRemedies =
 std::optional<UnsampledPaths> deltaSpecularEye(const Scene& scene, const SceneTraits& t, const std::string& integrator) {
     if (t.delta.empty() || t.specular.empty() || samplesLensHits(scene, integrator)) return std::nullopt;
     const bool every = !samplesLensHits(scene, "bdpt");
+    // mlt through a lens misses them only where --mlt-direct gives its one-bounce paths to the
+    // path tracer (the chains still sample L S S+ E).
+    const bool mltDirect = integrator == "mlt" && !every;
     return UnsampledPaths{
         "delta-specular-eye",
         "no technique of \"" + integrator + "\" samples the light of " + lightNames(t.delta) + " seen through " +
             materialNames(t.specular) + " by " + cameraName(scene.camera()) + " (L S+ E paths, thesis sec. 1.1): " +
-            (every ? "every integrator renders them black"
-                   : "bdpt, light, pssmlt and mlt sample them through this lens (t = 0)") +
+            (every      ? std::string("every integrator renders them black")
+             : mltDirect ? std::string("--mlt-direct renders the one-bounce ones (L S E) with the path tracer, which "
+                                       "cannot sample them; without it mlt samples them through this lens (t = 0)")
+                         : std::string("bdpt, light, pssmlt and mlt sample them through this lens (t = 0)")) +
             ". " + kRemedies,
         every};
 }
@@ -145,8 +162,8 @@ bool samplesLensHits(const Scene& scene, const std::string& integrator) {
     // and its bidirectional mutation (PathSpace::reachLens); mmlt samples one strategy with
     // t >= 1 at a time. In media too: the light walks' free flights reach the lens
     // (subpaths_media.cpp, PathSpace::trace).
-    return (integrator == "bdpt" || integrator == "light" || integrator == "pssmlt" || integrator == "mlt") &&
-           scene.camera().hasLensDisk();
+    if (integrator == "mlt") return scene.camera().hasLensDisk() && mltDirectSamples(scene) == 0;
+    return (integrator == "bdpt" || integrator == "light" || integrator == "pssmlt") && scene.camera().hasLensDisk();
 }
 
 std::vector<UnsampledPaths> unsampledPaths(const Scene& scene, const std::string& integrator) {

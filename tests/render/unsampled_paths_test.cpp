@@ -118,6 +118,15 @@ TEST(UnsampledPaths, AThinLensLetsTZeroSampleIt) {
     }
     // In fog around the camera light tracing keeps its class for the scattering near the lens.
     EXPECT_EQ(ids(*s, "light"), fog ? std::vector<std::string>{"light-camera-medium"} : std::vector<std::string>{});
+    // --mlt-direct gives mlt's one-bounce paths (the light in the mirror, L S E) to the path
+    // tracer, which cannot sample them.
+    s->settings().mltMutations = "direct=4";
+    EXPECT_FALSE(samplesLensHits(*s, "mlt"));
+    const std::vector<UnsampledPaths> direct = unsampledPaths(*s, "mlt");
+    const UnsampledPaths* a = find(direct, "delta-specular-eye");
+    ASSERT_NE(a, nullptr);
+    EXPECT_NE(a->message.find("--mlt-direct renders the one-bounce ones"), std::string::npos) << a->message;
+    s->settings().mltMutations = "";
   }
 }
 
