@@ -146,9 +146,10 @@ TEST(SubsurfaceErrors, PresetAndOverriddenInsideWarn) {
 // angles match) but not with medium vertices between. Without it the bootstrap's balance
 // weights and the bidirectional mutation's T were wrong: mlt was 7% too bright here (0.1846
 // +- 0.0006 against BDPT's 0.1726 +- 0.0003), about 1% on the agreement matrix's sphere.
-// The pooled check resolves 1% (4 sigma), most of mlt's share of it from b (the image mean
-// is b times the share of the film in its margin, which a box filter keeps small), hence a
-// large bootstrap and few mutations.
+// The pooled check resolves 1% (4 sigma; spectral mode's wavelength noise: 1.1%, so it asks
+// for 1.25% there, still a sixth of the bias it guards), most of mlt's share of it from b
+// (the image mean is b times the share of the film in its margin, which a box filter keeps
+// small), hence a large bootstrap and few mutations.
 TEST(VeachMLT, AgreesWithBDPTBehindASmoothBoundaryAroundAMedium) {
     std::string scene = sphereScene("", R"(Material "subsurface" "rgb sigma_a" [ 0.5 1 2 ] "rgb sigma_s" [ 6 5 4 ]
         "float g" [ 0.3 ])");
@@ -156,5 +157,6 @@ TEST(VeachMLT, AgreesWithBDPTBehindASmoothBoundaryAroundAMedium) {
     const std::string from = R"(Integrator "volpath" "integer maxdepth" [ 12 ])";
     scene.replace(scene.find(from), from.size(), R"(PixelFilter "box"
         Integrator "pssmlt" "integer maxdepth" [ 8 ] "integer chains" [ 1000 ] "integer bootstrapsamples" [ 100000 ])");
-    expectAgreement(AgreementCase{"subsurface behind a smooth boundary", scene, {"bdpt", "mlt"}, 512, 16, {{"mlt", 64}}});
+    expectAgreement(AgreementCase{"subsurface behind a smooth boundary", scene, {"bdpt", "mlt"}, 512, 16, {{"mlt", 64}},
+                                  defaultSpectral() ? 0.0125 : kDetectableBias});
 }
