@@ -19,13 +19,23 @@ public:
     // The emitted radiance Le at a point of the medium's space (emissive media only).
     virtual Spectrum emission(Vec3 /*pMedium*/, const SampledWavelengths* /*lambda*/) const { return {}; }
 
-    MediumProperties at(Vec3 p, const SampledWavelengths* lambda) const final {
+    MediumProperties at(Vec3 p, const SampledWavelengths* lambda) const final { return at(p, sigmaA(lambda), sigmaS(lambda), lambda); }
+    MajorantIterator majorants(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda) const final {
+        return majorants(o, d, tMax, sigmaA(lambda) + sigmaS(lambda));
+    }
+    const DensityMedium* asDensityMedium() const final { return this; }
+
+    // The same given sigma_a and sigma_s at the wavelengths (media/medium_lookup.h evaluates
+    // them once per ray).
+    Spectrum sigmaA(const SampledWavelengths* lambda) const { return sigmaA_(lambda); }
+    Spectrum sigmaS(const SampledWavelengths* lambda) const { return sigmaS_(lambda); }
+    MediumProperties at(Vec3 p, const Spectrum& sigmaA, const Spectrum& sigmaS, const SampledWavelengths* lambda) const {
         const Vec3 pm = box_.toMedium(p);
         const float d = density(pm);
-        return {sigmaA_(lambda) * d, sigmaS_(lambda) * d, emissive() ? emission(pm, lambda) : Spectrum(0.0f)};
+        return {sigmaA * d, sigmaS * d, emissive() ? emission(pm, lambda) : Spectrum(0.0f)};
     }
-    MajorantIterator majorants(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda) const final {
-        return box_.iterate(o, d, tMax, majorants_, sigmaA_(lambda) + sigmaS_(lambda));
+    MajorantIterator majorants(Vec3 o, Vec3 d, float tMax, const Spectrum& sigmaT) const {
+        return box_.iterate(o, d, tMax, majorants_, sigmaT);
     }
     const MajorantGrid& majorantGrid() const { return majorants_; }
     const MediumBox& box() const { return box_; }

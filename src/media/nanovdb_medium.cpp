@@ -36,7 +36,7 @@ NanoVDBMedium::NanoVDBMedium(const Transform& worldFromMedium, NanoVDBGrid densi
         int64_t i0[3], i1[3];
         for (int a = 0; a < 3; ++a) {
             const float lo0 = std::floor(mn[a]) - 1, hi0 = std::floor(mx[a]) + 2;
-            if (std::isnan(lo0) || std::isnan(hi0)) return Spectrum(grid_.maxValue());  // a corrupt map
+            if (std::isnan(lo0) || std::isnan(hi0)) return grid_.maxValue();  // a corrupt map
             if (lo0 < float(iMin[a]) || hi0 > float(iMax[a])) m = std::max(m, grid_.background());
             // In double and 64 bits: a corrupt map may put the corners far beyond int's range.
             i0[a] = int64_t(std::clamp(double(lo0), double(iMin[a]), double(iMax[a]) + 1));
@@ -45,7 +45,7 @@ NanoVDBMedium::NanoVDBMedium(const Transform& worldFromMedium, NanoVDBGrid densi
         // A cell over very many voxels (a coarse grid of a huge volume, or a corrupt map):
         // the largest value in the grid bounds it without scanning them.
         const double voxels = double(i1[0] - i0[0] + 1) * double(i1[1] - i0[1] + 1) * double(i1[2] - i0[2] + 1);
-        if (voxels > double(1 << 18)) return Spectrum(std::max(m, grid_.maxValue()));
+        if (voxels > double(1 << 18)) return std::max(m, grid_.maxValue());
         // Block by 8^3 block: one descent of the tree for each.
         for (int64_t k0 = i0[2]; k0 <= i1[2]; k0 = (k0 | 7) + 1)
             for (int64_t j0 = i0[1]; j0 <= i1[1]; j0 = (j0 | 7) + 1)
@@ -60,7 +60,7 @@ NanoVDBMedium::NanoVDBMedium(const Transform& worldFromMedium, NanoVDBGrid densi
                             for (int64_t i = x0; i <= std::min(i1[0], x0 | 7); ++i)
                                 m = std::max(m, b.at(int(i), int(j), int(k)));
                 }
-        return Spectrum(m);
+        return m;
     });
 }
 
