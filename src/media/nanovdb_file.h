@@ -57,12 +57,23 @@ private:
         int64_t upper;  // byte offset of the child upper node in bytes_, or -1: a tile value
         float value;
     };
+    Block treeBlock(int i, int j, int k) const;
     Block lowerBlock(size_t lower, int i, int j, int k) const;
     Block upperBlock(size_t upper, int i, int j, int k) const;
+    void buildBlockTable();
 
     std::string name_;
     std::vector<uint8_t> bytes_;
     std::vector<RootTile> tiles_;  // sorted by key
+    // Every 8^3 block of the index box, x fastest: the byte offset of its leaf's values, or
+    // 0 and its tile's value. A lookup inside the box then costs one load, not a descent of
+    // the tree (the root's binary search and three levels). Empty when it would be large.
+    struct TableEntry {
+        uint32_t leaf;
+        float value;
+    };
+    std::vector<TableEntry> table_;
+    int tableMin_[3] = {}, tableRes_[3] = {};  // in blocks
     float invMat_[9] = {}, vec_[3] = {};
     Vec3 worldMin_, worldMax_;
     int indexMin_[3] = {}, indexMax_[3] = {};
