@@ -279,11 +279,6 @@ NanoVDBGrid::Block NanoVDBGrid::treeBlock(int i, int j, int k) const {
     return upperBlock(size_t(it->upper), i, j, k);
 }
 
-float NanoVDBGrid::Block::at(int i, int j, int k) const {
-    if (!leafValues) return value;
-    return load<float>(leafValues + 4 * ((uint32_t(i & 7) << 6) | (uint32_t(j & 7) << 3) | uint32_t(k & 7)));
-}
-
 float NanoVDBGrid::value(int i, int j, int k) const { return block(i, j, k).at(i, j, k); }
 
 float NanoVDBGrid::sample(Vec3 p) const {

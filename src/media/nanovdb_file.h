@@ -13,6 +13,7 @@
 // is read, so lookups never leave the buffer; a bad file is an error naming it, never a crash.
 #pragma once
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,7 +32,12 @@ public:
     struct Block {
         const uint8_t* leafValues = nullptr;  // null: `value` everywhere in the block
         float value = 0;
-        float at(int i, int j, int k) const;
+        float at(int i, int j, int k) const {
+            if (!leafValues) return value;
+            float v;
+            std::memcpy(&v, leafValues + 4 * ((uint32_t(i & 7) << 6) | (uint32_t(j & 7) << 3) | uint32_t(k & 7)), sizeof v);
+            return v;
+        }
     };
     Block block(int i, int j, int k) const;
     // Trilinear interpolation of the voxel values, which sit at integer index coordinates

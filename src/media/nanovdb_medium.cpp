@@ -55,9 +55,6 @@ NanoVDBMedium::NanoVDBMedium(const Transform& worldFromMedium, NanoVDBGrid densi
         // the largest value in the grid bounds it without scanning them.
         const double voxels = double(i1[0] - i0[0] + 1) * double(i1[1] - i0[1] + 1) * double(i1[2] - i0[2] + 1);
         if (voxels > double(1 << 18)) return std::max(all, grid_.maxValue());
-        auto isOwn = [&](int64_t i, int64_t j, int64_t k) {
-            return i >= own0[0] && i <= own1[0] && j >= own0[1] && j <= own1[1] && k >= own0[2] && k <= own1[2];
-        };
         // Block by 8^3 block: one lookup of the block for each.
         for (int64_t k0 = i0[2]; k0 <= i1[2]; k0 = (k0 | 7) + 1)
             for (int64_t j0 = i0[1]; j0 <= i1[1]; j0 = (j0 | 7) + 1)
@@ -73,13 +70,17 @@ NanoVDBMedium::NanoVDBMedium(const Transform& worldFromMedium, NanoVDBGrid densi
                             own = std::max(own, b.value);
                         continue;
                     }
-                    for (int64_t k = k0; k <= k1; ++k)
-                        for (int64_t j = j0; j <= j1; ++j)
-                            for (int64_t i = x0; i <= x1; ++i) {
-                                const float v = b.at(int(i), int(j), int(k));
-                                all = std::max(all, v);
-                                if (isOwn(i, j, k)) own = std::max(own, v);
-                            }
+                    // The leaf's values run z fastest: z innermost, a tight loop over a row.
+                    auto rowMax = [&](int64_t i, int64_t j, int64_t kLo, int64_t kHi, float m) {
+                        for (int64_t k = kLo; k <= kHi; ++k) m = std::max(m, b.at(int(i), int(j), int(k)));
+                        return m;
+                    };
+                    for (int64_t i = x0; i <= x1; ++i)
+                        for (int64_t j = j0; j <= j1; ++j) {
+                            all = rowMax(i, j, k0, k1, all);
+                            if (i >= own0[0] && i <= own1[0] && j >= own0[1] && j <= own1[1])
+                                own = rowMax(i, j, std::max(k0, own0[2]), std::min(k1, own1[2]), own);
+                        }
                 }
         return bound();
     });
