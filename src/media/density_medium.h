@@ -3,6 +3,8 @@
 // the medium's space scales both, and tracking walks a majorant grid of the density's bounds
 // over the box times sigma_a + sigma_s. Subclasses give the density and fill the grid.
 #pragma once
+#include <atomic>
+#include <cstdint>
 #include "media/majorant_grid.h"
 
 namespace ps {
@@ -11,7 +13,10 @@ class DensityMedium : public Medium {
 public:
     DensityMedium(const MediumBox& box, MediumSpectrum sigmaA, MediumSpectrum sigmaS, float g, int majorantRes)
         : Medium(g), box_(box), sigmaA_(std::move(sigmaA)), sigmaS_(std::move(sigmaS)),
-          majorants_(majorantRes, majorantRes, majorantRes) {}
+          majorants_(majorantRes, majorantRes, majorantRes) {
+        static std::atomic<uint64_t> count{0};
+        serial_ = ++count;
+    }
 
     // The density at a point of the medium's space.
     virtual float density(Vec3 pMedium) const = 0;
@@ -24,6 +29,8 @@ public:
         return majorants(o, d, tMax, sigmaA(lambda) + sigmaS(lambda));
     }
     const DensityMedium* asDensityMedium() const final { return this; }
+    // Unique among all density media made by the process (never 0).
+    uint64_t serial() const { return serial_; }
 
     // The same given sigma_a and sigma_s at the wavelengths (media/medium_lookup.h evaluates
     // them once per ray).
@@ -44,6 +51,9 @@ protected:
     MediumBox box_;
     MediumSpectrum sigmaA_, sigmaS_;
     MajorantGrid majorants_;
+
+private:
+    uint64_t serial_ = 0;
 };
 
 }  // namespace ps

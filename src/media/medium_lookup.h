@@ -11,10 +11,25 @@ class MediumLookup {
 public:
     MediumLookup(const Medium& medium, const SampledWavelengths* lambda)
         : medium_(medium), density_(medium.asDensityMedium()), lambda_(lambda) {
-        if (density_) {
-            sigmaA_ = density_->sigmaA(lambda);
-            sigmaS_ = density_->sigmaS(lambda);
+        if (!density_) return;
+        // A path keeps its wavelengths and meets few media: the last spectra this thread
+        // evaluated are most often these.
+        thread_local struct {
+            uint64_t medium = 0;  // a serial number: a later medium may reuse an address
+            SpectralValues lambda{};
+            bool spectral = false;
+            Spectrum sigmaA, sigmaS;
+        } last;
+        const bool spectral = lambda != nullptr;
+        if (last.medium != density_->serial() || last.spectral != spectral || (spectral && last.lambda != lambda->lambda)) {
+            last.medium = density_->serial();
+            last.spectral = spectral;
+            if (spectral) last.lambda = lambda->lambda;
+            last.sigmaA = density_->sigmaA(lambda);
+            last.sigmaS = density_->sigmaS(lambda);
         }
+        sigmaA_ = last.sigmaA;
+        sigmaS_ = last.sigmaS;
     }
     MediumProperties at(Vec3 p) const { return density_ ? density_->at(p, sigmaA_, sigmaS_, lambda_) : medium_.at(p, lambda_); }
     MajorantIterator majorants(Vec3 o, Vec3 d, float tMax) const {
