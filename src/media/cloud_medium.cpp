@@ -16,7 +16,7 @@ constexpr float kOctaveWeightSum = 0.5f + 0.25f + 0.125f + 0.0625f + 0.03125f;
 
 CloudMedium::CloudMedium(const MediumBox& box, MediumSpectrum sigmaA, MediumSpectrum sigmaS, float g, Shape shape)
     : DensityMedium(box, std::move(sigmaA), std::move(sigmaS), g, 16), shape_(shape) {
-    majorants_.fill([&](Vec3 lo, Vec3 hi) { return Spectrum(cellBound(lo, hi)); });
+    majorants_.fill([&](Vec3 lo, Vec3 hi) { return cellBound(lo, hi); });
 }
 
 float CloudMedium::density(Vec3 p) const {

@@ -42,7 +42,7 @@ public:
     MediumProperties at(Vec3 p, const SampledWavelengths* lambda) const override;
     MajorantIterator majorants(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda) const override;
     // The cells' bounds: density (uniformgrid), per-channel RGB sigma_t or its spectral lift's bound (rgbgrid).
-    const MajorantGrid& majorantGrid(bool spectral) const { return spectral && rgb_ ? liftedMajorants_ : majorants_; }
+    const SpectralMajorantGrid& majorantGrid(bool spectral) const { return spectral && rgb_ ? liftedMajorants_ : majorants_; }
 
 private:
     Box box_;
@@ -54,7 +54,7 @@ private:
     const RGBColorSpace* space_ = nullptr;
     // uniformgrid: each cell's largest density. rgbgrid: each cell's largest sigma_a + sigma_s
     // per channel (RGB mode), and a bound on the lifted spectra's (spectral mode).
-    MajorantGrid majorants_{16, 16, 16}, liftedMajorants_;
+    SpectralMajorantGrid majorants_{16, 16, 16}, liftedMajorants_;
 };
 
 }  // namespace ps

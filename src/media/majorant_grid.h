@@ -5,20 +5,25 @@
 // it is thin instead of the whole box's largest density everywhere. Shared by the grid, cloud
 // and nanovdb media; the homogeneous medium keeps its single segment.
 #pragma once
+#include <type_traits>
 #include <vector>
 #include "math/transform.h"
 #include "media/medium.h"
 
 namespace ps {
 
-struct MajorantGrid {
+// T is float for media whose sigma_t is a density times one spectrum (one bound per cell,
+// times the iterator's scale: a quarter of the memory of a Spectrum per cell), Spectrum for
+// rgbgrid's per-channel bounds.
+template <typename T>
+struct MajorantGridOf {
     int res[3] = {1, 1, 1};
-    std::vector<Spectrum> cells;  // x fastest; multiplied by the iterator's scale
+    std::vector<T> cells;  // x fastest; multiplied by the iterator's scale
 
-    MajorantGrid() = default;
-    MajorantGrid(int nx, int ny, int nz) : res{nx, ny, nz}, cells(size_t(nx) * ny * nz, Spectrum(0.0f)) {}
-    Spectrum& at(int x, int y, int z) { return cells[(size_t(z) * res[1] + y) * res[0] + x]; }
-    const Spectrum& at(int x, int y, int z) const { return cells[(size_t(z) * res[1] + y) * res[0] + x]; }
+    MajorantGridOf() = default;
+    MajorantGridOf(int nx, int ny, int nz) : res{nx, ny, nz}, cells(size_t(nx) * ny * nz, T(0.0f)) {}
+    T& at(int x, int y, int z) { return cells[(size_t(z) * res[1] + y) * res[0] + x]; }
+    const T& at(int x, int y, int z) const { return cells[(size_t(z) * res[1] + y) * res[0] + x]; }
     // Cell (x, y, z)'s corners in the box's unit coordinates [0,1]^3.
     Vec3 cellMin(int x, int y, int z) const { return {float(x) / res[0], float(y) / res[1], float(z) / res[2]}; }
     Vec3 cellMax(int x, int y, int z) const { return {float(x + 1) / res[0], float(y + 1) / res[1], float(z + 1) / res[2]}; }
@@ -26,6 +31,8 @@ struct MajorantGrid {
     template <typename F>
     void fill(F&& bound);
 };
+using MajorantGrid = MajorantGridOf<float>;
+using SpectralMajorantGrid = MajorantGridOf<Spectrum>;
 
 // The segments of a ray, in world distances along its unit direction, each with its majorant.
 // Either one segment (homogeneous media) or a walk through a MajorantGrid's cells.
@@ -34,16 +41,26 @@ public:
     MajorantIterator() = default;  // no segment: the ray misses the medium
     MajorantIterator(float t0, float t1, const Spectrum& sigmaMaj) : tMin_(t0), tMax_(t1), scale_(sigmaMaj) {}
     // oUnit + t dUnit is the ray in the grid's unit coordinates; t in [t0, t1] lies in the box.
-    MajorantIterator(const MajorantGrid* grid, Vec3 oUnit, Vec3 dUnit, float t0, float t1, const Spectrum& scale);
+    template <typename T>
+    MajorantIterator(const MajorantGridOf<T>* grid, Vec3 oUnit, Vec3 dUnit, float t0, float t1, const Spectrum& scale)
+        : MajorantIterator(grid->res, oUnit, dUnit, t0, t1, scale) {
+        if constexpr (std::is_same_v<T, float>) scalar_ = grid->cells.data();
+        else spectral_ = grid->cells.data();
+    }
 
     bool next(MajorantSegment* seg);
 
 private:
-    const MajorantGrid* grid_ = nullptr;
+    MajorantIterator(const int res[3], Vec3 oUnit, Vec3 dUnit, float t0, float t1, const Spectrum& scale);
+
+    const float* scalar_ = nullptr;  // one of the two: the cells, or neither (one segment)
+    const Spectrum* spectral_ = nullptr;
+    size_t cellIndex_ = 0;            // of cell_ in the cells, moved by indexStep_
     float tMin_ = 0, tMax_ = 0;  // tMin_ >= tMax_: finished
     Spectrum scale_;
     float nextCrossing_[3] = {}, deltaT_[3] = {};
     int cell_[3] = {}, step_[3] = {}, stop_[3] = {};
+    ptrdiff_t indexStep_[3] = {};
 };
 
 // A medium's box p0..p1 in its own space, placed in the world by the CTM at MakeNamedMedium.
@@ -55,15 +72,24 @@ struct MediumBox {
     Vec3 toUnit(Vec3 pWorld) const;
     // The part of o + t d (world, d unit, t in [0, tMax]) inside the box, walking `grid`'s cells
     // with their values times `scale`; an empty iterator when the box is missed.
-    MajorantIterator iterate(Vec3 o, Vec3 d, float tMax, const MajorantGrid& grid, const Spectrum& scale) const;
+    template <typename T>
+    MajorantIterator iterate(Vec3 o, Vec3 d, float tMax, const MajorantGridOf<T>& grid, const Spectrum& scale) const {
+        Vec3 oUnit, dUnit;
+        float t0, t1;
+        if (!clip(o, d, tMax, &oUnit, &dUnit, &t0, &t1)) return {};
+        return MajorantIterator(&grid, oUnit, dUnit, t0, t1, scale);
+    }
+    // The part [t0, t1] of the ray inside the box and the ray in unit coordinates; false when missed.
+    bool clip(Vec3 o, Vec3 d, float tMax, Vec3* oUnit, Vec3* dUnit, float* t0, float* t1) const;
 };
 
 }  // namespace ps
 
 #include <tbb/parallel_for.h>
 
+template <typename T>
 template <typename F>
-void ps::MajorantGrid::fill(F&& bound) {
+void ps::MajorantGridOf<T>::fill(F&& bound) {
     tbb::parallel_for(0, res[2], [&](int z) {
         for (int y = 0; y < res[1]; ++y)
             for (int x = 0; x < res[0]; ++x) at(x, y, z) = bound(cellMin(x, y, z), cellMax(x, y, z));

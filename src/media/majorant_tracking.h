@@ -10,6 +10,7 @@
 #include "geometry/ray.h"
 #include "mc/rng.h"
 #include "media/majorant_grid.h"
+#include "media/medium_lookup.h"
 
 namespace ps {
 
@@ -19,14 +20,16 @@ Spectrum sampleMajorant(const Medium& medium, Ray ray, float tMax, float u, Rng&
     const float len = length(ray.d);
     if (!(len > 0)) return Spectrum(1.0f);
     const Vec3 d = ray.d / len;
+    const MediumLookup lookup(medium, lambda);
     // Distances, not ray parameters: shadow rays have unnormalised directions.
-    MajorantIterator segments = medium.majorants(ray.o, d, tMax * len, lambda);
-    Spectrum Tmaj(1.0f);
+    MajorantIterator segments = lookup.majorants(ray.o, d, tMax * len);
+    // The majorant's optical depth since the last event: one exp per event, not one per cell.
+    Spectrum tau(0.0f);
     MajorantSegment seg;
     while (segments.next(&seg)) {
         const float sm = seg.sigmaMaj[hero];
         if (!(sm > 0)) {  // an empty cell (or a hero channel the medium leaves alone)
-            Tmaj *= expNeg(seg.sigmaMaj * std::max(0.0f, seg.t1 - seg.t0));
+            tau += seg.sigmaMaj * std::max(0.0f, seg.t1 - seg.t0);
             continue;
         }
         float t = seg.t0;
@@ -36,17 +39,17 @@ Spectrum sampleMajorant(const Medium& medium, Ray ray, float tMax, float u, Rng&
             if (!(t + dt < seg.t1)) {
                 // Past the segment: the flight goes on in the next one with a fresh u, as
                 // pbrt-v4's SampleT_maj (memorylessness makes the restart exact).
-                Tmaj *= expNeg(seg.sigmaMaj * std::max(0.0f, seg.t1 - t));
+                tau += seg.sigmaMaj * std::max(0.0f, seg.t1 - t);
                 break;
             }
             t += dt;
-            Tmaj *= expNeg(seg.sigmaMaj * dt);
+            tau += seg.sigmaMaj * dt;
             const Vec3 p = ray.o + d * t;
-            if (!event(p, medium.at(p, lambda), seg.sigmaMaj, Tmaj)) return Spectrum(1.0f);
-            Tmaj = Spectrum(1.0f);
+            if (!event(p, lookup.at(p), seg.sigmaMaj, expNeg(tau))) return Spectrum(1.0f);
+            tau = Spectrum(0.0f);
         }
     }
-    return Tmaj;
+    return expNeg(tau);
 }
 
 }  // namespace ps

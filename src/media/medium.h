@@ -23,6 +23,7 @@ struct MajorantSegment {
 };
 
 class MajorantIterator;
+class DensityMedium;
 
 // A scene spectrum in both colour modes: an RGB value, or a spectrum's values at a path's
 // wavelengths (spectral mode, lambda not null) times a scale.
@@ -53,12 +54,16 @@ public:
     // with a majorant that bounds sigma_t over it (pbrt-v4's SampleRay); none where the ray
     // misses a grid's box.
     virtual MajorantIterator majorants(Vec3 o, Vec3 d, float tMax, const SampledWavelengths* lambda) const = 0;
+    // Itself when its sigma_a and sigma_s are a density times two fixed spectra.
+    virtual const DensityMedium* asDensityMedium() const { return nullptr; }
 
 private:
     HGPhaseFunction phase_;
 };
 
 inline Spectrum expNeg(const Spectrum& s) {
+    // A grey exponent (a grey medium's majorant, in either colour mode) needs one exp.
+    if (s.r == s.g && s.r == s.b && s.r == s.c3) return Spectrum(std::exp(-s.r));
     return Spectrum::sampled(std::exp(-s.r), std::exp(-s.g), std::exp(-s.b), std::exp(-s.c3));
 }
 inline Spectrum clampZero(const Spectrum& s) {

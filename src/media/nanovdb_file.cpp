@@ -183,6 +183,7 @@ private:
             out.tiles_.push_back(rt);
         }
         std::sort(out.tiles_.begin(), out.tiles_.end(), [](const auto& x, const auto& y) { return x.key < y.key; });
+        out.buildBlockTable();
     }
 
     size_t checkedChild(size_t parent, int64_t offset, size_t childSize, size_t size, const std::string& g, const char* what) const {
@@ -236,18 +237,46 @@ NanoVDBGrid::Block NanoVDBGrid::upperBlock(size_t upper, int i, int j, int k) co
     return lowerBlock(size_t(int64_t(upper) + load<int64_t>(entry)), i, j, k);
 }
 
+void NanoVDBGrid::buildBlockTable() {
+    int64_t n = 1;
+    for (int a = 0; a < 3; ++a) {
+        if (indexMax_[a] < indexMin_[a]) return;  // no active voxel
+        tableMin_[a] = indexMin_[a] >> 3;  // floor division: the shift is arithmetic
+        tableRes_[a] = (indexMax_[a] >> 3) - tableMin_[a] + 1;
+        n *= tableRes_[a];
+        if (n > int64_t(1) << 24) return;  // (a corrupt box may be 2^29 blocks a side)
+    }
+    // At most an eighth of the grid's own bytes (a sparse grid's box may hold many empty
+    // blocks), and offsets that fit in 32 bits.
+    if (n * int64_t(sizeof(TableEntry)) > int64_t(bytes_.size() / 8) || bytes_.size() >> 32) return;
+    table_.resize(size_t(n));
+    size_t e = 0;
+    for (int z = 0; z < tableRes_[2]; ++z)
+        for (int y = 0; y < tableRes_[1]; ++y)
+            for (int x = 0; x < tableRes_[0]; ++x, ++e) {
+                const Block b = treeBlock((tableMin_[0] + x) * 8, (tableMin_[1] + y) * 8, (tableMin_[2] + z) * 8);
+                table_[e] = {b.leafValues ? uint32_t(b.leafValues - bytes_.data()) : 0u, b.value};
+            }
+}
+
 NanoVDBGrid::Block NanoVDBGrid::block(int i, int j, int k) const {
+    if (!table_.empty()) {
+        const uint32_t x = uint32_t((i >> 3) - tableMin_[0]), y = uint32_t((j >> 3) - tableMin_[1]), z = uint32_t((k >> 3) - tableMin_[2]);
+        if (x < uint32_t(tableRes_[0]) && y < uint32_t(tableRes_[1]) && z < uint32_t(tableRes_[2])) {
+            const TableEntry& t = table_[(size_t(z) * tableRes_[1] + y) * tableRes_[0] + x];
+            return t.leaf ? Block{bytes_.data() + t.leaf, 0} : Block{nullptr, t.value};
+        }
+    }
+    return treeBlock(i, j, k);
+}
+
+NanoVDBGrid::Block NanoVDBGrid::treeBlock(int i, int j, int k) const {
     // The root's key packs the 4096^3 block's coordinates, 21 bits each, z lowest.
     const uint64_t key = uint64_t(uint32_t(k) >> 12) | (uint64_t(uint32_t(j) >> 12) << 21) | (uint64_t(uint32_t(i) >> 12) << 42);
     auto it = std::lower_bound(tiles_.begin(), tiles_.end(), key, [](const RootTile& t, uint64_t k) { return t.key < k; });
     if (it == tiles_.end() || it->key != key) return {nullptr, background_};
     if (it->upper < 0) return {nullptr, it->value};
     return upperBlock(size_t(it->upper), i, j, k);
-}
-
-float NanoVDBGrid::Block::at(int i, int j, int k) const {
-    if (!leafValues) return value;
-    return load<float>(leafValues + 4 * ((uint32_t(i & 7) << 6) | (uint32_t(j & 7) << 3) | uint32_t(k & 7)));
 }
 
 float NanoVDBGrid::value(int i, int j, int k) const { return block(i, j, k).at(i, j, k); }

@@ -13,6 +13,7 @@
 // is read, so lookups never leave the buffer; a bad file is an error naming it, never a crash.
 #pragma once
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,7 +32,12 @@ public:
     struct Block {
         const uint8_t* leafValues = nullptr;  // null: `value` everywhere in the block
         float value = 0;
-        float at(int i, int j, int k) const;
+        float at(int i, int j, int k) const {
+            if (!leafValues) return value;
+            float v;
+            std::memcpy(&v, leafValues + 4 * ((uint32_t(i & 7) << 6) | (uint32_t(j & 7) << 3) | uint32_t(k & 7)), sizeof v);
+            return v;
+        }
     };
     Block block(int i, int j, int k) const;
     // Trilinear interpolation of the voxel values, which sit at integer index coordinates
@@ -57,12 +63,23 @@ private:
         int64_t upper;  // byte offset of the child upper node in bytes_, or -1: a tile value
         float value;
     };
+    Block treeBlock(int i, int j, int k) const;
     Block lowerBlock(size_t lower, int i, int j, int k) const;
     Block upperBlock(size_t upper, int i, int j, int k) const;
+    void buildBlockTable();
 
     std::string name_;
     std::vector<uint8_t> bytes_;
     std::vector<RootTile> tiles_;  // sorted by key
+    // Every 8^3 block of the index box, x fastest: the byte offset of its leaf's values, or
+    // 0 and its tile's value. A lookup inside the box then costs one load, not a descent of
+    // the tree (the root's binary search and three levels). Empty when it would be large.
+    struct TableEntry {
+        uint32_t leaf;
+        float value;
+    };
+    std::vector<TableEntry> table_;
+    int tableMin_[3] = {}, tableRes_[3] = {};  // in blocks
     float invMat_[9] = {}, vec_[3] = {};
     Vec3 worldMin_, worldMax_;
     int indexMin_[3] = {}, indexMax_[3] = {};

@@ -33,6 +33,7 @@ public:
     Spectrum emission(Vec3 pMedium, const SampledWavelengths* lambda) const override;
     // The temperature in kelvin at a point of the medium's space (0 without a grid).
     float kelvin(Vec3 pMedium) const;
+    const NanoVDBGrid& grid() const { return grid_; }
 
 private:
     void buildBlackbodyTable();

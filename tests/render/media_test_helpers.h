@@ -132,8 +132,8 @@ inline std::string buildError(const std::string& text) {
 
 // The number of random points of a majorant grid's cells (unit coordinates, mapped to the
 // world by `toWorld`) where `density` exceeds the cell's bound in some channel.
-template <typename Density, typename ToWorld>
-inline int countCellViolations(const MajorantGrid& grid, int perCell, Density&& density, ToWorld&& toWorld) {
+template <typename T, typename Density, typename ToWorld>
+inline int countCellViolations(const MajorantGridOf<T>& grid, int perCell, Density&& density, ToWorld&& toWorld) {
     Rng rng(7);
     int bad = 0;
     for (int z = 0; z < grid.res[2]; ++z)
@@ -147,7 +147,7 @@ inline int countCellViolations(const MajorantGrid& grid, int perCell, Density&& 
                         return i < 8 ? (u < 0.5f ? a : b) : a + (b - a) * u;
                     };
                     const Vec3 u(coord(lo.x, hi.x), coord(lo.y, hi.y), coord(lo.z, hi.z));
-                    const Spectrum d = density(toWorld(u)), m = grid.at(x, y, z);
+                    const Spectrum d = density(toWorld(u)), m = Spectrum(grid.at(x, y, z));
                     for (int c = 0; c < 4; ++c)
                         if (d[c] > m[c] * (1 + 1e-5f) + 1e-6f) {
                             if (bad++ < 5)
