@@ -413,8 +413,7 @@ void configureRender(Scene& scene, const RenderArgs& a, RenderSetup& setup) {
             opts.scramblings = scramblingCount(opts.sampler, opts.spp);
         }
     }
-    // --light-paths auto: a pilot of path tracing's and BDPT's samples chooses the share
-    // (strategy images need every sample to be BDPT's: then 1).
+    // --light-paths auto: a pilot of path tracing's and BDPT's samples chooses the share.
     if (a.lightPathsAuto && !a.resume.empty())
         throw InputError("--light-paths auto cannot resume: its pilot is timed and may choose another share; give "
                          "the share the first run chose (its summary line, or --stats' light_paths_per_sample)");

@@ -30,9 +30,9 @@ int pilotSpp(const Scene& scene) {
     return std::max(kMinPilotSpp, int(std::ceil(kPilotSamples / pixels)));
 }
 
-RenderResult pilot(const Scene& scene, const BDPTIntegrator& bdpt, const RenderOptions& main) {
+RenderResult pilot(const Scene& scene, const BDPTIntegrator& bdpt, const RenderOptions& main, int spp) {
     RenderOptions o;
-    o.spp = pilotSpp(scene);
+    o.spp = spp;
     o.threads = main.threads;
     o.seed = main.seed ^ 0x9e3779b97f4a7c15ull;  // not the render's own samples
     o.sampler = "independent";  // half-buffers of independent samples: an unbiased variance
@@ -84,12 +84,11 @@ float lightOnlyFloor(const Scene& scene) {
 
 LightPathChoice chooseLightPathShare(const Scene& scene, BDPTIntegrator& bdpt, const RenderOptions& options) {
     LightPathChoice c;
-    c.pilotSpp = pilotSpp(scene);
-    c.floor = lightOnlyFloor(scene);
+    const int spp = pilotSpp(scene);
     bdpt.setLightPathShare(0);
-    const RenderResult path = pilot(scene, bdpt, options);
+    const RenderResult path = pilot(scene, bdpt, options, spp);
     bdpt.setLightPathShare(1);
-    const RenderResult both = pilot(scene, bdpt, options);
+    const RenderResult both = pilot(scene, bdpt, options, spp);
     c.seconds = path.seconds + both.seconds;
     // Only the first process holds the films' sums; its judgement decides for all, so that
     // every process renders alike.
@@ -102,7 +101,7 @@ LightPathChoice chooseLightPathShare(const Scene& scene, BDPTIntegrator& bdpt, c
         bdptWins[0] = c.bdptVarianceTime <= c.pathVarianceTime ? 1 : 0;
     }
     distributed::broadcastFromRoot(bdptWins);
-    c.share = bdptWins[0] ? 1.0f : c.floor;
+    c.share = bdptWins[0] ? 1.0f : lightOnlyFloor(scene);
     bdpt.setLightPathShare(c.share);
     return c;
 }

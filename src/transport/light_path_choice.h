@@ -22,13 +22,11 @@ class Scene;
 
 struct LightPathChoice {
     float share = 1;
-    int pilotSpp = 0;  // per pixel, of each end
     // Each pilot's mean relative pixel variance times its seconds (1 / efficiency). Timed:
     // BDPT's cost per ray is not the path tracer's, so a ray count would misjudge it; the
     // choice may then differ between machines where the two are close (the first process
     // decides for all).
     double pathVarianceTime = 0, bdptVarianceTime = 0;
-    float floor = 0;  // lightOnlyFloor: the share where path tracing wins
     double seconds = 0;  // both pilots' time, which a time-budgeted render takes from its budget
 };
 
